@@ -1,0 +1,43 @@
+#pragma once
+// Orthonormal frames and direction updates.
+
+#include <Eigen/Core>
+#include <cmath>
+
+namespace scatterlab {
+
+using Vec3 = Eigen::Vector3d;
+
+// A right-handed orthonormal basis (tangent, bitangent, n) around a unit vector n, following
+// Duff et al. 2017, "Building an Orthonormal Basis, Revisited": branch-free apart from the sign
+// of n.z, and continuous everywhere except across the plane z = 0, with no loss of precision at
+// the poles (the classic Frisvad form breaks at n.z = -1).
+struct Frame {
+  Vec3 tangent;
+  Vec3 bitangent;
+  Vec3 normal;
+
+  explicit Frame(const Vec3& n) : normal(n) {
+    const double sign = std::copysign(1.0, n.z());
+    const double a = -1.0 / (sign + n.z());
+    const double b = n.x() * n.y() * a;
+    tangent = Vec3(1.0 + sign * n.x() * n.x() * a, sign * b, -sign * n.x());
+    bitangent = Vec3(b, sign + n.y() * n.y() * a, -n.y());
+  }
+
+  Vec3 to_world(double x, double y, double z) const {
+    return x * tangent + y * bitangent + z * normal;
+  }
+};
+
+// The direction at polar angle acos(cos_theta) from `direction` and azimuth `phi` about it.
+// Renormalised so that rounding does not accumulate over thousands of scattering events.
+inline Vec3 scatter_direction(const Vec3& direction, double cos_theta, double cos_phi,
+                              double sin_phi) {
+  const double sin_theta = std::sqrt(std::max(0.0, (1.0 - cos_theta) * (1.0 + cos_theta)));
+  const Vec3 turned =
+      Frame(direction).to_world(sin_theta * cos_phi, sin_theta * sin_phi, cos_theta);
+  return turned / turned.norm();
+}
+
+}  // namespace scatterlab

@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs what scatterlab needs to build and test on Debian 12, and nothing that is already there.
+# Idempotent: a second run installs nothing and prints nothing but its last line.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev libhdf5-dev libceres-dev libfmt-dev libgtest-dev libgmock-dev
+  libcli11-dev libtomlplusplus-dev librandom123-dev libbenchmark-dev
+  libopenmpi-dev openmpi-bin
+  clang-format
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -q
+  $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+echo "setup: all dependencies present"
