@@ -1,0 +1,70 @@
+#pragma once
+// What one simulation is asked to do, as plain structs validated once (DESIGN.md, data flow).
+// Lengths are in mean free paths (sigma_t = 1) throughout transport and tallies.
+
+#include <cstdint>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "scatterlab/core/medium.hpp"
+#include "scatterlab/tally/axis.hpp"
+
+namespace scatterlab {
+
+enum class SourceKind {
+  pencil_beam,  // at the origin, travelling along +z (Vavassori §4.1)
+  point,        // isotropic point source at the origin (d'Eon & Irving 2011 fluence curves)
+};
+
+enum class Estimator {
+  collision,     // score at each collision, weight 1 / sigma_t (the paper's estimator)
+  track_length,  // score the length of every flight inside each bin
+};
+
+// The paper's grid (Vavassori §4.1): r in [0, 1.5], z in [-1, 3] mfp, theta in [0, pi],
+// phi in [0, 2 pi] measured from the outward radial direction e_r.
+struct Grid {
+  UniformAxis r{0.0, 1.5, 15};
+  UniformAxis z{-1.0, 3.0, 40};
+  UniformAxis theta{0.0, std::numbers::pi, 18};
+  UniformAxis phi{0.0, 2.0 * std::numbers::pi, 36};  // max is pi when fold_phi
+  bool fold_phi = false;                             // L(phi) = L(-phi): fold onto [0, pi]
+  UniformAxis rho{0.0, 10.0, 200};                    // spherical shells (point source)
+};
+
+// Tallies that were not asked for are not allocated.
+struct TallyRequest {
+  bool radiance = true;            // L(r, z, theta, phi)
+  bool fluence = true;             // phi(r, z)
+  bool flux = true;                // E(r, z) = (E_r, E_z)
+  bool fluence_spherical = false;  // phi(rho); point source only
+  bool split_by_order = false;     // siblings _unscattered, _single, _multiple
+  Estimator estimator = Estimator::collision;
+};
+
+struct RunSettings {
+  std::uint64_t photons = 10'000'000;
+  std::uint32_t batches = 64;   // batch statistics: standard error from batch-to-batch spread
+  std::uint64_t seed = 1;
+  int threads = 0;              // 0: all hardware threads
+  // Photons farther than this from the origin are counted as escaped and stopped. Infinite by
+  // default; required when albedo = 1, where nothing is ever absorbed.
+  double escape_radius = std::numeric_limits<double>::infinity();
+};
+
+struct SimulationSpec {
+  Medium medium;
+  SourceKind source = SourceKind::pencil_beam;
+  Grid grid;
+  TallyRequest tallies;
+  RunSettings run;
+
+  // Throws InputError naming the first bad field and what it accepts.
+  void validate() const;
+};
+
+std::string to_string(SourceKind source);
+std::string to_string(Estimator estimator);
+
+}  // namespace scatterlab
