@@ -2,6 +2,7 @@
 // Orthonormal frames and direction updates.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cmath>
 
 namespace scatterlab {

@@ -31,17 +31,18 @@ struct HenyeyGreenstein {
 
   // Inverts the HG cumulative distribution. The textbook form
   //   mu = (1 + g^2 - ((1 - g^2) / (1 - g + 2 g xi))^2) / (2 g)
-  // divides by g and cancels as g -> 0. Subtracting the isotropic sample s = 2 xi - 1 gives
-  //   mu = s + 2 a xi (1 - xi) ((1 - a)(3 + a) + 4 a xi) / ((1 - a) + 2 a xi)^2
+  // divides by g and cancels as g -> 0. Subtracting the isotropic sample s = 2 x - 1 gives
+  //   mu = s + 2 a x (1 - x) ((1 - a)(3 + a) + 4 a x) / ((1 - a) + 2 a x)^2
   // for a = |g| >= 0: every factor of the correction is non-negative, it vanishes linearly as
   // a -> 0 (so g = 1e-9 is exact to rounding), and it tends to 1 - s as a -> 1. Negative g
-  // mirrors the lobe: p_g(mu) = p_{-g}(-mu).
+  // mirrors the lobe, p_g(mu) = p_{-g}(-mu), with x = 1 - xi so that mu still grows with xi.
   double sample_cos_theta(double xi) const {
     const double a = std::abs(g);
-    const double s = 2.0 * xi - 1.0;
-    const double d = (1.0 - a) + 2.0 * a * xi;
+    const double x = std::signbit(g) ? 1.0 - xi : xi;
+    const double s = 2.0 * x - 1.0;
+    const double d = (1.0 - a) + 2.0 * a * x;
     const double correction =
-        2.0 * a * xi * (1.0 - xi) * ((1.0 - a) * (3.0 + a) + 4.0 * a * xi) / (d * d);
+        2.0 * a * x * (1.0 - x) * ((1.0 - a) * (3.0 + a) + 4.0 * a * x) / (d * d);
     return std::copysign(1.0, g) * std::clamp(s + correction, -1.0, 1.0);
   }
 

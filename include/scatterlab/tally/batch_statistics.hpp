@@ -1,0 +1,48 @@
+#pragma once
+// Batch statistics (as in OpenMC): each batch gives an independent estimate x_b of every
+// tally cell; the result is their mean and the standard error of that mean,
+//   stderr = sqrt( sum_b (x_b - mean)^2 / (B (B - 1)) ).
+// Batches are added with Welford's update, in batch order, so that the result is the same
+// whatever order the batches finished in.
+
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace scatterlab {
+
+class BatchStatistics {
+ public:
+  explicit BatchStatistics(std::size_t cells) : mean_(cells, 0.0), squares_(cells, 0.0) {}
+
+  // Adds x_b = batch_sums / photons_in_batch for cells [begin, end) and clears batch_sums
+  // there. Call once per batch for every cell range, with batch_index counting from 0 in order.
+  void add_batch(std::size_t batch_index, double* batch_sums, double photons_in_batch,
+                 std::size_t begin, std::size_t end) {
+    const double per_photon = 1.0 / photons_in_batch;
+    const double weight = 1.0 / static_cast<double>(batch_index + 1);
+    for (std::size_t i = begin; i < end; ++i) {
+      const double x = batch_sums[i] * per_photon;
+      batch_sums[i] = 0.0;
+      const double delta = x - mean_[i];
+      mean_[i] += delta * weight;
+      squares_[i] += delta * (x - mean_[i]);
+    }
+  }
+
+  std::size_t size() const { return mean_.size(); }
+  const std::vector<double>& mean() const { return mean_; }
+
+  std::vector<double> standard_error(std::size_t batches) const {
+    std::vector<double> error(mean_.size());
+    const double scale = 1.0 / (static_cast<double>(batches) * static_cast<double>(batches - 1));
+    for (std::size_t i = 0; i < error.size(); ++i) error[i] = std::sqrt(squares_[i] * scale);
+    return error;
+  }
+
+ private:
+  std::vector<double> mean_;
+  std::vector<double> squares_;  // Welford's running sum of squared deviations
+};
+
+}  // namespace scatterlab

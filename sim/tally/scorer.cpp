@@ -1,0 +1,214 @@
+#include "scatterlab/tally/scorer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace scatterlab {
+namespace {
+
+// A straight line seen in a plane perpendicular to an axis (the beam axis for cylinders, or
+// any plane through the origin for spheres): the radial distance is
+//   rho(t) = sqrt(w(t)^2 + d^2),  w(t) = w0 + speed * t,
+// where d is the distance of closest approach and w the signed distance along the line from
+// that closest point. Crossing a radius R therefore happens at w = +-sqrt(R^2 - d^2).
+struct RadialLine {
+  double w0;
+  double speed;
+  double d;
+
+  double radius(double t) const {
+    const double w = w0 + speed * t;
+    return std::sqrt(w * w + d * d);
+  }
+  double time_at(double w) const { return (w - w0) / speed; }
+};
+
+// Appends the times in (t_lo, t_hi) at which `line` crosses the edges of `axis` (uniform radii
+// starting at 0), for the radii between the smallest and largest reached in that span.
+void append_radial_crossings(const RadialLine& line, const UniformAxis& axis, double t_lo,
+                             double t_hi, std::vector<double>& out) {
+  const double t_closest = std::clamp(-line.w0 / line.speed, t_lo, t_hi);
+  const double nearest = line.radius(t_closest);
+  const double farthest = std::max(line.radius(t_lo), line.radius(t_hi));
+  const int first = static_cast<int>(nearest * axis.inverse_width()) + 1;
+  const int last = std::min(static_cast<int>(farthest * axis.inverse_width()), axis.bins - 1);
+  for (int k = first; k <= last; ++k) {
+    const double edge = axis.edge(k);
+    const double half_chord2 = edge * edge - line.d * line.d;
+    if (half_chord2 <= 0.0) continue;
+    const double half_chord = std::sqrt(half_chord2);
+    for (double w : {-half_chord, half_chord}) {
+      const double t = line.time_at(w);
+      if (t > t_lo && t < t_hi) out.push_back(t);
+    }
+  }
+}
+
+int clamped_index(const UniformAxis& axis, double x) {
+  const int i = static_cast<int>(std::floor((x - axis.min) * axis.inverse_width()));
+  return std::clamp(i, 0, axis.bins - 1);
+}
+
+// Sorts the crossing times and prepends/appends the ends of the span.
+void close_span(std::vector<double>& crossings, double t_lo, double t_hi) {
+  std::sort(crossings.begin(), crossings.end());
+  crossings.insert(crossings.begin(), t_lo);
+  crossings.push_back(t_hi);
+}
+
+}  // namespace
+
+Scorer::Scorer(const SimulationSpec& spec, const TallyLayout& layout)
+    : grid_(spec.grid), layout_(layout), theta_binning_(spec.grid.theta) {
+  phi_bins_ = grid_.phi.bins;
+  const UniformAxis half_turn{0.0, std::numbers::pi, grid_.fold_phi ? phi_bins_ : phi_bins_ / 2};
+  phi_binning_ = CosineBinning(half_turn);
+  for (int k = 1; k < half_turn.bins; ++k) {
+    phi_cotangents_.push_back(1.0 / std::tan(half_turn.edge(k)));
+  }
+}
+
+std::vector<double> Scorer::make_crossing_scratch() const {
+  std::vector<double> scratch;
+  const std::size_t most = 2 * static_cast<std::size_t>(grid_.r.bins) +
+                           static_cast<std::size_t>(grid_.z.bins) + phi_cotangents_.size() +
+                           2 * static_cast<std::size_t>(grid_.rho.bins) + 8;
+  scratch.reserve(most);
+  return scratch;
+}
+
+void Scorer::flight(double* buffer, std::vector<double>& crossings, const Vec3& start,
+                    const Vec3& direction, double length, int order) const {
+  const std::size_t block = layout_.split_by_order ? layout_.order_block(order) : 0;
+  if (layout_.fluence_spherical != TallyLayout::absent) {
+    flight_spherical(buffer, crossings, start, direction, length, block);
+  }
+  if (layout_.fluence != TallyLayout::absent || layout_.flux != TallyLayout::absent ||
+      layout_.radiance != TallyLayout::absent) {
+    flight_cylindrical(buffer, crossings, start, direction, length, block);
+  }
+}
+
+void Scorer::flight_spherical(double* buffer, std::vector<double>& crossings, const Vec3& start,
+                              const Vec3& direction, double length, std::size_t block) const {
+  const RadialLine line{start.dot(direction), 1.0, start.cross(direction).norm()};
+  double t_lo = 0.0, t_hi = length;
+  // Clip to the ball rho < rho_max.
+  const double outer = grid_.rho.max;
+  const double half_chord2 = outer * outer - line.d * line.d;
+  if (half_chord2 <= 0.0) return;
+  const double half_chord = std::sqrt(half_chord2);
+  t_lo = std::max(t_lo, line.time_at(-half_chord));
+  t_hi = std::min(t_hi, line.time_at(half_chord));
+  if (!(t_hi > t_lo)) return;
+
+  crossings.clear();
+  append_radial_crossings(line, grid_.rho, t_lo, t_hi, crossings);
+  close_span(crossings, t_lo, t_hi);
+  for (std::size_t i = 0; i + 1 < crossings.size(); ++i) {
+    const double a = crossings[i], b = crossings[i + 1];
+    if (!(b > a)) continue;
+    const int shell = clamped_index(grid_.rho, line.radius(0.5 * (a + b)));
+    add(buffer, layout_.fluence_spherical + static_cast<std::size_t>(shell), block, b - a);
+  }
+}
+
+void Scorer::flight_cylindrical(double* buffer, std::vector<double>& crossings,
+                                const Vec3& start, const Vec3& direction, double length,
+                                std::size_t block) const {
+  double t_lo = 0.0, t_hi = length;
+
+  // Clip to the slab z_min <= z < z_max.
+  if (direction.z() != 0.0) {
+    const double ta = (grid_.z.min - start.z()) / direction.z();
+    const double tb = (grid_.z.max - start.z()) / direction.z();
+    t_lo = std::max(t_lo, std::min(ta, tb));
+    t_hi = std::min(t_hi, std::max(ta, tb));
+  } else if (grid_.z.index(start.z()) < 0) {
+    return;
+  }
+
+  // Clip to the cylinder r < r_max. With no transverse motion r stays where it is.
+  const double transverse2 = direction.x() * direction.x() + direction.y() * direction.y();
+  const bool moves_across = transverse2 > 1e-24;
+  RadialLine line{0.0, 0.0, std::hypot(start.x(), start.y())};
+  double angular_momentum = 0.0;  // (start x direction) . z: its sign is that of omega . e_phi
+  if (moves_across) {
+    const double speed = std::sqrt(transverse2);
+    angular_momentum = start.x() * direction.y() - start.y() * direction.x();
+    line = RadialLine{(start.x() * direction.x() + start.y() * direction.y()) / speed, speed,
+                      std::abs(angular_momentum) / speed};
+    const double outer = grid_.r.max;
+    const double half_chord2 = outer * outer - line.d * line.d;
+    if (half_chord2 <= 0.0) return;
+    const double half_chord = std::sqrt(half_chord2);
+    t_lo = std::max(t_lo, line.time_at(-half_chord));
+    t_hi = std::min(t_hi, line.time_at(half_chord));
+  } else if (grid_.r.index(line.d) < 0) {
+    return;
+  }
+  if (!(t_hi > t_lo)) return;
+
+  crossings.clear();
+  if (direction.z() != 0.0) {
+    const double za = start.z() + t_lo * direction.z(), zb = start.z() + t_hi * direction.z();
+    const int first = clamped_index(grid_.z, std::min(za, zb)) + 1;
+    const int last = clamped_index(grid_.z, std::max(za, zb));
+    for (int k = first; k <= last; ++k) {
+      const double t = (grid_.z.edge(k) - start.z()) / direction.z();
+      if (t > t_lo && t < t_hi) crossings.push_back(t);
+    }
+  }
+  const bool radiance = layout_.radiance != TallyLayout::absent;
+  if (moves_across) {
+    append_radial_crossings(line, grid_.r, t_lo, t_hi, crossings);
+    if (radiance) {
+      // phi along a straight line: cos phi = w / sqrt(w^2 + d^2), so the edge at angle phi_k is
+      // crossed where w = d cot(phi_k); when d = 0 the line passes through the axis, where phi
+      // jumps from pi to 0.
+      if (line.d > 0.0) {
+        for (double cotangent : phi_cotangents_) {
+          const double t = line.time_at(line.d * cotangent);
+          if (t > t_lo && t < t_hi) crossings.push_back(t);
+        }
+      } else {
+        const double t = line.time_at(0.0);
+        if (t > t_lo && t < t_hi) crossings.push_back(t);
+      }
+    }
+  }
+  close_span(crossings, t_lo, t_hi);
+
+  const std::size_t angles = layout_.theta_bins * layout_.phi_bins;
+  const std::size_t theta_offset =
+      radiance ? static_cast<std::size_t>(theta_binning_.bin(direction.z())) * layout_.phi_bins : 0;
+  double r_previous = line.radius(t_lo);
+  for (std::size_t i = 0; i + 1 < crossings.size(); ++i) {
+    const double a = crossings[i], b = crossings[i + 1];
+    const double r_next = line.radius(b);
+    const double dr = r_next - r_previous;
+    r_previous = r_next;
+    if (!(b > a)) continue;
+    const double mid = 0.5 * (a + b);
+    const double r_mid = line.radius(mid);
+    const int ir = clamped_index(grid_.r, r_mid);
+    const int iz = clamped_index(grid_.z, start.z() + mid * direction.z());
+    const std::size_t cell = static_cast<std::size_t>(ir) * layout_.z_bins + static_cast<std::size_t>(iz);
+    const double span = b - a;
+    if (layout_.fluence != TallyLayout::absent) add(buffer, layout_.fluence + cell, block, span);
+    if (layout_.flux != TallyLayout::absent) {
+      // The integral of omega . e_r along the path is the change in r: d r / dt = omega . e_r.
+      add(buffer, layout_.flux + 2 * cell, block, dr);
+      add(buffer, layout_.flux + 2 * cell + 1, block, span * direction.z());
+    }
+    if (radiance) {
+      const double w_mid = line.w0 + line.speed * mid;
+      const double cos_phi = (moves_across && r_mid > 0.0) ? w_mid / r_mid : 1.0;
+      const std::size_t angle = theta_offset + static_cast<std::size_t>(phi_bin(cos_phi, angular_momentum));
+      add(buffer, layout_.radiance + cell * angles + angle, block, span);
+    }
+  }
+}
+
+}  // namespace scatterlab
