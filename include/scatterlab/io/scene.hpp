@@ -1,0 +1,46 @@
+#pragma once
+// Scene files: a TOML description of one simulation, read strictly into a validated
+// SimulationSpec (DESIGN.md, data flow). Anything the file leaves out keeps the default of
+// SimulationSpec, which is the paper's case (Vavassori §4.1); data/scenes/paper-beam.toml spells
+// every key out with its meaning and units.
+//
+//   [medium]   albedo, sigma_t, g            (length_unit defaults to "mfp")
+//          or  sigma_a, sigma_s, g           (length_unit defaults to "mm")
+//              length_unit = "mfp" | "um" | "mm" | "cm" | "m"
+//   [source]   type = "beam" | "point"
+//   [grid]     r = { max, bins }, z = { min, max, bins }, theta = { bins }, phi = { bins },
+//              fold_phi = bool, rho = { max, bins }        (lengths in mfp)
+//   [tallies]  radiance, fluence, flux, fluence_spherical, split_by_order = bool,
+//              estimator = "collision" | "track_length"
+//   [run]      photons, batches, seed, threads (integers; 1e7-style floats that are whole numbers
+//              are accepted too), escape_radius (number in mfp, or inf)
+//   [output]   path = "file.h5"
+//
+// For the point source, tallies.fluence_spherical defaults to true (its natural tally, the
+// d'Eon & Irving 2011 curves) unless the file sets it; for the beam it stays false.
+//
+// Strict: an unknown table or key, a wrong type, or a value out of range is an InputError
+// naming the dotted key (e.g. "medium.albdo") and what is accepted; a TOML syntax error is an
+// InputError for "scene" whose message starts "<origin>:<line>:<column>:".
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "scatterlab/transport/simulation.hpp"
+
+namespace scatterlab {
+
+struct Scene {
+  SimulationSpec spec;                     // validated
+  std::optional<std::string> output_path;  // [output] path, as written; the CLI resolves it
+};
+
+// `origin` names the text in messages (usually its file name).
+Scene parse_scene(std::string_view toml_text, const std::string& origin);
+
+// Reads and parses a file; an unreadable file is an InputError for "scene".
+Scene load_scene(const std::filesystem::path& path);
+
+}  // namespace scatterlab

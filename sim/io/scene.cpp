@@ -1,0 +1,374 @@
+#include "scatterlab/io/scene.hpp"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <initializer_list>
+#include <iterator>
+#include <limits>
+#include <numbers>
+#include <vector>
+
+#include "scatterlab/core/error.hpp"
+
+namespace scatterlab {
+namespace {
+
+using Keys = std::initializer_list<std::string_view>;
+
+std::string join(Keys keys, std::string_view before = "", std::string_view after = "") {
+  std::string joined;
+  for (const auto key : keys) {
+    if (!joined.empty()) joined += ", ";
+    joined += fmt::format("{}{}{}", before, key, after);
+  }
+  return joined;
+}
+
+std::string dotted(const std::string& path, std::string_view key) {
+  return path.empty() ? std::string(key) : path + "." + std::string(key);
+}
+
+// Levenshtein distance, to suggest the key a typo was meant to be.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string suggestion(std::string_view key, Keys accepted) {
+  for (const auto candidate : accepted) {
+    // At most one edit per three characters: "albdo" -> "albedo", but not "min" -> "max".
+    if (3 * edit_distance(key, candidate) <= key.size()) {
+      return fmt::format(", did you mean \"{}\"?", candidate);
+    }
+  }
+  return "";
+}
+
+// A value as the user wrote it, for messages: `a string ("abc")`, `an integer (-3)`.
+std::string describe(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::string:
+      return fmt::format("a string (\"{}\")", node.as_string()->get());
+    case toml::node_type::integer:
+      return fmt::format("an integer ({})", node.as_integer()->get());
+    case toml::node_type::floating_point:
+      return fmt::format("a float ({})", node.as_floating_point()->get());
+    case toml::node_type::boolean:
+      return fmt::format("a boolean ({})", node.as_boolean()->get());
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::date:
+      return "a date";
+    case toml::node_type::time:
+      return "a time";
+    case toml::node_type::date_time:
+      return "a date-time";
+    case toml::node_type::none:
+      break;
+  }
+  return "nothing";
+}
+
+// Reads one parsed document into a Scene, checking names and types as it goes; ranges are left
+// to SimulationSpec::validate() so that the CLI and the file give the same messages.
+class SceneReader {
+ public:
+  explicit SceneReader(const std::string& origin) : origin_(origin) {}
+
+  Scene read(const toml::table& root) {
+    check_keys(root, "", {"medium", "source", "grid", "tallies", "run", "output"});
+    Scene scene;
+    SimulationSpec& spec = scene.spec;
+    if (const auto* medium = subtable(root, "medium", "")) read_medium(*medium, spec.medium);
+    if (const auto* source = subtable(root, "source", "")) read_source(*source, spec.source);
+    if (const auto* grid = subtable(root, "grid", "")) read_grid(*grid, spec.grid);
+    // The point source's natural tally is the fluence in spherical shells (d'Eon & Irving
+    // 2011), so it is on unless the file says otherwise; the beam has no spherical symmetry.
+    spec.tallies.fluence_spherical = spec.source == SourceKind::point;
+    if (const auto* tallies = subtable(root, "tallies", "")) read_tallies(*tallies, spec.tallies);
+    if (const auto* run = subtable(root, "run", "")) read_run(*run, spec.run);
+    if (const auto* output = subtable(root, "output", "")) {
+      check_keys(*output, "output", {"path"});
+      scene.output_path = string(*output, "path", "output", "a non-empty file name");
+      if (scene.output_path && scene.output_path->empty()) {
+        throw InputError("output.path", "is empty" + at(*output->get("path")),
+                         "a non-empty file name");
+      }
+    }
+    spec.validate();
+    return scene;
+  }
+
+ private:
+  std::string at(const toml::source_region& region) const {
+    return fmt::format(" ({}:{}:{})", origin_, region.begin.line, region.begin.column);
+  }
+  std::string at(const toml::node& node) const { return at(node.source()); }
+
+  [[noreturn]] void wrong_type(const toml::node& node, const std::string& field,
+                               std::string_view accepted) const {
+    throw InputError(field, "got " + describe(node) + at(node), std::string(accepted));
+  }
+
+  void check_keys(const toml::table& table, const std::string& path, Keys accepted) const {
+    for (auto&& [key, node] : table) {
+      const std::string_view name = key.str();
+      if (std::find(accepted.begin(), accepted.end(), name) != accepted.end()) continue;
+      const bool is_table = node.is_table();
+      const std::string what = std::string(is_table ? "unknown table" : "unknown key") +
+                               (path.empty() ? "" : " in [" + path + "]");
+      throw InputError(dotted(path, name), what + suggestion(name, accepted) + at(key.source()),
+                       path.empty() ? join(accepted, "[", "]") : join(accepted));
+    }
+  }
+
+  // The sub-table `key`, or nullptr when absent.
+  const toml::table* subtable(const toml::table& parent, std::string_view key,
+                              const std::string& path) const {
+    const toml::node* node = parent.get(key);
+    if (node == nullptr) return nullptr;
+    if (!node->is_table()) wrong_type(*node, dotted(path, key), "a table");
+    return node->as_table();
+  }
+
+  std::optional<double> number(const toml::table& table, std::string_view key,
+                               const std::string& path, std::string_view accepted) const {
+    const toml::node* node = table.get(key);
+    if (node == nullptr) return std::nullopt;
+    if (const auto* value = node->as_floating_point()) return value->get();
+    // An integer where a number is expected is fine: albedo = 1 means 1.0.
+    if (const auto* value = node->as_integer()) return static_cast<double>(value->get());
+    wrong_type(*node, dotted(path, key), accepted);
+  }
+
+  // An integer, or a float that is a whole number (photons = 1e7).
+  std::optional<std::int64_t> integer(const toml::table& table, std::string_view key,
+                                      const std::string& path, std::string_view accepted) const {
+    const toml::node* node = table.get(key);
+    if (node == nullptr) return std::nullopt;
+    if (const auto* value = node->as_integer()) return value->get();
+    if (const auto* value = node->as_floating_point()) {
+      const double x = value->get();
+      // 2^63 is exact in a double; every whole double below it converts exactly.
+      constexpr double limit = 9223372036854775808.0;
+      if (std::isfinite(x) && std::trunc(x) == x && x >= -limit && x < limit) {
+        return static_cast<std::int64_t>(x);
+      }
+      throw InputError(dotted(path, key),
+                       fmt::format("got {}, which is not a whole number{}", x, at(*node)),
+                       std::string(accepted));
+    }
+    wrong_type(*node, dotted(path, key), accepted);
+  }
+
+  // An integer converted to T, which must hold it; `lowest` (>= 0) is the least value accepted
+  // here (finer ranges are checked by SimulationSpec::validate()).
+  template <typename T>
+  std::optional<T> integer_as(const toml::table& table, std::string_view key,
+                              const std::string& path, std::int64_t lowest,
+                              std::string_view accepted) const {
+    const auto value = integer(table, key, path, accepted);
+    if (!value) return std::nullopt;
+    const bool fits =
+        *value >= lowest && *value >= static_cast<std::int64_t>(std::numeric_limits<T>::min()) &&
+        static_cast<std::uint64_t>(*value) <= std::uint64_t{std::numeric_limits<T>::max()};
+    if (!fits) {
+      throw InputError(dotted(path, key), fmt::format("got {}{}", *value, at(*table.get(key))),
+                       std::string(accepted));
+    }
+    return static_cast<T>(*value);
+  }
+
+  std::optional<bool> boolean(const toml::table& table, std::string_view key,
+                              const std::string& path) const {
+    const toml::node* node = table.get(key);
+    if (node == nullptr) return std::nullopt;
+    if (const auto* value = node->as_boolean()) return value->get();
+    wrong_type(*node, dotted(path, key), "true or false");
+  }
+
+  std::optional<std::string> string(const toml::table& table, std::string_view key,
+                                    const std::string& path, std::string_view accepted) const {
+    const toml::node* node = table.get(key);
+    if (node == nullptr) return std::nullopt;
+    if (const auto* value = node->as_string()) return value->get();
+    wrong_type(*node, dotted(path, key), accepted);
+  }
+
+  // Either (albedo, sigma_t, g) or (sigma_a, sigma_s, g), never a mix.
+  void read_medium(const toml::table& table, Medium& medium) const {
+    const std::string path = "medium";
+    check_keys(table, path, {"albedo", "sigma_t", "g", "sigma_a", "sigma_s", "length_unit"});
+    const auto albedo = number(table, "albedo", path, "a number in [0, 1]");
+    const auto sigma_t = number(table, "sigma_t", path, "a finite number > 0, in 1/length_unit");
+    const auto g = number(table, "g", path, "a number with |g| < 1");
+    const auto sigma_a = number(table, "sigma_a", path, "a finite number >= 0, in 1/length_unit");
+    const auto sigma_s = number(table, "sigma_s", path, "a finite number >= 0, in 1/length_unit");
+    const auto unit =
+        string(table, "length_unit", path, "one of \"mfp\", \"um\", \"mm\", \"cm\", \"m\"");
+
+    if (!sigma_a && !sigma_s) {
+      if (albedo) medium.albedo = *albedo;
+      if (sigma_t) medium.sigma_t = *sigma_t;
+      if (g) medium.g = *g;
+      medium.length_unit = unit.value_or("mfp");
+      return;
+    }
+    const std::string_view accepted =
+        "either albedo, sigma_t, g or sigma_a, sigma_s, g (with length_unit)";
+    if (albedo || sigma_t) {
+      const std::string_view mixed = albedo ? "albedo" : "sigma_t";
+      throw InputError(
+          dotted(path, mixed),
+          "given together with medium.sigma_a / medium.sigma_s" + at(*table.get(mixed)),
+          std::string(accepted));
+    }
+    if (!sigma_a || !sigma_s) {
+      throw InputError(sigma_a ? "medium.sigma_s" : "medium.sigma_a",
+                       sigma_a ? "missing while medium.sigma_a is given"
+                               : "missing while medium.sigma_s is given",
+                       "both sigma_a and sigma_s, in 1/length_unit");
+    }
+    medium =
+        Medium::from_coefficients(*sigma_a, *sigma_s, g.value_or(medium.g), unit.value_or("mm"));
+  }
+
+  void read_source(const toml::table& table, SourceKind& source) const {
+    check_keys(table, "source", {"type"});
+    const std::string_view accepted = "\"beam\" or \"point\"";
+    const auto type = string(table, "type", "source", accepted);
+    if (!type) return;
+    if (*type == "beam") {
+      source = SourceKind::pencil_beam;
+    } else if (*type == "point") {
+      source = SourceKind::point;
+    } else {
+      wrong_type(*table.get("type"), "source.type", accepted);
+    }
+  }
+
+  void read_axis(const toml::table& grid, std::string_view name, Keys keys,
+                 UniformAxis& axis) const {
+    const toml::table* table = subtable(grid, name, "grid");
+    if (table == nullptr) return;
+    const std::string path = dotted("grid", name);
+    check_keys(*table, path, keys);
+    if (const auto min = number(*table, "min", path, "a finite number (mfp)")) axis.min = *min;
+    if (const auto max = number(*table, "max", path, "a finite number (mfp)")) axis.max = *max;
+    if (const auto bins = integer_as<int>(*table, "bins", path, 1, "an integer in [1, 100000]")) {
+      axis.bins = *bins;
+    }
+  }
+
+  void read_grid(const toml::table& table, Grid& grid) const {
+    check_keys(table, "grid", {"r", "z", "theta", "phi", "fold_phi", "rho"});
+    read_axis(table, "r", {"max", "bins"}, grid.r);
+    read_axis(table, "z", {"min", "max", "bins"}, grid.z);
+    read_axis(table, "theta", {"bins"}, grid.theta);
+    read_axis(table, "phi", {"bins"}, grid.phi);
+    read_axis(table, "rho", {"max", "bins"}, grid.rho);
+    if (const auto fold = boolean(table, "fold_phi", "grid")) {
+      grid.fold_phi = *fold;
+      grid.phi.max = *fold ? std::numbers::pi : 2.0 * std::numbers::pi;
+    }
+  }
+
+  void read_tallies(const toml::table& table, TallyRequest& tallies) const {
+    const std::string path = "tallies";
+    check_keys(table, path,
+               {"radiance", "fluence", "flux", "fluence_spherical", "split_by_order", "estimator"});
+    if (const auto on = boolean(table, "radiance", path)) tallies.radiance = *on;
+    if (const auto on = boolean(table, "fluence", path)) tallies.fluence = *on;
+    if (const auto on = boolean(table, "flux", path)) tallies.flux = *on;
+    if (const auto on = boolean(table, "fluence_spherical", path)) tallies.fluence_spherical = *on;
+    if (const auto on = boolean(table, "split_by_order", path)) tallies.split_by_order = *on;
+    const std::string_view accepted = "\"collision\" or \"track_length\"";
+    if (const auto estimator = string(table, "estimator", path, accepted)) {
+      if (*estimator == "collision") {
+        tallies.estimator = Estimator::collision;
+      } else if (*estimator == "track_length") {
+        tallies.estimator = Estimator::track_length;
+      } else {
+        wrong_type(*table.get("estimator"), "tallies.estimator", accepted);
+      }
+    }
+  }
+
+  void read_run(const toml::table& table, RunSettings& run) const {
+    const std::string path = "run";
+    check_keys(table, path, {"photons", "batches", "seed", "threads", "escape_radius"});
+    if (const auto photons =
+            integer_as<std::uint64_t>(table, "photons", path, 0, "an integer >= 1")) {
+      run.photons = *photons;
+    }
+    if (const auto batches = integer_as<std::uint32_t>(table, "batches", path, 0,
+                                                       "an integer in [2, run.photons]")) {
+      run.batches = *batches;
+    }
+    if (const auto seed =
+            integer_as<std::uint64_t>(table, "seed", path, 0, "an integer in [0, 2^63 - 1]")) {
+      run.seed = *seed;
+    }
+    if (const auto threads = integer_as<int>(table, "threads", path, 0,
+                                             "an integer >= 0 (0: all hardware threads)")) {
+      run.threads = *threads;
+    }
+    if (const auto radius = number(table, "escape_radius", path, "a number > 0 (mfp), or inf")) {
+      run.escape_radius = *radius;
+    }
+  }
+
+  const std::string& origin_;
+};
+
+}  // namespace
+
+Scene parse_scene(std::string_view toml_text, const std::string& origin) {
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, origin);
+  } catch (const toml::parse_error& error) {
+    const auto& begin = error.source().begin;
+    throw InputError(
+        "scene", fmt::format("{}:{}:{}: {}", origin, begin.line, begin.column, error.description()),
+        "a valid TOML file");
+  }
+  return SceneReader(origin).read(root);
+}
+
+Scene load_scene(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  std::error_code code;
+  if (!std::filesystem::exists(path, code)) {
+    throw InputError("scene", fmt::format("'{}' does not exist", name), "a readable TOML file");
+  }
+  if (std::filesystem::is_directory(path, code)) {
+    throw InputError("scene", fmt::format("'{}' is a directory", name), "a readable TOML file");
+  }
+  std::ifstream in(path, std::ios::binary);
+  std::string text;
+  if (in) text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (!in.is_open() || in.bad()) {
+    throw InputError("scene", fmt::format("cannot read '{}'", name), "a readable TOML file");
+  }
+  return parse_scene(text, name);
+}
+
+}  // namespace scatterlab

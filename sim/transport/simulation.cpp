@@ -1,0 +1,195 @@
+#include "scatterlab/transport/simulation.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <string_view>
+
+#include "scatterlab/core/error.hpp"
+
+namespace scatterlab {
+namespace {
+
+// Field names below are those the user writes: the TOML keys of the scene file, which the CLI
+// options mirror (DESIGN.md, "Errors").
+
+constexpr int max_bins = 100'000;
+// 2^28 doubles are 2 GiB for the mean alone; batch accumulators and per-order siblings multiply
+// that, so a larger radiance array is a mistake rather than a wish.
+constexpr std::uint64_t max_radiance_cells = std::uint64_t{1} << 28;
+constexpr double two_pi = 2.0 * std::numbers::pi;
+
+// Axis ends that are fixed by geometry (0, pi, 2 pi) are compared with a little slack so that a
+// value computed as 2 * pi elsewhere is not rejected over the last bit.
+bool same_angle(double a, double b) {
+  return std::abs(a - b) <= 1e-12;
+}
+
+std::string got(double value) {
+  return fmt::format("got {}", value);
+}
+
+void check_medium(const Medium& medium) {
+  medium.validate();
+  constexpr std::array<std::string_view, 5> units{"mfp", "um", "mm", "cm", "m"};
+  if (std::find(units.begin(), units.end(), medium.length_unit) == units.end()) {
+    throw InputError("medium.length_unit", fmt::format("got \"{}\"", medium.length_unit),
+                     "one of \"mfp\", \"um\", \"mm\", \"cm\", \"m\"");
+  }
+  // A mean free path is 1 / sigma_t, so sigma_t in 1/mfp is 1 by definition; anything else means
+  // the coefficients were given in a physical unit that the file did not name.
+  if (medium.length_unit == "mfp" && std::abs(medium.sigma_t - 1.0) > 1e-12) {
+    throw InputError(
+        "medium.length_unit",
+        fmt::format("\"mfp\" makes sigma_t = 1 by definition, but sigma_t is {}", medium.sigma_t),
+        "a physical unit (\"um\", \"mm\", \"cm\", \"m\") for the coefficients, or "
+        "sigma_t = 1");
+  }
+}
+
+void check_bins(const UniformAxis& axis, const std::string& name) {
+  if (axis.bins < 1 || axis.bins > max_bins) {
+    throw InputError("grid." + name + ".bins", fmt::format("got {}", axis.bins),
+                     "an integer in [1, 100000]");
+  }
+}
+
+// Axes that start at 0 by construction: r (distance from the beam axis) and rho (distance from
+// the point source).
+void check_radial_axis(const UniformAxis& axis, const std::string& name) {
+  if (axis.min != 0.0) {
+    throw InputError("grid." + name + ".min", got(axis.min), "0 (a distance from the source)");
+  }
+  if (!(axis.max > 0.0) || !std::isfinite(axis.max)) {
+    throw InputError("grid." + name + ".max", got(axis.max), "a finite number > 0 (mfp)");
+  }
+  check_bins(axis, name);
+}
+
+void check_angle_axis(const UniformAxis& axis, const std::string& name, double max,
+                      const std::string& accepted_max) {
+  if (!same_angle(axis.min, 0.0)) {
+    throw InputError("grid." + name + ".min", got(axis.min), "0");
+  }
+  if (!same_angle(axis.max, max)) {
+    throw InputError("grid." + name + ".max", got(axis.max), accepted_max);
+  }
+  check_bins(axis, name);
+}
+
+void check_grid(const Grid& grid, bool radiance_requested) {
+  check_radial_axis(grid.r, "r");
+
+  if (!std::isfinite(grid.z.min)) {
+    throw InputError("grid.z.min", got(grid.z.min), "a finite number (mfp)");
+  }
+  if (!(grid.z.max > grid.z.min) || !std::isfinite(grid.z.max)) {
+    throw InputError("grid.z.max",
+                     fmt::format("got {} with grid.z.min = {}", grid.z.max, grid.z.min),
+                     "a finite number > grid.z.min (mfp)");
+  }
+  check_bins(grid.z, "z");
+
+  check_angle_axis(grid.theta, "theta", std::numbers::pi, "pi (theta spans [0, pi])");
+  if (grid.fold_phi) {
+    check_angle_axis(grid.phi, "phi", std::numbers::pi, "pi when grid.fold_phi = true");
+  } else {
+    check_angle_axis(grid.phi, "phi", two_pi, "2 pi when grid.fold_phi = false");
+  }
+  check_radial_axis(grid.rho, "rho");
+
+  if (radiance_requested) {
+    // Each factor is at most 1e5 after check_bins, so the product fits in 64 bits.
+    const auto cells =
+        static_cast<std::uint64_t>(grid.r.bins) * static_cast<std::uint64_t>(grid.z.bins) *
+        static_cast<std::uint64_t>(grid.theta.bins) * static_cast<std::uint64_t>(grid.phi.bins);
+    if (cells > max_radiance_cells) {
+      throw InputError("grid",
+                       fmt::format("the radiance tally would have {} x {} x {} x {} = {} cells "
+                                   "(r x z x theta x phi bins)",
+                                   grid.r.bins, grid.z.bins, grid.theta.bins, grid.phi.bins, cells),
+                       "at most 268435456 (2^28) cells: use fewer bins, or set "
+                       "tallies.radiance = false");
+    }
+  }
+}
+
+void check_tallies(const TallyRequest& tallies, SourceKind source) {
+  if (tallies.estimator != Estimator::collision && tallies.estimator != Estimator::track_length) {
+    throw InputError("tallies.estimator",
+                     fmt::format("got code {}", static_cast<int>(tallies.estimator)),
+                     "\"collision\" or \"track_length\"");
+  }
+  if (tallies.fluence_spherical && source != SourceKind::point) {
+    throw InputError(
+        "tallies.fluence_spherical",
+        "requested with the " + to_string(source) + " source, which has no spherical symmetry",
+        "true only with source.type = \"point\"");
+  }
+  if (!(tallies.radiance || tallies.fluence || tallies.flux || tallies.fluence_spherical)) {
+    throw InputError("tallies", "no tally requested",
+                     "at least one of radiance, fluence, flux, fluence_spherical = true");
+  }
+}
+
+void check_run(const RunSettings& run, const Medium& medium) {
+  if (run.photons < 1) {
+    throw InputError("run.photons", fmt::format("got {}", run.photons), "an integer >= 1");
+  }
+  if (run.batches < 2 || run.batches > run.photons) {
+    throw InputError("run.batches",
+                     fmt::format("got {} with run.photons = {}", run.batches, run.photons),
+                     "an integer in [2, run.photons] (a standard error needs at least 2 batches)");
+  }
+  if (run.threads < 0) {
+    throw InputError("run.threads", fmt::format("got {}", run.threads),
+                     "an integer >= 0 (0: all hardware threads)");
+  }
+  if (!(run.escape_radius > 0.0)) {
+    throw InputError("run.escape_radius", got(run.escape_radius), "a number > 0 (mfp), or inf");
+  }
+  if (medium.albedo == 1.0 && !std::isfinite(run.escape_radius)) {
+    throw InputError("run.escape_radius",
+                     "is infinite, but an infinite medium with albedo 1 never absorbs, so photons "
+                     "never end; set run.escape_radius",
+                     "a finite number > 0 (mfp) when medium.albedo = 1");
+  }
+}
+
+}  // namespace
+
+void SimulationSpec::validate() const {
+  check_medium(medium);
+  if (source != SourceKind::pencil_beam && source != SourceKind::point) {
+    throw InputError("source.type", fmt::format("got code {}", static_cast<int>(source)),
+                     "\"beam\" or \"point\"");
+  }
+  check_grid(grid, tallies.radiance);
+  check_tallies(tallies, source);
+  check_run(run, medium);
+}
+
+std::string to_string(SourceKind source) {
+  switch (source) {
+    case SourceKind::pencil_beam:
+      return "beam";
+    case SourceKind::point:
+      return "point";
+  }
+  return "unknown";
+}
+
+std::string to_string(Estimator estimator) {
+  switch (estimator) {
+    case Estimator::collision:
+      return "collision";
+    case Estimator::track_length:
+      return "track_length";
+  }
+  return "unknown";
+}
+
+}  // namespace scatterlab

@@ -1,0 +1,389 @@
+// Scene files: defaults, every table, the coefficient form, and one clear error per bad input.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/io/scene.hpp"
+#include "scatterlab/transport/simulation.hpp"
+
+namespace scatterlab {
+namespace {
+
+const std::filesystem::path scenes_dir =
+    std::filesystem::path(SCATTERLAB_SOURCE_DIR) / "data" / "scenes";
+
+void expect_same_spec(const SimulationSpec& a, const SimulationSpec& b) {
+  EXPECT_EQ(a.medium.albedo, b.medium.albedo);
+  EXPECT_EQ(a.medium.sigma_t, b.medium.sigma_t);
+  EXPECT_EQ(a.medium.g, b.medium.g);
+  EXPECT_EQ(a.medium.length_unit, b.medium.length_unit);
+  EXPECT_EQ(a.source, b.source);
+  EXPECT_EQ(a.grid.r, b.grid.r);
+  EXPECT_EQ(a.grid.z, b.grid.z);
+  EXPECT_EQ(a.grid.theta, b.grid.theta);
+  EXPECT_EQ(a.grid.phi, b.grid.phi);
+  EXPECT_EQ(a.grid.fold_phi, b.grid.fold_phi);
+  EXPECT_EQ(a.grid.rho, b.grid.rho);
+  EXPECT_EQ(a.tallies.radiance, b.tallies.radiance);
+  EXPECT_EQ(a.tallies.fluence, b.tallies.fluence);
+  EXPECT_EQ(a.tallies.flux, b.tallies.flux);
+  EXPECT_EQ(a.tallies.fluence_spherical, b.tallies.fluence_spherical);
+  EXPECT_EQ(a.tallies.split_by_order, b.tallies.split_by_order);
+  EXPECT_EQ(a.tallies.estimator, b.tallies.estimator);
+  EXPECT_EQ(a.run.photons, b.run.photons);
+  EXPECT_EQ(a.run.batches, b.run.batches);
+  EXPECT_EQ(a.run.seed, b.run.seed);
+  EXPECT_EQ(a.run.threads, b.run.threads);
+  EXPECT_EQ(a.run.escape_radius, b.run.escape_radius);
+}
+
+Scene parse(std::string_view text) {
+  return parse_scene(text, "test.toml");
+}
+
+// The error parsing `text` raises; fails the test when there is none.
+InputError error_of(std::string_view text) {
+  try {
+    parse(text);
+  } catch (const InputError& error) {
+    return error;
+  }
+  ADD_FAILURE() << "no InputError for:\n" << text;
+  return InputError("<none>", "", "");
+}
+
+std::string field_of(std::string_view text) {
+  return error_of(text).field();
+}
+
+std::string message_of(std::string_view text) {
+  return error_of(text).what();
+}
+
+TEST(SimulationSpec, DefaultsAreThePapersCase) {
+  const SimulationSpec spec;
+  EXPECT_EQ(spec.medium.albedo, 0.5);
+  EXPECT_EQ(spec.medium.g, 0.9);
+  EXPECT_EQ(spec.medium.sigma_t, 1.0);
+  EXPECT_EQ(spec.source, SourceKind::pencil_beam);
+  EXPECT_EQ(spec.grid.r, (UniformAxis{0.0, 1.5, 15}));
+  EXPECT_EQ(spec.grid.z, (UniformAxis{-1.0, 3.0, 40}));
+  EXPECT_EQ(spec.grid.theta, (UniformAxis{0.0, std::numbers::pi, 18}));
+  EXPECT_EQ(spec.grid.phi, (UniformAxis{0.0, 2.0 * std::numbers::pi, 36}));
+  EXPECT_EQ(spec.tallies.estimator, Estimator::collision);
+  EXPECT_NO_THROW(spec.validate());
+}
+
+TEST(SimulationSpec, NamesOfEnums) {
+  EXPECT_EQ(to_string(SourceKind::pencil_beam), "beam");
+  EXPECT_EQ(to_string(SourceKind::point), "point");
+  EXPECT_EQ(to_string(Estimator::collision), "collision");
+  EXPECT_EQ(to_string(Estimator::track_length), "track_length");
+}
+
+TEST(SimulationSpec, ValidateNamesTheFirstBadField) {
+  const auto field_of_invalid = [](auto change) {
+    SimulationSpec spec;
+    change(spec);
+    try {
+      spec.validate();
+    } catch (const InputError& error) {
+      return error.field();
+    }
+    return std::string("<none>");
+  };
+  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.grid.r.min = 0.5; }), "grid.r.min");
+  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.grid.z.max = -1.0; }), "grid.z.max");
+  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.grid.theta.max = 3.0; }), "grid.theta.max");
+  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.grid.fold_phi = true; }), "grid.phi.max");
+  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.grid.rho.max = 0.0; }), "grid.rho.max");
+  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.grid.theta.bins = 100'001; }),
+            "grid.theta.bins");
+  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) {
+              s.grid.r.bins = s.grid.z.bins = s.grid.theta.bins = s.grid.phi.bins = 200;
+            }),
+            "grid");
+  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) {
+              s.run.batches = 11;
+              s.run.photons = 10;
+            }),
+            "run.batches");
+  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.run.threads = -1; }), "run.threads");
+  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.run.escape_radius = 0.0; }),
+            "run.escape_radius");
+  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.tallies.fluence_spherical = true; }),
+            "tallies.fluence_spherical");
+  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) {
+              s.tallies.radiance = s.tallies.fluence = s.tallies.flux = false;
+            }),
+            "tallies");
+  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.medium.length_unit = "furlong"; }),
+            "medium.length_unit");
+  // A huge radiance grid is fine when the radiance tally is off.
+  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) {
+              s.grid.r.bins = s.grid.z.bins = s.grid.theta.bins = s.grid.phi.bins = 200;
+              s.tallies.radiance = false;
+            }),
+            "<none>");
+}
+
+TEST(Scene, EmptyFileGivesTheDefaults) {
+  const Scene scene = parse("");
+  expect_same_spec(scene.spec, SimulationSpec{});
+  EXPECT_FALSE(scene.output_path.has_value());
+}
+
+TEST(Scene, EveryTableParses) {
+  const Scene scene = parse(R"(
+    [medium]
+    albedo = 0.8
+    sigma_t = 2.5
+    g = -0.3
+    length_unit = "cm"
+
+    [source]
+    type = "point"
+
+    [grid]
+    r = { max = 2.0, bins = 20 }
+    z = { min = -2, max = 4.0, bins = 30 }
+    theta = { bins = 9 }
+    phi = { bins = 12 }
+    fold_phi = true
+    rho = { max = 5.0, bins = 50 }
+
+    [tallies]
+    radiance = false
+    fluence = true
+    flux = false
+    fluence_spherical = true
+    split_by_order = true
+    estimator = "track_length"
+
+    [run]
+    photons = 1e6
+    batches = 10
+    seed = 42
+    threads = 3
+    escape_radius = 100
+
+    [output]
+    path = "out/run.h5"
+  )");
+  const SimulationSpec& spec = scene.spec;
+  EXPECT_EQ(spec.medium.albedo, 0.8);
+  EXPECT_EQ(spec.medium.sigma_t, 2.5);
+  EXPECT_EQ(spec.medium.g, -0.3);
+  EXPECT_EQ(spec.medium.length_unit, "cm");
+  EXPECT_EQ(spec.source, SourceKind::point);
+  EXPECT_EQ(spec.grid.r, (UniformAxis{0.0, 2.0, 20}));
+  EXPECT_EQ(spec.grid.z, (UniformAxis{-2.0, 4.0, 30}));
+  EXPECT_EQ(spec.grid.theta, (UniformAxis{0.0, std::numbers::pi, 9}));
+  EXPECT_EQ(spec.grid.phi, (UniformAxis{0.0, std::numbers::pi, 12}));
+  EXPECT_TRUE(spec.grid.fold_phi);
+  EXPECT_EQ(spec.grid.rho, (UniformAxis{0.0, 5.0, 50}));
+  EXPECT_FALSE(spec.tallies.radiance);
+  EXPECT_TRUE(spec.tallies.fluence);
+  EXPECT_FALSE(spec.tallies.flux);
+  EXPECT_TRUE(spec.tallies.fluence_spherical);
+  EXPECT_TRUE(spec.tallies.split_by_order);
+  EXPECT_EQ(spec.tallies.estimator, Estimator::track_length);
+  EXPECT_EQ(spec.run.photons, 1'000'000u);
+  EXPECT_EQ(spec.run.batches, 10u);
+  EXPECT_EQ(spec.run.seed, 42u);
+  EXPECT_EQ(spec.run.threads, 3);
+  EXPECT_EQ(spec.run.escape_radius, 100.0);
+  ASSERT_TRUE(scene.output_path.has_value());
+  EXPECT_EQ(*scene.output_path, "out/run.h5");
+}
+
+TEST(Scene, DottedKeysAndSubTablesAreTheSameAsInlineTables) {
+  const Scene scene = parse("[grid.r]\nmax = 3.0\nbins = 30\n[grid]\nz.bins = 8\n");
+  EXPECT_EQ(scene.spec.grid.r, (UniformAxis{0.0, 3.0, 30}));
+  EXPECT_EQ(scene.spec.grid.z.bins, 8);
+}
+
+TEST(Scene, CoefficientFormConverts) {
+  const Medium medium = parse("[medium]\nsigma_a = 0.1\nsigma_s = 0.9\ng = 0.5\n").spec.medium;
+  EXPECT_NEAR(medium.albedo, 0.9, 1e-15);
+  EXPECT_NEAR(medium.sigma_t, 1.0, 1e-15);
+  EXPECT_EQ(medium.g, 0.5);
+  EXPECT_EQ(medium.length_unit, "mm");
+}
+
+TEST(Scene, PointSourceTalliesSphericalFluenceUnlessTold) {
+  EXPECT_TRUE(parse("[source]\ntype = \"point\"\n").spec.tallies.fluence_spherical);
+  EXPECT_FALSE(parse("[source]\ntype = \"point\"\n[tallies]\nfluence_spherical = false\n")
+                   .spec.tallies.fluence_spherical);
+  EXPECT_FALSE(parse("[source]\ntype = \"beam\"\n").spec.tallies.fluence_spherical);
+}
+
+TEST(Scene, FoldPhiFalseKeepsTheFullCircle) {
+  EXPECT_EQ(parse("[grid]\nfold_phi = false\n").spec.grid.phi.max, 2.0 * std::numbers::pi);
+}
+
+TEST(Scene, OutOfRangeValuesNameTheField) {
+  EXPECT_EQ(field_of("[medium]\nalbedo = 1.5\n"), "medium.albedo");
+  EXPECT_EQ(field_of("[medium]\ng = 1.0\n"), "medium.g");
+  EXPECT_EQ(field_of("[medium]\ng = -1\n"), "medium.g");
+  EXPECT_EQ(field_of("[medium]\nsigma_t = 0\nlength_unit = \"mm\"\n"), "medium.sigma_t");
+  EXPECT_EQ(field_of("[medium]\nsigma_a = -0.1\nsigma_s = 0.9\n"), "medium.sigma_a");
+  EXPECT_EQ(field_of("[run]\nphotons = 0\n"), "run.photons");
+  EXPECT_EQ(field_of("[run]\nbatches = 1\n"), "run.batches");
+  EXPECT_EQ(field_of("[run]\nphotons = 10\nbatches = 64\n"), "run.batches");
+  EXPECT_EQ(field_of("[grid]\nr = { max = 0 }\n"), "grid.r.max");
+  EXPECT_EQ(field_of("[grid]\nr = { max = -1.5 }\n"), "grid.r.max");
+  EXPECT_EQ(field_of("[grid]\nz = { min = 3.0, max = 3.0 }\n"), "grid.z.max");
+  EXPECT_EQ(field_of("[grid]\ntheta = { bins = 0 }\n"), "grid.theta.bins");
+  EXPECT_EQ(field_of("[grid]\nphi = { bins = 100001 }\n"), "grid.phi.bins");
+  EXPECT_EQ(field_of("[run]\nescape_radius = -1.0\n"), "run.escape_radius");
+  EXPECT_EQ(field_of("[run]\nescape_radius = nan\n"), "run.escape_radius");
+  EXPECT_EQ(field_of("[tallies]\nfluence_spherical = true\n"), "tallies.fluence_spherical");
+  EXPECT_EQ(field_of("[tallies]\nradiance = false\nfluence = false\nflux = false\n"), "tallies");
+}
+
+TEST(Scene, MessagesSayWhatIsAccepted) {
+  const std::string message = message_of("[medium]\nalbedo = 1.5\n");
+  EXPECT_NE(message.find("1.5"), std::string::npos) << message;
+  EXPECT_NE(message.find("[0, 1]"), std::string::npos) << message;
+}
+
+TEST(Scene, AlbedoOneNeedsAnEscapeRadius) {
+  const InputError error = error_of("[medium]\nalbedo = 1\n");
+  EXPECT_EQ(error.field(), "run.escape_radius");
+  EXPECT_NE(std::string(error.what()).find("never absorbs"), std::string::npos) << error.what();
+  EXPECT_EQ(field_of("[medium]\nalbedo = 1.0\n[run]\nescape_radius = inf\n"), "run.escape_radius");
+
+  const Scene scene = parse("[medium]\nalbedo = 1\n[run]\nescape_radius = 50.0\n");
+  EXPECT_EQ(scene.spec.medium.albedo, 1.0);
+  EXPECT_EQ(scene.spec.run.escape_radius, 50.0);
+}
+
+TEST(Scene, UnknownKeysAndTablesAreNamedWithTheirPath) {
+  const InputError key = error_of("[medium]\nalbdo = 0.5\n");
+  EXPECT_EQ(key.field(), "medium.albdo");
+  const std::string key_message = key.what();
+  EXPECT_NE(key_message.find("did you mean \"albedo\""), std::string::npos) << key_message;
+  EXPECT_NE(key_message.find("sigma_s"), std::string::npos) << key_message;  // lists accepted
+  EXPECT_NE(key_message.find("test.toml:2:1"), std::string::npos) << key_message;
+
+  EXPECT_EQ(field_of("[meduim]\nalbedo = 0.5\n"), "meduim");
+  EXPECT_NE(message_of("[meduim]\nalbedo = 0.5\n").find("unknown table"), std::string::npos);
+  EXPECT_EQ(field_of("albedo = 0.5\n"), "albedo");
+  EXPECT_EQ(field_of("[grid]\nr = { max = 1.0, min = 0.0 }\n"), "grid.r.min");
+  EXPECT_EQ(field_of("[grid.theta]\nmax = 3.0\n"), "grid.theta.max");
+  EXPECT_EQ(field_of("[grid.psi]\nbins = 3\n"), "grid.psi");
+  EXPECT_EQ(field_of("[run]\nphotons = 100\nbatches = 10\nseeds = 4\n"), "run.seeds");
+  EXPECT_EQ(field_of("[output]\nfile = \"a.h5\"\n"), "output.file");
+}
+
+TEST(Scene, WrongTypesNameTheKey) {
+  EXPECT_EQ(field_of("[medium]\nalbedo = \"half\"\n"), "medium.albedo");
+  EXPECT_NE(message_of("[medium]\nalbedo = \"half\"\n").find("a string (\"half\")"),
+            std::string::npos);
+  EXPECT_EQ(field_of("[medium]\ng = true\n"), "medium.g");
+  EXPECT_EQ(field_of("[run]\nphotons = -5\n"), "run.photons");
+  EXPECT_EQ(field_of("[run]\nphotons = 1.5e6\nbatches = 2.5\n"), "run.batches");
+  EXPECT_EQ(field_of("[run]\nphotons = \"many\"\n"), "run.photons");
+  EXPECT_EQ(field_of("[run]\nseed = -1\n"), "run.seed");
+  EXPECT_EQ(field_of("[run]\nbatches = 5000000000\n"), "run.batches");
+  EXPECT_EQ(field_of("[run]\nthreads = -2\n"), "run.threads");
+  EXPECT_EQ(field_of("[tallies]\nradiance = 1\n"), "tallies.radiance");
+  EXPECT_EQ(field_of("[tallies]\nestimator = \"path\"\n"), "tallies.estimator");
+  EXPECT_EQ(field_of("[source]\ntype = \"laser\"\n"), "source.type");
+  EXPECT_EQ(field_of("[source]\ntype = 1\n"), "source.type");
+  EXPECT_EQ(field_of("medium = 3\n"), "medium");
+  EXPECT_EQ(field_of("[[run]]\nphotons = 3\n"), "run");
+  EXPECT_EQ(field_of("[grid]\nr = 1.5\n"), "grid.r");
+  EXPECT_EQ(field_of("[grid]\nr = { bins = 2.5 }\n"), "grid.r.bins");
+  EXPECT_EQ(field_of("[output]\npath = 3\n"), "output.path");
+  EXPECT_EQ(field_of("[output]\npath = \"\"\n"), "output.path");
+}
+
+TEST(Scene, WholeNumberFloatsAreCounts) {
+  EXPECT_EQ(parse("[run]\nphotons = 1e7\n").spec.run.photons, 10'000'000u);
+  EXPECT_EQ(parse("[run]\nphotons = 2.5e3\nbatches = 5.0\n").spec.run.batches, 5u);
+}
+
+TEST(Scene, MediumFormsDoNotMix) {
+  EXPECT_EQ(field_of("[medium]\nalbedo = 0.9\nsigma_a = 0.1\nsigma_s = 0.9\n"), "medium.albedo");
+  EXPECT_EQ(field_of("[medium]\nsigma_t = 2\nsigma_a = 0.1\nsigma_s = 0.9\n"), "medium.sigma_t");
+  EXPECT_EQ(field_of("[medium]\nsigma_a = 0.1\n"), "medium.sigma_s");
+  EXPECT_EQ(field_of("[medium]\nsigma_s = 0.1\n"), "medium.sigma_a");
+  EXPECT_EQ(field_of("[medium]\nsigma_a = 0\nsigma_s = 0\n"), "medium.sigma_s");
+}
+
+TEST(Scene, LengthUnits) {
+  // In mean free paths sigma_t is 1 by definition; other values need a physical unit.
+  EXPECT_EQ(field_of("[medium]\nsigma_t = 2.0\n"), "medium.length_unit");
+  EXPECT_EQ(field_of("[medium]\nsigma_a = 1\nsigma_s = 1\nlength_unit = \"mfp\"\n"),
+            "medium.length_unit");
+  EXPECT_EQ(field_of("[medium]\nlength_unit = \"inch\"\nsigma_t = 2\n"), "medium.length_unit");
+  EXPECT_EQ(
+      parse("[medium]\nsigma_a = 0.5\nsigma_s = 0.5\nlength_unit = \"mfp\"\n").spec.medium.albedo,
+      0.5);
+  EXPECT_EQ(parse("[medium]\nsigma_t = 2.0\nlength_unit = \"mm\"\n").spec.medium.sigma_t, 2.0);
+}
+
+TEST(Scene, SyntaxErrorGivesTheLine) {
+  const InputError error = error_of("[medium]\nalbedo = 0.5\ng = = 0.9\n");
+  EXPECT_EQ(error.field(), "scene");
+  const std::string message = error.what();
+  EXPECT_NE(message.find("test.toml:3:"), std::string::npos) << message;
+  EXPECT_NE(message.find("a valid TOML file"), std::string::npos) << message;
+
+  EXPECT_EQ(field_of("[medium]\nalbedo = 0.5\nalbedo = 0.6\n"), "scene");  // duplicate key
+}
+
+TEST(Scene, ShippedScenesParse) {
+  const Scene paper = load_scene(scenes_dir / "paper-beam.toml");
+  expect_same_spec(paper.spec, SimulationSpec{});
+  EXPECT_EQ(paper.output_path, "paper-beam.h5");
+
+  const Scene point = load_scene(scenes_dir / "point-source.toml");
+  EXPECT_EQ(point.spec.source, SourceKind::point);
+  EXPECT_EQ(point.spec.medium.g, 0.0);
+  EXPECT_EQ(point.spec.medium.albedo, 0.9);
+  EXPECT_TRUE(point.spec.tallies.fluence_spherical);
+  EXPECT_FALSE(point.spec.tallies.radiance);
+}
+
+TEST(Scene, UnreadableFileIsASceneError) {
+  const std::filesystem::path missing = scenes_dir / "no-such-scene.toml";
+  try {
+    load_scene(missing);
+    ADD_FAILURE() << "no error for a missing file";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.field(), "scene");
+    EXPECT_NE(std::string(error.what()).find("no-such-scene.toml"), std::string::npos);
+  }
+  try {
+    load_scene(scenes_dir);
+    ADD_FAILURE() << "no error for a directory";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.field(), "scene");
+  }
+}
+
+TEST(Scene, SyntaxErrorInAFileNamesTheFile) {
+  const auto path = std::filesystem::temp_directory_path() / "scatterlab-test-bad-scene.toml";
+  std::ofstream(path) << "[run]\nphotons = \n";
+  try {
+    load_scene(path);
+    ADD_FAILURE() << "no error for a bad file";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find(path.string() + ":2:"), std::string::npos)
+        << error.what();
+  }
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace scatterlab
