@@ -3,19 +3,21 @@
 #include <cmath>
 #include <utility>
 
+#include <fmt/format.h>
+
 #include "scatterlab/core/error.hpp"
 
 namespace scatterlab {
 
 void Medium::validate() const {
   if (!(albedo >= 0.0 && albedo <= 1.0)) {
-    throw InputError("medium.albedo", "got " + std::to_string(albedo), "a number in [0, 1]");
+    throw InputError("medium.albedo", fmt::format("got {}", albedo), "a number in [0, 1]");
   }
   if (!(sigma_t > 0.0) || !std::isfinite(sigma_t)) {
-    throw InputError("medium.sigma_t", "got " + std::to_string(sigma_t), "a finite number > 0");
+    throw InputError("medium.sigma_t", fmt::format("got {}", sigma_t), "a finite number > 0");
   }
   if (!(std::abs(g) < 1.0)) {
-    throw InputError("medium.g", "got " + std::to_string(g), "a number with |g| < 1");
+    throw InputError("medium.g", fmt::format("got {}", g), "a number with |g| < 1");
   }
 }
 
@@ -28,10 +30,10 @@ Medium Medium::from_albedo(double albedo, double sigma_t, double g, std::string 
 Medium Medium::from_coefficients(double sigma_a, double sigma_s, double g,
                                  std::string length_unit) {
   if (!(sigma_a >= 0.0) || !std::isfinite(sigma_a)) {
-    throw InputError("medium.sigma_a", "got " + std::to_string(sigma_a), "a finite number >= 0");
+    throw InputError("medium.sigma_a", fmt::format("got {}", sigma_a), "a finite number >= 0");
   }
   if (!(sigma_s >= 0.0) || !std::isfinite(sigma_s)) {
-    throw InputError("medium.sigma_s", "got " + std::to_string(sigma_s), "a finite number >= 0");
+    throw InputError("medium.sigma_s", fmt::format("got {}", sigma_s), "a finite number >= 0");
   }
   const double sigma_t = sigma_a + sigma_s;
   if (!(sigma_t > 0.0)) {

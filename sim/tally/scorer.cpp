@@ -137,6 +137,8 @@ void Scorer::flight_cylindrical(double* buffer, std::vector<double>& crossings,
   if (moves_across) {
     const double speed = std::sqrt(transverse2);
     angular_momentum = start.x() * direction.y() - start.y() * direction.x();
+    // Within rounding of a line through the axis: on it (see Scorer::add_radiance).
+    if (std::abs(angular_momentum) <= 1e-12 * line.d * speed) angular_momentum = 0.0;
     line = RadialLine{(start.x() * direction.x() + start.y() * direction.y()) / speed, speed,
                       std::abs(angular_momentum) / speed};
     const double outer = grid_.r.max;
@@ -205,8 +207,8 @@ void Scorer::flight_cylindrical(double* buffer, std::vector<double>& crossings,
     if (radiance) {
       const double w_mid = line.w0 + line.speed * mid;
       const double cos_phi = (moves_across && r_mid > 0.0) ? w_mid / r_mid : 1.0;
-      const std::size_t angle = theta_offset + static_cast<std::size_t>(phi_bin(cos_phi, angular_momentum));
-      add(buffer, layout_.radiance + cell * angles + angle, block, span);
+      add_radiance(buffer, layout_.radiance + cell * angles + theta_offset, block, cos_phi,
+                   angular_momentum, span);
     }
   }
 }

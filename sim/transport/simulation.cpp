@@ -98,6 +98,11 @@ void check_grid(const Grid& grid, bool radiance_requested) {
     check_angle_axis(grid.phi, "phi", std::numbers::pi, "pi when grid.fold_phi = true");
   } else {
     check_angle_axis(grid.phi, "phi", two_pi, "2 pi when grid.fold_phi = false");
+    // The bins of phi and 2 pi - phi mirror each other only for an even count (scorer.hpp).
+    if (grid.phi.bins % 2 != 0) {
+      throw InputError("grid.phi.bins", fmt::format("got {} with grid.fold_phi = false", grid.phi.bins),
+                       "an even number of bins over [0, 2 pi], or grid.fold_phi = true");
+    }
   }
   check_radial_axis(grid.rho, "rho");
 

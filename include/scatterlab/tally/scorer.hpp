@@ -53,9 +53,22 @@ class Scorer {
     if (layout_.split_by_order) buffer[index + order_block] += v;
   }
 
-  int phi_bin(double cos_phi, double sin_sign) const {
+  // Adds v to the radiance cell of (cell, theta offset, phi). Unfolded, phi and 2 pi - phi fall
+  // in mirrored bins; a direction exactly in the half-plane through the axis (omega . e_phi = 0,
+  // as for light scattered once from a pencil beam, a delta in phi on a bin edge) is shared
+  // equally between the two bins that meet there.
+  void add_radiance(double* buffer, std::size_t base, std::size_t block, double cos_phi,
+                    double sin_phi_sign, double v) const {
     const int folded = phi_binning_.bin(cos_phi);
-    return (grid_.fold_phi || sin_sign >= 0.0) ? folded : phi_bins_ - 1 - folded;
+    if (grid_.fold_phi) {
+      add(buffer, base + static_cast<std::size_t>(folded), block, v);
+    } else if (sin_phi_sign != 0.0) {
+      const int bin = sin_phi_sign > 0.0 ? folded : phi_bins_ - 1 - folded;
+      add(buffer, base + static_cast<std::size_t>(bin), block, v);
+    } else {
+      add(buffer, base + static_cast<std::size_t>(folded), block, 0.5 * v);
+      add(buffer, base + static_cast<std::size_t>(phi_bins_ - 1 - folded), block, 0.5 * v);
+    }
   }
 
   void flight_cylindrical(double* buffer, std::vector<double>& crossings, const Vec3& start,
@@ -92,13 +105,16 @@ inline void Scorer::collision(double* buffer, const Vec3& position, const Vec3& 
     add(buffer, layout_.flux + 2 * cell + 1, block, direction.z());
   }
   if (layout_.radiance != TallyLayout::absent) {
-    const double azimuthal =
+    double azimuthal =
         r > 0.0 ? (direction.y() * position.x() - direction.x() * position.y()) / r : 0.0;
     const double transverse = std::sqrt(radial * radial + azimuthal * azimuthal);
+    // Within rounding of the half-plane through the axis: on it (see add_radiance).
+    if (std::abs(azimuthal) <= 1e-12 * transverse) azimuthal = 0.0;
     const double cos_phi = transverse > 0.0 ? radial / transverse : 1.0;
-    const std::size_t angle = static_cast<std::size_t>(theta_binning_.bin(direction.z())) * layout_.phi_bins +
-                              static_cast<std::size_t>(phi_bin(cos_phi, azimuthal));
-    add(buffer, layout_.radiance + cell * layout_.theta_bins * layout_.phi_bins + angle, block, 1.0);
+    const std::size_t base =
+        layout_.radiance + cell * layout_.theta_bins * layout_.phi_bins +
+        static_cast<std::size_t>(theta_binning_.bin(direction.z())) * layout_.phi_bins;
+    add_radiance(buffer, base, block, cos_phi, azimuthal, 1.0);
   }
 }
 
