@@ -1,0 +1,35 @@
+#pragma once
+// Nothing half-written is left behind (DESIGN.md, "Errors"): an output is written to a temporary
+// file beside its final path and renamed into place only when complete. Rename within one
+// directory is atomic on POSIX, so readers see either the old file or the whole new one.
+
+#include <filesystem>
+
+namespace scatterlab {
+
+class AtomicOutput {
+ public:
+  // Throws InputError("out", ...) when the directory of `final_path` does not exist or
+  // `final_path` names a directory. Creates nothing yet.
+  explicit AtomicOutput(std::filesystem::path final_path);
+  AtomicOutput(const AtomicOutput&) = delete;
+  AtomicOutput& operator=(const AtomicOutput&) = delete;
+  // Removes the temporary file unless commit() succeeded.
+  ~AtomicOutput();
+
+  // Where to write: "<final>.tmp-<pid>-<n>" in the same directory (unique within the process).
+  const std::filesystem::path& temporary_path() const { return temporary_path_; }
+  const std::filesystem::path& final_path() const { return final_path_; }
+  bool committed() const { return committed_; }
+
+  // Renames the temporary file onto the final path, replacing an existing file there. Throws
+  // std::runtime_error (and keeps the temporary file for the destructor to remove) on failure.
+  void commit();
+
+ private:
+  std::filesystem::path final_path_;
+  std::filesystem::path temporary_path_;
+  bool committed_ = false;
+};
+
+}  // namespace scatterlab

@@ -1,0 +1,93 @@
+#pragma once
+// The simulation file: one self-describing HDF5 file per run (DESIGN.md, HDF5 layout).
+//
+//   /                  attrs format="scatterlab", format_version=1, scatterlab_version, command,
+//                            created (ISO 8601 UTC), wall_seconds, photons_run, scattering_events
+//   /parameters        attrs source, albedo, g, sigma_t, sigma_a, sigma_s, length_unit, phase,
+//                            photons, batches, seed, estimator, escape_radius (when finite),
+//                            split_by_order, threads
+//   /grid/{r,z,theta,phi[,rho]}   bin edges, attr units ("mfp" or "rad"); attr phi_folded on /grid
+//   /tallies/<name>    attrs units, description, dims ("r,z,theta,phi"; "" for a scalar)
+//   /tallies/<name>/{mean,stderr}  the tally's shape; a scalar is a rank-0 dataset; attr units
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "scatterlab/tally/tally_result.hpp"
+#include "scatterlab/transport/simulation.hpp"
+
+namespace scatterlab {
+
+inline constexpr std::int64_t kSimulationFormatVersion = 1;
+
+// Where a file came from: enough to reproduce and to judge the run.
+struct Provenance {
+  std::string version;  // scatterlab version that wrote the file
+  std::string command;  // the command line, as typed
+  std::string created;  // ISO 8601 UTC, e.g. "2024-05-01T12:34:56Z"
+  double wall_seconds = 0.0;
+  std::uint64_t photons_run = 0;
+  std::uint64_t scattering_events = 0;
+};
+
+// The current time as ISO 8601 UTC with second resolution: "YYYY-MM-DDTHH:MM:SSZ".
+std::string iso8601_now();
+
+// Writes the whole file to a temporary name beside `path` and renames it into place, so that a
+// failure leaves no file behind. Throws InputError("out", ...) when the directory does not
+// exist, std::invalid_argument for an inconsistent tally, std::runtime_error for HDF5 failures.
+// Tallies are written in the order given. Does not validate `spec` (the caller did).
+void write_simulation_file(const std::filesystem::path& path, const SimulationSpec& spec,
+                           const std::vector<TallyResult>& tallies, const Provenance& provenance);
+
+// What `scatterlab info FILE` reports, read back from a file.
+struct AxisSummary {
+  std::string name;
+  std::size_t bins = 0;
+  double min = 0.0;
+  double max = 0.0;
+  std::string units;
+};
+
+struct TallySummary {
+  std::string name;
+  std::vector<std::size_t> shape;  // empty for a scalar
+  std::string dims;
+  std::string units;
+  std::string description;
+  double mean_sum = 0.0;       // for a scalar, its value
+  double mean_max = 0.0;       // for a scalar, its value
+  double scalar_stderr = 0.0;  // scalars only: the standard error
+  // Median of stderr / |mean| over bins with mean != 0; NaN when there are none.
+  double median_relative_stderr = 0.0;
+  std::size_t nonzero_bins = 0;
+
+  bool is_scalar() const { return shape.empty(); }
+};
+
+struct FileSummary {
+  std::filesystem::path path;
+  std::int64_t format_version = 0;
+  std::string scatterlab_version;
+  std::string command;
+  std::string created;
+  double wall_seconds = 0.0;
+  std::int64_t photons_run = 0;
+  std::int64_t scattering_events = 0;
+  std::vector<std::pair<std::string, std::string>> parameters;  // name, value as text
+  std::vector<AxisSummary> grid;
+  bool phi_folded = false;
+  std::vector<TallySummary> tallies;
+};
+
+// Throws InputError("FILE", ...) for a file that is missing, not HDF5, or not a scatterlab file.
+FileSummary read_file_summary(const std::filesystem::path& path);
+std::string describe(const FileSummary& summary);
+// read_file_summary + describe: the text of `scatterlab info FILE`.
+std::string describe_simulation_file(const std::filesystem::path& path);
+
+}  // namespace scatterlab

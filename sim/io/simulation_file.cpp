@@ -1,0 +1,376 @@
+#include "scatterlab/io/simulation_file.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <ctime>
+#include <limits>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/io/atomic_output.hpp"
+#include "scatterlab/io/hdf5_file.hpp"
+
+namespace scatterlab {
+
+namespace {
+
+// The names the file uses for the enums; they match to_string in transport/simulation.hpp,
+// kept here so that the I/O layer does not decide (or depend on) the transport spellings.
+std::string source_name(SourceKind source) {
+  switch (source) {
+    case SourceKind::pencil_beam:
+      return "beam";
+    case SourceKind::point:
+      return "point";
+  }
+  return "unknown";
+}
+
+std::string estimator_name(Estimator estimator) {
+  switch (estimator) {
+    case Estimator::collision:
+      return "collision";
+    case Estimator::track_length:
+      return "track_length";
+  }
+  return "unknown";
+}
+
+// Counts are stored as int64 so that numpy arithmetic on them stays integral.
+std::int64_t as_int64(std::uint64_t value, const char* field) {
+  if (value > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
+    throw std::invalid_argument(std::string(field) + " does not fit in int64");
+  }
+  return static_cast<std::int64_t>(value);
+}
+
+std::size_t product(const std::vector<std::size_t>& shape) {
+  std::size_t values = 1;
+  for (const std::size_t extent : shape) values *= extent;
+  return values;
+}
+
+// A tally that does not describe its own arrays is a programming error; catch it before any
+// file is created.
+void check_tallies(const std::vector<TallyResult>& tallies) {
+  std::set<std::string> names;
+  for (const TallyResult& tally : tallies) {
+    const std::string label = "tally '" + tally.name + "': ";
+    if (tally.name.empty() || tally.name.find('/') != std::string::npos || tally.name == "." ||
+        tally.name == "..") {
+      throw std::invalid_argument(label + "name must be non-empty, without '/'");
+    }
+    if (!names.insert(tally.name).second) throw std::invalid_argument(label + "written twice");
+    if (tally.dims.size() != tally.shape.size()) {
+      throw std::invalid_argument(label + "dims and shape differ in rank");
+    }
+    const std::size_t values = product(tally.shape);
+    if (tally.mean.size() != values || tally.stderr_of_mean.size() != values) {
+      throw std::invalid_argument(label + fmt::format("shape holds {} values, mean has {}, "
+                                                      "stderr has {}",
+                                                      values, tally.mean.size(),
+                                                      tally.stderr_of_mean.size()));
+    }
+  }
+}
+
+std::string join(const std::vector<std::string>& parts, const char* separator) {
+  std::string joined;
+  for (std::size_t i = 0; i < parts.size(); ++i) joined += (i == 0 ? "" : separator) + parts[i];
+  return joined;
+}
+
+void write_provenance(hdf5::Group& root, const Provenance& provenance) {
+  root.write_string_attribute("format", "scatterlab");
+  root.write_int64_attribute("format_version", kSimulationFormatVersion);
+  root.write_string_attribute("scatterlab_version", provenance.version);
+  root.write_string_attribute("command", provenance.command);
+  root.write_string_attribute("created", provenance.created);
+  root.write_double_attribute("wall_seconds", provenance.wall_seconds);
+  root.write_int64_attribute("photons_run", as_int64(provenance.photons_run, "photons_run"));
+  root.write_int64_attribute("scattering_events",
+                             as_int64(provenance.scattering_events, "scattering_events"));
+}
+
+void write_parameters(hdf5::Group& root, const SimulationSpec& spec) {
+  hdf5::Group parameters = root.create_group("parameters");
+  const Medium& medium = spec.medium;
+  parameters.write_string_attribute("source", source_name(spec.source));
+  parameters.write_double_attribute("albedo", medium.albedo);
+  parameters.write_double_attribute("g", medium.g);
+  parameters.write_double_attribute("sigma_t", medium.sigma_t);
+  parameters.write_double_attribute("sigma_a", medium.sigma_a());
+  parameters.write_double_attribute("sigma_s", medium.sigma_s());
+  parameters.write_string_attribute("length_unit", medium.length_unit);
+  // g = 0 samples isotropically (DESIGN.md, "Leave out what a scene does not need").
+  parameters.write_string_attribute("phase", medium.g == 0.0 ? "isotropic" : "henyey-greenstein");
+  parameters.write_int64_attribute("photons", as_int64(spec.run.photons, "photons"));
+  parameters.write_int64_attribute("batches", spec.run.batches);
+  // Any 64-bit seed is valid, so it is the one unsigned attribute.
+  parameters.write_uint64_attribute("seed", spec.run.seed);
+  parameters.write_string_attribute("estimator", estimator_name(spec.tallies.estimator));
+  if (std::isfinite(spec.run.escape_radius)) {
+    parameters.write_double_attribute("escape_radius", spec.run.escape_radius);
+  }
+  parameters.write_bool_attribute("split_by_order", spec.tallies.split_by_order);
+  parameters.write_int64_attribute("threads", spec.run.threads);
+}
+
+void write_axis(hdf5::Group& grid, const char* name, const UniformAxis& axis, const char* units) {
+  const std::vector<double> edges = axis.edges();
+  grid.write_dataset(name, edges).write_string_attribute("units", units);
+}
+
+// Grid lengths are in mean free paths: transport runs with sigma_t = 1 (DESIGN.md, "Units").
+void write_grid(hdf5::Group& root, const SimulationSpec& spec) {
+  hdf5::Group grid = root.create_group("grid");
+  grid.write_bool_attribute("phi_folded", spec.grid.fold_phi);
+  write_axis(grid, "r", spec.grid.r, "mfp");
+  write_axis(grid, "z", spec.grid.z, "mfp");
+  write_axis(grid, "theta", spec.grid.theta, "rad");
+  write_axis(grid, "phi", spec.grid.phi, "rad");
+  if (spec.tallies.fluence_spherical) write_axis(grid, "rho", spec.grid.rho, "mfp");
+}
+
+void write_tallies(hdf5::Group& root, const std::vector<TallyResult>& tallies) {
+  hdf5::Group group = root.create_group("tallies");
+  for (const TallyResult& tally : tallies) {
+    hdf5::Group node = group.create_group(tally.name);
+    node.write_string_attribute("units", tally.units);
+    node.write_string_attribute("description", tally.description);
+    node.write_string_attribute("dims", join(tally.dims, ","));
+    node.write_dataset("mean", tally.mean, tally.shape)
+        .write_string_attribute("units", tally.units);
+    node.write_dataset("stderr", tally.stderr_of_mean, tally.shape)
+        .write_string_attribute("units", tally.units);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading back
+
+std::string attribute_text(const hdf5::Object& object, const std::string& name) {
+  switch (object.attribute_type(name)) {
+    case hdf5::AttributeType::string:
+      return object.read_string_attribute(name);
+    case hdf5::AttributeType::floating:
+      return fmt::format("{}", object.read_double_attribute(name));
+    case hdf5::AttributeType::signed_integer:
+      return fmt::format("{}", object.read_int64_attribute(name));
+    case hdf5::AttributeType::unsigned_integer:
+      return fmt::format("{}", object.read_uint64_attribute(name));
+    case hdf5::AttributeType::other:
+      break;
+  }
+  return "(unsupported type)";
+}
+
+std::string string_or_empty(const hdf5::Object& object, const char* name) {
+  return object.has_attribute(name) ? object.read_string_attribute(name) : std::string();
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const std::size_t middle = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle),
+                   values.end());
+  const double upper = values[middle];
+  if (values.size() % 2 == 1) return upper;
+  const double lower =
+      *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle));
+  return 0.5 * (lower + upper);
+}
+
+TallySummary summarize_tally(const hdf5::Group& tallies, const std::string& name) {
+  const hdf5::Group node = tallies.open_group(name);
+  const hdf5::Array mean = node.read_dataset("mean");
+  const hdf5::Array stderr_of_mean = node.read_dataset("stderr");
+  if (stderr_of_mean.shape != mean.shape) {
+    throw std::runtime_error("tally '" + name + "': mean and stderr differ in shape");
+  }
+  TallySummary summary;
+  summary.name = name;
+  summary.shape = mean.shape;
+  summary.dims = string_or_empty(node, "dims");
+  summary.units = string_or_empty(node, "units");
+  summary.description = string_or_empty(node, "description");
+  summary.mean_max = mean.values.empty() ? 0.0 : -std::numeric_limits<double>::infinity();
+  std::vector<double> relative;
+  for (std::size_t i = 0; i < mean.values.size(); ++i) {
+    summary.mean_sum += mean.values[i];
+    summary.mean_max = std::max(summary.mean_max, mean.values[i]);
+    if (mean.values[i] != 0.0) {
+      relative.push_back(stderr_of_mean.values[i] / std::abs(mean.values[i]));
+    }
+  }
+  summary.nonzero_bins = relative.size();
+  summary.median_relative_stderr = median(std::move(relative));
+  if (summary.is_scalar() && !stderr_of_mean.values.empty()) {
+    summary.scalar_stderr = stderr_of_mean.values.front();
+  }
+  return summary;
+}
+
+AxisSummary summarize_axis(const hdf5::Group& grid, const std::string& name) {
+  const hdf5::Dataset edges = grid.open_dataset(name);
+  const hdf5::Array values = edges.read();
+  AxisSummary axis;
+  axis.name = name;
+  axis.bins = values.values.empty() ? 0 : values.values.size() - 1;
+  if (!values.values.empty()) {
+    axis.min = values.values.front();
+    axis.max = values.values.back();
+  }
+  axis.units = string_or_empty(edges, "units");
+  return axis;
+}
+
+FileSummary summarize(const hdf5::File& file) {
+  const hdf5::Group& root = file.root();
+  FileSummary summary;
+  summary.path = file.path();
+  summary.format_version = root.read_int64_attribute("format_version");
+  summary.scatterlab_version = root.read_string_attribute("scatterlab_version");
+  summary.command = root.read_string_attribute("command");
+  summary.created = root.read_string_attribute("created");
+  summary.wall_seconds = root.read_double_attribute("wall_seconds");
+  summary.photons_run =
+      root.has_attribute("photons_run") ? root.read_int64_attribute("photons_run") : 0;
+  summary.scattering_events = root.read_int64_attribute("scattering_events");
+
+  const hdf5::Group parameters = root.open_group("parameters");
+  for (const std::string& name : parameters.attribute_names()) {
+    summary.parameters.emplace_back(name, attribute_text(parameters, name));
+  }
+  const hdf5::Group grid = root.open_group("grid");
+  summary.phi_folded = grid.has_attribute("phi_folded") && grid.read_int64_attribute("phi_folded");
+  for (const std::string& name : grid.member_names()) {
+    summary.grid.push_back(summarize_axis(grid, name));
+  }
+  const hdf5::Group tallies = root.open_group("tallies");
+  for (const std::string& name : tallies.member_names()) {
+    summary.tallies.push_back(summarize_tally(tallies, name));
+  }
+  return summary;
+}
+
+std::string shape_text(const std::vector<std::size_t>& shape) {
+  std::vector<std::string> extents;
+  for (const std::size_t extent : shape) extents.push_back(std::to_string(extent));
+  return fmt::format("[{}]", join(extents, " x "));
+}
+
+std::string tally_text(const TallySummary& tally) {
+  std::string text = "  " + tally.name + "  ";
+  text += tally.is_scalar() ? "scalar" : shape_text(tally.shape) + " (" + tally.dims + ")";
+  if (!tally.units.empty()) text += ", " + tally.units;
+  text += "\n";
+  if (!tally.description.empty()) text += "      " + tally.description + "\n";
+  if (tally.is_scalar()) {
+    text += fmt::format("      {:.6g} ± {:.2g}\n", tally.mean_sum, tally.scalar_stderr);
+  } else if (tally.nonzero_bins == 0) {
+    text += "      all bins zero\n";
+  } else {
+    text += fmt::format(
+        "      sum {:.6g}, max {:.6g}; median relative stderr {:.3g} over {} nonzero bins\n",
+        tally.mean_sum, tally.mean_max, tally.median_relative_stderr, tally.nonzero_bins);
+  }
+  return text;
+}
+
+[[noreturn]] void not_a_simulation_file(const std::filesystem::path& path,
+                                        const std::string& reason) {
+  throw InputError("FILE", path.string() + " is not a scatterlab HDF5 file (" + reason + ")",
+                   "a file written by scatterlab simulate");
+}
+
+}  // namespace
+
+std::string iso8601_now() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+void write_simulation_file(const std::filesystem::path& path, const SimulationSpec& spec,
+                           const std::vector<TallyResult>& tallies, const Provenance& provenance) {
+  AtomicOutput output(path);
+  check_tallies(tallies);
+  {
+    hdf5::File file = hdf5::File::create(output.temporary_path());
+    write_provenance(file.root(), provenance);
+    write_parameters(file.root(), spec);
+    write_grid(file.root(), spec);
+    write_tallies(file.root(), tallies);
+    file.close();
+  }
+  output.commit();
+}
+
+FileSummary read_file_summary(const std::filesystem::path& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) {
+    not_a_simulation_file(
+        path, std::filesystem::exists(path, error) ? "not a regular file" : "no such file");
+  }
+  if (!hdf5::is_hdf5_file(path)) not_a_simulation_file(path, "not an HDF5 file, or unreadable");
+  try {
+    const hdf5::File file = hdf5::File::open_read_only(path);
+    const hdf5::Group& root = file.root();
+    if (!root.has_attribute("format")) not_a_simulation_file(path, "no 'format' attribute");
+    const std::string format = root.read_string_attribute("format");
+    if (format != "scatterlab") not_a_simulation_file(path, "format is '" + format + "'");
+    return summarize(file);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::runtime_error& failure) {
+    not_a_simulation_file(path, failure.what());
+  }
+}
+
+std::string describe(const FileSummary& summary) {
+  std::string text;
+  text += fmt::format("file        {}\n", summary.path.string());
+  text += fmt::format("format      scatterlab, version {}\n", summary.format_version);
+  text += fmt::format("written by  scatterlab {}\n", summary.scatterlab_version);
+  text += fmt::format("command     {}\n", summary.command);
+  text += fmt::format("created     {}\n", summary.created);
+  text += fmt::format("wall time   {:.3g} s\n", summary.wall_seconds);
+  text += fmt::format("photons run {} ({} scattering events)\n", summary.photons_run,
+                      summary.scattering_events);
+
+  text += "\nparameters\n";
+  std::size_t width = 0;
+  for (const auto& parameter : summary.parameters) width = std::max(width, parameter.first.size());
+  for (const auto& [name, value] : summary.parameters) {
+    text += fmt::format("  {:<{}}  {}\n", name, width, value);
+  }
+
+  text += summary.phi_folded ? "\ngrid (phi folded onto [0, pi])\n" : "\ngrid\n";
+  for (const AxisSummary& axis : summary.grid) {
+    text += fmt::format("  {:<6} {:>4} bins in [{:.6g}, {:.6g}] {}\n", axis.name, axis.bins,
+                        axis.min, axis.max, axis.units);
+  }
+
+  text += "\ntallies\n";
+  if (summary.tallies.empty()) text += "  (none)\n";
+  for (const TallySummary& tally : summary.tallies) text += tally_text(tally);
+  return text;
+}
+
+std::string describe_simulation_file(const std::filesystem::path& path) {
+  return describe(read_file_summary(path));
+}
+
+}  // namespace scatterlab
