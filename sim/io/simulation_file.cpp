@@ -22,28 +22,6 @@ namespace scatterlab {
 
 namespace {
 
-// The names the file uses for the enums; they match to_string in transport/simulation.hpp,
-// kept here so that the I/O layer does not decide (or depend on) the transport spellings.
-std::string source_name(SourceKind source) {
-  switch (source) {
-    case SourceKind::pencil_beam:
-      return "beam";
-    case SourceKind::point:
-      return "point";
-  }
-  return "unknown";
-}
-
-std::string estimator_name(Estimator estimator) {
-  switch (estimator) {
-    case Estimator::collision:
-      return "collision";
-    case Estimator::track_length:
-      return "track_length";
-  }
-  return "unknown";
-}
-
 // Counts are stored as int64 so that numpy arithmetic on them stays integral.
 std::int64_t as_int64(std::uint64_t value, const char* field) {
   if (value > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
@@ -103,7 +81,7 @@ void write_provenance(hdf5::Group& root, const Provenance& provenance) {
 void write_parameters(hdf5::Group& root, const SimulationSpec& spec) {
   hdf5::Group parameters = root.create_group("parameters");
   const Medium& medium = spec.medium;
-  parameters.write_string_attribute("source", source_name(spec.source));
+  parameters.write_string_attribute("source", to_string(spec.source));
   parameters.write_double_attribute("albedo", medium.albedo);
   parameters.write_double_attribute("g", medium.g);
   parameters.write_double_attribute("sigma_t", medium.sigma_t);
@@ -116,7 +94,7 @@ void write_parameters(hdf5::Group& root, const SimulationSpec& spec) {
   parameters.write_int64_attribute("batches", spec.run.batches);
   // Any 64-bit seed is valid, so it is the one unsigned attribute.
   parameters.write_uint64_attribute("seed", spec.run.seed);
-  parameters.write_string_attribute("estimator", estimator_name(spec.tallies.estimator));
+  parameters.write_string_attribute("estimator", to_string(spec.tallies.estimator));
   if (std::isfinite(spec.run.escape_radius)) {
     parameters.write_double_attribute("escape_radius", spec.run.escape_radius);
   }

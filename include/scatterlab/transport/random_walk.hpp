@@ -8,9 +8,9 @@
 
 #include <cmath>
 #include <cstdint>
-#include <numbers>
 #include <vector>
 
+#include "scatterlab/core/azimuth.hpp"
 #include "scatterlab/core/frame.hpp"
 #include "scatterlab/core/random.hpp"
 #include "scatterlab/tally/scorer.hpp"
@@ -21,8 +21,8 @@ namespace scatterlab {
 inline Vec3 isotropic_direction(double u_cos, double u_phi) {
   const double z = 2.0 * u_cos - 1.0;
   const double s = std::sqrt(std::max(0.0, (1.0 - z) * (1.0 + z)));
-  const double phi = 2.0 * std::numbers::pi * u_phi;
-  return {s * std::cos(phi), s * std::sin(phi), z};
+  const UnitCircle phi = azimuth(u_phi);
+  return {s * phi.cos, s * phi.sin, z};
 }
 
 // Distance from `p` along unit `w` to the sphere |x| = radius, for p inside it.
@@ -81,8 +81,8 @@ class RandomWalk {
           break;
         }
         const double cos_theta = phase_.sample_cos_theta(u[2]);
-        const double phi = 2.0 * std::numbers::pi * u[3];
-        direction = scatter_direction(direction, cos_theta, std::cos(phi), std::sin(phi));
+        const UnitCircle phi = azimuth(u[3]);
+        direction = scatter_direction(direction, cos_theta, phi.cos, phi.sin);
         ++scatterings;
       }
     }

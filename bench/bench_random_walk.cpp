@@ -1,0 +1,116 @@
+// Cost of the infinite-medium random walk (issue: simulator performance): photons/s and ns per
+// scattering event per core, for (g = 0.9, albedo 0.5) and (g = 0, albedo 0.99), with the
+// fluence tallies alone and with the full radiance tally, next to a bare loop that only draws
+// the random numbers and samples free paths and directions (the ceiling), and the whole
+// multi-threaded run on 1 and 2 threads.
+//
+//   ./build/bench/scatterlab_bench --benchmark_counters_tabular=true
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "scatterlab/core/phase_function.hpp"
+#include "scatterlab/core/random.hpp"
+#include "scatterlab/tally/scorer.hpp"
+#include "scatterlab/transport/random_walk.hpp"
+#include "scatterlab/transport/simulate.hpp"
+
+namespace scatterlab {
+namespace {
+
+SimulationSpec scene(double g, double albedo, bool radiance, Estimator estimator) {
+  SimulationSpec spec;
+  spec.medium.g = g;
+  spec.medium.albedo = albedo;
+  spec.tallies.radiance = radiance;
+  spec.tallies.estimator = estimator;
+  return spec;
+}
+
+void report(benchmark::State& state, std::uint64_t photons, std::uint64_t scatterings) {
+  state.counters["photons/s"] =
+      benchmark::Counter(static_cast<double>(photons), benchmark::Counter::kIsRate);
+  state.counters["ns/scatter"] = benchmark::Counter(
+      static_cast<double>(scatterings) * 1e-9,
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+// The ceiling: per event one Philox call, a free path, an HG cosine, an azimuth and a frame
+// rotation; no tallies, no positions.
+template <class Phase>
+void BareLoop(benchmark::State& state, Phase phase, double albedo) {
+  std::uint64_t photon = 0, scatterings = 0, photons = 0;
+  double sink = 0.0;
+  for (auto _ : state) {
+    for (int i = 0; i < 1000; ++i, ++photon) {
+      PhotonRandom random(1, photon);
+      Vec3 direction = Vec3::UnitZ();
+      for (;;) {
+        const auto u = random.next4();
+        sink += -std::log(u[0]);
+        if (u[1] >= albedo) break;
+        const double phi = 2.0 * std::numbers::pi * u[3];
+        direction = scatter_direction(direction, phase.sample_cos_theta(u[2]), std::cos(phi),
+                                      std::sin(phi));
+        ++scatterings;
+      }
+      sink += direction.z();
+    }
+    photons += 1000;
+  }
+  benchmark::DoNotOptimize(sink);
+  report(state, photons, scatterings);
+}
+
+template <class Phase>
+void Walk(benchmark::State& state, Phase phase, SimulationSpec spec) {
+  const TallyLayout layout(spec);
+  const Scorer scorer(spec, layout);
+  std::vector<double> buffer(layout.size, 0.0);
+  std::vector<double> crossings = scorer.make_crossing_scratch();
+  std::uint64_t photon = 0, scatterings = 0;
+  for (auto _ : state) {
+    if (spec.tallies.estimator == Estimator::collision) {
+      const RandomWalk<Phase, Estimator::collision> walk(spec, phase, scorer);
+      scatterings += walk.run(photon, photon + 1000, buffer.data(), crossings);
+    } else {
+      const RandomWalk<Phase, Estimator::track_length> walk(spec, phase, scorer);
+      scatterings += walk.run(photon, photon + 1000, buffer.data(), crossings);
+    }
+    photon += 1000;
+  }
+  benchmark::DoNotOptimize(buffer.data());
+  report(state, photon, scatterings);
+}
+
+void WholeRun(benchmark::State& state) {
+  SimulationSpec spec = scene(0.9, 0.5, true, Estimator::collision);
+  spec.run.photons = 2'000'000;
+  spec.run.threads = static_cast<int>(state.range(0));
+  std::uint64_t photons = 0, scatterings = 0;
+  for (auto _ : state) {
+    const SimulationOutput out = simulate(spec);
+    photons += out.photons;
+    scatterings += out.scattering_events;
+  }
+  report(state, photons, scatterings);
+}
+
+const HenyeyGreenstein forward{0.9};
+const IsotropicPhase isotropic{};
+
+BENCHMARK_CAPTURE(BareLoop, hg_g0.9_albedo0.5, forward, 0.5);
+BENCHMARK_CAPTURE(BareLoop, iso_albedo0.99, isotropic, 0.99);
+BENCHMARK_CAPTURE(Walk, fluence_hg_g0.9_albedo0.5, forward, scene(0.9, 0.5, false, Estimator::collision));
+BENCHMARK_CAPTURE(Walk, radiance_hg_g0.9_albedo0.5, forward, scene(0.9, 0.5, true, Estimator::collision));
+BENCHMARK_CAPTURE(Walk, fluence_iso_albedo0.99, isotropic, scene(0.0, 0.99, false, Estimator::collision));
+BENCHMARK_CAPTURE(Walk, radiance_iso_albedo0.99, isotropic, scene(0.0, 0.99, true, Estimator::collision));
+BENCHMARK_CAPTURE(Walk, track_fluence_hg_g0.9_albedo0.5, forward, scene(0.9, 0.5, false, Estimator::track_length));
+BENCHMARK_CAPTURE(Walk, track_radiance_hg_g0.9_albedo0.5, forward, scene(0.9, 0.5, true, Estimator::track_length));
+BENCHMARK(WholeRun)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+}  // namespace scatterlab
+
+BENCHMARK_MAIN();
