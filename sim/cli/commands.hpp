@@ -1,0 +1,17 @@
+#pragma once
+// The subcommands of the `scatterlab` program. Each registers its options on the app and
+// returns the action to run once the command line has been parsed.
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <string>
+
+namespace scatterlab::cli {
+
+using Action = std::function<int()>;
+
+// `command_line` is the whole command as typed, recorded in output files.
+Action add_simulate_command(CLI::App& app, const std::string& command_line);
+Action add_info_command(CLI::App& app);
+
+}  // namespace scatterlab::cli

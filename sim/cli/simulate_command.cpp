@@ -1,0 +1,193 @@
+// scatterlab simulate: a pencil beam or point source in an infinite medium (Vavassori §4.1),
+// from a scene file and/or flags, written to one HDF5 file.
+#include <fmt/format.h>
+
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include "commands.hpp"
+#include "progress_bar.hpp"
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/io/atomic_output.hpp"
+#include "scatterlab/io/scene.hpp"
+#include "scatterlab/io/simulation_file.hpp"
+#include "scatterlab/transport/simulate.hpp"
+
+namespace scatterlab::cli {
+namespace {
+
+// Every flag, as given on the command line; only those given override the scene.
+struct SimulateOptions {
+  std::string scene, out, source, estimator, tallies;
+  double albedo = 0, g = 0, sigma_t = 0, escape_radius = 0;
+  std::uint64_t photons = 0, seed = 0;
+  std::uint32_t batches = 0;
+  int threads = 0;
+  double r_max = 0, z_min = 0, z_max = 0, rho_max = 0;
+  int r_bins = 0, z_bins = 0, theta_bins = 0, phi_bins = 0, rho_bins = 0;
+  bool fold_phi = false, split_orders = false;
+};
+
+std::string shape_text(const TallyResult& t) {
+  std::string text;
+  for (std::size_t i = 0; i < t.shape.size(); ++i) {
+    text += (i ? " x " : "") + std::to_string(t.shape[i]);
+  }
+  return text;
+}
+
+const TallyResult* find(const std::vector<TallyResult>& tallies, const std::string& name) {
+  for (const TallyResult& t : tallies) {
+    if (t.name == name) return &t;
+  }
+  return nullptr;
+}
+
+void print_summary(const SimulationSpec& spec, const SimulationOutput& out,
+                   const std::string& path) {
+  const double events = static_cast<double>(out.scattering_events);
+  fmt::print("scatterlab simulate: {} source, albedo {}, g {}, {} estimator\n",
+             to_string(spec.source), spec.medium.albedo, spec.medium.g,
+             to_string(spec.tallies.estimator));
+  fmt::print("  {} photons in {} batches on {} thread{}: {:.2f} s ({:.3g} photons/s, {:.3g} "
+             "scattering events, {:.1f} ns per event per thread)\n",
+             out.photons, spec.run.batches, out.threads, out.threads == 1 ? "" : "s",
+             out.wall_seconds, static_cast<double>(out.photons) / out.wall_seconds, events,
+             events > 0 ? out.wall_seconds * out.threads / events * 1e9 : 0.0);
+  std::string energy = "  energy per W incident:";
+  double total = 0.0;
+  for (const char* name : {"absorbed", "absorbed_outside_grid", "escaped"}) {
+    if (const TallyResult* t = find(out.tallies, name)) {
+      energy += fmt::format(" {} {:.6f} ± {:.1e},", name, t->mean[0], t->stderr_of_mean[0]);
+      total += t->mean[0];
+    }
+  }
+  fmt::print("{} total {:.6f}\n", energy, total);
+  std::string written;
+  for (const TallyResult& t : out.tallies) {
+    if (!t.shape.empty()) written += fmt::format("{}{} [{}]", written.empty() ? "" : ", ", t.name, shape_text(t));
+  }
+  fmt::print("  wrote {}: {}\n", path, written);
+}
+
+void apply_tally_list(const std::string& list, TallyRequest& tallies) {
+  static const std::map<std::string, bool TallyRequest::*> known = {
+      {"radiance", &TallyRequest::radiance},
+      {"fluence", &TallyRequest::fluence},
+      {"flux", &TallyRequest::flux},
+      {"fluence_spherical", &TallyRequest::fluence_spherical}};
+  for (const auto& [name, member] : known) tallies.*member = false;
+  std::stringstream stream(list);
+  std::string name;
+  while (std::getline(stream, name, ',')) {
+    const auto it = known.find(name);
+    if (it == known.end()) {
+      throw InputError("--tallies", fmt::format("unknown tally \"{}\"", name),
+                       "a comma-separated list of radiance, fluence, flux, fluence_spherical");
+    }
+    tallies.*(it->second) = true;
+  }
+}
+
+int run_simulate(CLI::App& command, const SimulateOptions& o, const std::string& command_line) {
+  auto given = [&command](const char* flag) { return command.get_option(flag)->count() > 0; };
+
+  Scene scene;
+  if (given("--scene")) scene = load_scene(o.scene);
+  SimulationSpec& spec = scene.spec;
+  Medium& medium = spec.medium;
+  if (given("--albedo")) medium.albedo = o.albedo;
+  if (given("--g")) medium.g = o.g;
+  if (given("--sigma-t")) medium.sigma_t = o.sigma_t;
+  if (given("--source")) {
+    spec.source = o.source == "point" ? SourceKind::point : SourceKind::pencil_beam;
+    // As in scene files: the point source's natural tally is phi(rho); the beam has none.
+    spec.tallies.fluence_spherical = spec.source == SourceKind::point;
+  }
+  if (given("--estimator")) {
+    spec.tallies.estimator =
+        o.estimator == "collision" ? Estimator::collision : Estimator::track_length;
+  }
+  if (given("--tallies")) apply_tally_list(o.tallies, spec.tallies);
+  if (given("--split-orders")) spec.tallies.split_by_order = o.split_orders;
+  if (given("--photons")) spec.run.photons = o.photons;
+  if (given("--batches")) spec.run.batches = o.batches;
+  if (given("--seed")) spec.run.seed = o.seed;
+  if (given("--threads")) spec.run.threads = o.threads;
+  if (given("--escape-radius")) spec.run.escape_radius = o.escape_radius;
+  Grid& grid = spec.grid;
+  if (given("--r-max")) grid.r.max = o.r_max;
+  if (given("--r-bins")) grid.r.bins = o.r_bins;
+  if (given("--z-min")) grid.z.min = o.z_min;
+  if (given("--z-max")) grid.z.max = o.z_max;
+  if (given("--z-bins")) grid.z.bins = o.z_bins;
+  if (given("--theta-bins")) grid.theta.bins = o.theta_bins;
+  if (given("--phi-bins")) grid.phi.bins = o.phi_bins;
+  if (given("--fold-phi")) {
+    grid.fold_phi = o.fold_phi;
+    grid.phi.max = o.fold_phi ? std::numbers::pi : 2.0 * std::numbers::pi;
+  }
+  if (given("--rho-max")) grid.rho.max = o.rho_max;
+  if (given("--rho-bins")) grid.rho.bins = o.rho_bins;
+  spec.validate();
+
+  const std::string path = given("--out") ? o.out : scene.output_path.value_or("scatterlab.h5");
+  { const AtomicOutput check(path); }  // a bad output path fails now, not after the run
+
+  ProgressBar bar("simulate");
+  const SimulationOutput out = simulate(spec, [&bar](double done) { bar.update(done); });
+  bar.finish();
+
+  const Provenance provenance{SCATTERLAB_VERSION, command_line,     iso8601_now(),
+                              out.wall_seconds,   out.photons,      out.scattering_events};
+  write_simulation_file(path, spec, out.tallies, provenance);
+  print_summary(spec, out, path);
+  return 0;
+}
+
+}  // namespace
+
+Action add_simulate_command(CLI::App& app, const std::string& command_line) {
+  auto* command = app.add_subcommand(
+      "simulate",
+      "Pencil beam (or isotropic point source) in an infinite medium: binned radiance "
+      "L(r,z,theta,phi), fluence and vector irradiance with standard errors, to HDF5. Without "
+      "flags: the paper's case, g = 0.9, albedo 0.5 (Vavassori §4.1).");
+  auto o = std::make_shared<SimulateOptions>();
+  command->add_option("--scene", o->scene, "TOML scene file (see data/scenes/paper-beam.toml)")
+      ->check(CLI::ExistingFile);
+  command->add_option("--out", o->out, "Output HDF5 file [scatterlab.h5]");
+  command->add_option("--source", o->source, "Source: beam (along +z) or point (isotropic)")
+      ->check(CLI::IsMember({"beam", "point"}));
+  command->add_option("--albedo", o->albedo, "Single-scattering albedo in [0, 1] [0.5]");
+  command->add_option("--g", o->g, "Henyey-Greenstein mean cosine, |g| < 1 [0.9]");
+  command->add_option("--sigma-t", o->sigma_t, "Extinction coefficient (1 in mfp units) [1]");
+  command->add_option("--estimator", o->estimator, "collision or track_length [collision]")
+      ->check(CLI::IsMember({"collision", "track_length"}));
+  command->add_option("--tallies", o->tallies,
+                      "Comma-separated: radiance, fluence, flux, fluence_spherical "
+                      "[radiance,fluence,flux]");
+  command->add_flag("--split-orders{true}", o->split_orders,
+                    "Also tally unscattered, once- and multiply-scattered light apart");
+  command->add_option("--photons", o->photons, "Number of photons [1e7]");
+  command->add_option("--batches", o->batches, "Batches for the standard error, >= 2 [64]");
+  command->add_option("--seed", o->seed, "Random seed [1]");
+  command->add_option("--threads", o->threads, "Threads; 0 uses all cores [0]");
+  command->add_option("--escape-radius", o->escape_radius,
+                      "Stop photons beyond this distance (mfp); needed for albedo 1 [inf]");
+  command->add_option("--r-max", o->r_max, "Radial grid extent, mfp [1.5]");
+  command->add_option("--r-bins", o->r_bins, "Radial bins [15]");
+  command->add_option("--z-min", o->z_min, "Axial grid start, mfp [-1]");
+  command->add_option("--z-max", o->z_max, "Axial grid end, mfp [3]");
+  command->add_option("--z-bins", o->z_bins, "Axial bins [40]");
+  command->add_option("--theta-bins", o->theta_bins, "Polar-angle bins over [0, pi] [18]");
+  command->add_option("--phi-bins", o->phi_bins,
+                      "Azimuth bins over [0, 2 pi], even; over [0, pi] with --fold-phi [36]");
+  command->add_flag("--fold-phi{true}", o->fold_phi, "Fold phi onto [0, pi] (L is even in phi)");
+  command->add_option("--rho-max", o->rho_max, "Spherical-shell grid extent, mfp [10]");
+  command->add_option("--rho-bins", o->rho_bins, "Spherical shells [200]");
+  return [command, o, command_line] { return run_simulate(*command, *o, command_line); };
+}
+
+}  // namespace scatterlab::cli
