@@ -141,6 +141,7 @@ int run_simulate(CLI::App& command, const SimulateOptions& o, const std::string&
 
   const Provenance provenance{SCATTERLAB_VERSION, command_line,     iso8601_now(),
                               out.wall_seconds,   out.photons,      out.scattering_events};
+  spec.run.threads = out.threads;  // record what ran, not "all cores"
   write_simulation_file(path, spec, out.tallies, provenance);
   print_summary(spec, out, path);
   return 0;
