@@ -156,6 +156,8 @@ Action add_simulate_command(CLI::App& app, const std::string& command_line) {
       "L(r,z,theta,phi), fluence and vector irradiance with standard errors, to HDF5. Without "
       "flags: the paper's case, g = 0.9, albedo 0.5 (Vavassori §4.1).");
   auto o = std::make_shared<SimulateOptions>();
+  // As in most Unix tools, a repeated flag takes its last value (scripts append overrides).
+  command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   command->add_option("--scene", o->scene, "TOML scene file (see data/scenes/paper-beam.toml)")
       ->check(CLI::ExistingFile);
   command->add_option("--out", o->out, "Output HDF5 file [scatterlab.h5]");
@@ -171,7 +173,7 @@ Action add_simulate_command(CLI::App& app, const std::string& command_line) {
                       "[radiance,fluence,flux]");
   command->add_flag("--split-orders{true}", o->split_orders,
                     "Also tally unscattered, once- and multiply-scattered light apart");
-  command->add_option("--photons", o->photons, "Number of photons [1e7]");
+  command->add_option("--photons", o->photons, "Number of photons [1e8]");
   command->add_option("--batches", o->batches, "Batches for the standard error, >= 2 [64]");
   command->add_option("--seed", o->seed, "Random seed [1]");
   command->add_option("--threads", o->threads, "Threads; 0 uses all cores [0]");

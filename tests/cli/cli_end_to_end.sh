@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# Usage: cli_end_to_end.sh SCATTERLAB SOURCE_DIR
+# A small run writes a readable file; every bad input gets one clear error naming the field, a
+# non-zero exit and no output file (nor a temporary one).
+set -u
+exe=$1
+source_dir=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0 passed=0
+
+pass() { passed=$((passed + 1)); }
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# expect_error NAME FIELD ARGS...: non-zero exit, FIELD named on stderr, nothing written.
+expect_error() {
+  local name=$1 field=$2
+  shift 2
+  local out="$work/$name.h5"
+  if "$exe" simulate --photons 1000 --batches 4 --out "$out" "$@" >"$work/stdout" 2>"$work/stderr"; then
+    fail "$name: exited 0"
+  elif ! grep -q -- "$field" "$work/stderr"; then
+    fail "$name: error does not name $field: $(cat "$work/stderr")"
+  elif [ "$(grep -c . "$work/stderr")" -ne 1 ]; then
+    fail "$name: more than one line of error: $(cat "$work/stderr")"
+  elif compgen -G "$work/$name.h5*" >/dev/null; then
+    fail "$name: left a file behind"
+  else
+    pass
+  fi
+}
+
+# A small run, then info on it.
+if "$exe" simulate --photons 20000 --batches 8 --out "$work/run.h5" >"$work/stdout" 2>"$work/stderr" &&
+  grep -q "wrote $work/run.h5" "$work/stdout" && [ -f "$work/run.h5" ]; then pass; else
+  fail "small run: $(cat "$work/stdout" "$work/stderr")"
+fi
+if "$exe" info "$work/run.h5" >"$work/info" && grep -q "radiance" "$work/info" &&
+  grep -q "absorbed_outside_grid" "$work/info"; then pass; else fail "info: $(cat "$work/info")"; fi
+if "$exe" simulate --scene "$source_dir/data/scenes/point-source.toml" --photons 20000 \
+  --out "$work/point.h5" >/dev/null 2>&1 && "$exe" info "$work/point.h5" | grep -q fluence_spherical
+then pass; else fail "point-source scene"; fi
+if "$exe" simulate --help | grep -q -- "--albedo"; then pass; else fail "help"; fi
+
+expect_error albedo_above_one medium.albedo --albedo 1.5
+expect_error g_at_one medium.g --g 1
+expect_error g_below_minus_one medium.g --g -1.2
+expect_error negative_sigma medium.sigma_t --sigma-t -2 --albedo 0.5
+expect_error zero_photons run.photons --photons 0
+expect_error one_batch run.batches --batches 1
+expect_error r_max_zero grid.r.max --r-max 0
+expect_error albedo_one_without_escape run.escape_radius --albedo 1
+expect_error odd_phi_bins grid.phi.bins --phi-bins 7
+expect_error unknown_tally --tallies --tallies fluence,glow
+expect_error missing_directory out --out "$work/no/such/dir/x.h5" --photons 10
+printf '[medium]\nalbdo = 0.3\n' >"$work/typo.toml"
+expect_error unknown_key medium.albdo --scene "$work/typo.toml"
+printf '[medium]\nsigma_a = -0.1\nsigma_s = 1\n' >"$work/negative.toml"
+expect_error negative_coefficient medium.sigma_a --scene "$work/negative.toml"
+printf '[medium\nalbedo = 0.3\n' >"$work/syntax.toml"
+expect_error syntax_error "syntax.toml:" --scene "$work/syntax.toml"
+
+# info on something that is not a scatterlab file.
+echo "not hdf5" >"$work/text.h5"
+if "$exe" info "$work/text.h5" >/dev/null 2>"$work/stderr"; then fail "info on text: exited 0"
+elif grep -q "not a scatterlab HDF5 file" "$work/stderr"; then pass; else fail "info on text: $(cat "$work/stderr")"; fi
+
+echo "cli: $passed passed, $failures failed"
+[ "$failures" -eq 0 ]
