@@ -2,6 +2,7 @@
 // from a scene file and/or flags, written to one HDF5 file.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -21,7 +22,8 @@ namespace {
 struct SimulateOptions {
   std::string scene, out, source, estimator, tallies;
   double albedo = 0, g = 0, sigma_t = 0, escape_radius = 0;
-  std::uint64_t photons = 0, seed = 0;
+  double photons = 0;  // a double, so that 1e8 reads as it does in scene files
+  std::uint64_t seed = 0;
   std::uint32_t batches = 0;
   int threads = 0;
   double r_max = 0, z_min = 0, z_max = 0, rho_max = 0;
@@ -111,7 +113,13 @@ int run_simulate(CLI::App& command, const SimulateOptions& o, const std::string&
   }
   if (given("--tallies")) apply_tally_list(o.tallies, spec.tallies);
   if (given("--split-orders")) spec.tallies.split_by_order = o.split_orders;
-  if (given("--photons")) spec.run.photons = o.photons;
+  if (given("--photons")) {
+    if (!(o.photons >= 0.0 && o.photons <= 0x1p63 && o.photons == std::floor(o.photons))) {
+      throw InputError("run.photons", fmt::format("got {}", o.photons),
+                       "a whole number >= 1 (1e8 is accepted)");
+    }
+    spec.run.photons = static_cast<std::uint64_t>(o.photons);
+  }
   if (given("--batches")) spec.run.batches = o.batches;
   if (given("--seed")) spec.run.seed = o.seed;
   if (given("--threads")) spec.run.threads = o.threads;

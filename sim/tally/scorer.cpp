@@ -22,6 +22,16 @@ struct RadialLine {
     return std::sqrt(w * w + d * d);
   }
   double time_at(double w) const { return (w - w0) / speed; }
+
+  // Narrows [t_lo, t_hi] to where the line is inside `radius`; false when it never is.
+  bool clip_inside(double radius, double& t_lo, double& t_hi) const {
+    const double half_chord2 = radius * radius - d * d;
+    if (half_chord2 <= 0.0) return false;
+    const double half_chord = std::sqrt(half_chord2);
+    t_lo = std::max(t_lo, time_at(-half_chord));
+    t_hi = std::min(t_hi, time_at(half_chord));
+    return t_hi > t_lo;
+  }
 };
 
 // Appends the times in (t_lo, t_hi) at which `line` crosses the edges of `axis` (uniform radii
@@ -94,14 +104,7 @@ void Scorer::flight_spherical(double* buffer, std::vector<double>& crossings, co
                               const Vec3& direction, double length, std::size_t block) const {
   const RadialLine line{start.dot(direction), 1.0, start.cross(direction).norm()};
   double t_lo = 0.0, t_hi = length;
-  // Clip to the ball rho < rho_max.
-  const double outer = grid_.rho.max;
-  const double half_chord2 = outer * outer - line.d * line.d;
-  if (half_chord2 <= 0.0) return;
-  const double half_chord = std::sqrt(half_chord2);
-  t_lo = std::max(t_lo, line.time_at(-half_chord));
-  t_hi = std::min(t_hi, line.time_at(half_chord));
-  if (!(t_hi > t_lo)) return;
+  if (!line.clip_inside(grid_.rho.max, t_lo, t_hi)) return;
 
   crossings.clear();
   append_radial_crossings(line, grid_.rho, t_lo, t_hi, crossings);
@@ -141,12 +144,7 @@ void Scorer::flight_cylindrical(double* buffer, std::vector<double>& crossings,
     if (std::abs(angular_momentum) <= 1e-12 * line.d * speed) angular_momentum = 0.0;
     line = RadialLine{(start.x() * direction.x() + start.y() * direction.y()) / speed, speed,
                       std::abs(angular_momentum) / speed};
-    const double outer = grid_.r.max;
-    const double half_chord2 = outer * outer - line.d * line.d;
-    if (half_chord2 <= 0.0) return;
-    const double half_chord = std::sqrt(half_chord2);
-    t_lo = std::max(t_lo, line.time_at(-half_chord));
-    t_hi = std::min(t_hi, line.time_at(half_chord));
+    if (!line.clip_inside(grid_.r.max, t_lo, t_hi)) return;
   } else if (grid_.r.index(line.d) < 0) {
     return;
   }

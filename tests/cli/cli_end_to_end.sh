@@ -47,6 +47,7 @@ expect_error g_at_one medium.g --g 1
 expect_error g_below_minus_one medium.g --g -1.2
 expect_error negative_sigma medium.sigma_t --sigma-t -2 --albedo 0.5
 expect_error zero_photons run.photons --photons 0
+expect_error fractional_photons run.photons --photons 2.5
 expect_error one_batch run.batches --batches 1
 expect_error r_max_zero grid.r.max --r-max 0
 expect_error albedo_one_without_escape run.escape_radius --albedo 1
