@@ -134,6 +134,7 @@ void Scorer::flight_cylindrical(double* buffer, std::vector<double>& crossings,
 
   // Clip to the cylinder r < r_max. With no transverse motion r stays where it is.
   const double transverse2 = direction.x() * direction.x() + direction.y() * direction.y();
+  // Below 1e-12 transverse speed a flight (at most ~40 mfp) moves sideways by < 1e-10 mfp.
   const bool moves_across = transverse2 > 1e-24;
   RadialLine line{0.0, 0.0, std::hypot(start.x(), start.y())};
   double angular_momentum = 0.0;  // (start x direction) . z: its sign is that of omega . e_phi
