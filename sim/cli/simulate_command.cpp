@@ -103,9 +103,7 @@ int run_simulate(CLI::App& command, const SimulateOptions& o, const std::string&
   if (given("--g")) medium.g = o.g;
   if (given("--sigma-t")) medium.sigma_t = o.sigma_t;
   if (given("--source")) {
-    spec.source = o.source == "point" ? SourceKind::point : SourceKind::pencil_beam;
-    // As in scene files: the point source's natural tally is phi(rho); the beam has none.
-    spec.tallies.fluence_spherical = spec.source == SourceKind::point;
+    spec.set_source(o.source == "point" ? SourceKind::point : SourceKind::pencil_beam);
   }
   if (given("--estimator")) {
     spec.tallies.estimator =
@@ -132,10 +130,7 @@ int run_simulate(CLI::App& command, const SimulateOptions& o, const std::string&
   if (given("--z-bins")) grid.z.bins = o.z_bins;
   if (given("--theta-bins")) grid.theta.bins = o.theta_bins;
   if (given("--phi-bins")) grid.phi.bins = o.phi_bins;
-  if (given("--fold-phi")) {
-    grid.fold_phi = o.fold_phi;
-    grid.phi.max = o.fold_phi ? std::numbers::pi : 2.0 * std::numbers::pi;
-  }
+  if (given("--fold-phi")) grid.set_fold_phi(o.fold_phi);
   if (given("--rho-max")) grid.rho.max = o.rho_max;
   if (given("--rho-bins")) grid.rho.bins = o.rho_bins;
   spec.validate();

@@ -10,7 +10,6 @@
 #include <initializer_list>
 #include <iterator>
 #include <limits>
-#include <numbers>
 #include <vector>
 
 #include "scatterlab/core/error.hpp"
@@ -99,9 +98,7 @@ class SceneReader {
     if (const auto* medium = subtable(root, "medium", "")) read_medium(*medium, spec.medium);
     if (const auto* source = subtable(root, "source", "")) read_source(*source, spec.source);
     if (const auto* grid = subtable(root, "grid", "")) read_grid(*grid, spec.grid);
-    // The point source's natural tally is the fluence in spherical shells (d'Eon & Irving
-    // 2011), so it is on unless the file says otherwise; the beam has no spherical symmetry.
-    spec.tallies.fluence_spherical = spec.source == SourceKind::point;
+    spec.set_source(spec.source);  // the source's default tallies, unless [tallies] says else
     if (const auto* tallies = subtable(root, "tallies", "")) read_tallies(*tallies, spec.tallies);
     if (const auto* run = subtable(root, "run", "")) read_run(*run, spec.run);
     if (const auto* output = subtable(root, "output", "")) {
@@ -285,8 +282,7 @@ class SceneReader {
     read_axis(table, "phi", {"bins"}, grid.phi);
     read_axis(table, "rho", {"max", "bins"}, grid.rho);
     if (const auto fold = boolean(table, "fold_phi", "grid")) {
-      grid.fold_phi = *fold;
-      grid.phi.max = *fold ? std::numbers::pi : 2.0 * std::numbers::pi;
+      grid.set_fold_phi(*fold);
     }
   }
 

@@ -31,6 +31,12 @@ struct Grid {
   UniformAxis phi{0.0, 2.0 * std::numbers::pi, 36};  // max is pi when fold_phi
   bool fold_phi = false;                             // L(phi) = L(-phi): fold onto [0, pi]
   UniformAxis rho{0.0, 10.0, 200};                    // spherical shells (point source)
+
+  // Folding halves the phi axis: [0, pi] folded, [0, 2 pi] not.
+  void set_fold_phi(bool fold) {
+    fold_phi = fold;
+    phi.max = fold ? std::numbers::pi : 2.0 * std::numbers::pi;
+  }
 };
 
 // Tallies that were not asked for are not allocated.
@@ -59,6 +65,13 @@ struct SimulationSpec {
   Grid grid;
   TallyRequest tallies;
   RunSettings run;
+
+  // Sets the source and its natural default tallies: the point source's is the fluence on
+  // spherical shells (d'Eon & Irving 2011); the beam has no spherical symmetry.
+  void set_source(SourceKind kind) {
+    source = kind;
+    tallies.fluence_spherical = kind == SourceKind::point;
+  }
 
   // Throws InputError naming the first bad field and what it accepts.
   void validate() const;
