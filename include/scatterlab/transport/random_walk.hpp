@@ -44,6 +44,9 @@ class RandomWalk {
         seed_(spec.run.seed),
         point_source_(spec.source == SourceKind::point) {}
 
+  // Working memory of the track-length estimator's bin crossings, one per thread.
+  std::vector<double> make_scratch() const { return scorer_.make_crossing_scratch(); }
+
   // Transports photons [first, last) into `buffer`; returns the number of scattering events.
   std::uint64_t run(std::uint64_t first, std::uint64_t last, double* buffer,
                     std::vector<double>& crossings) const {

@@ -3,10 +3,10 @@
 // batch statistics for every tally.
 
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 #include "scatterlab/tally/tally_result.hpp"
+#include "scatterlab/transport/batch_runner.hpp"
 #include "scatterlab/transport/simulation.hpp"
 
 namespace scatterlab {
@@ -19,12 +19,7 @@ struct SimulationOutput {
   int threads = 1;
 };
 
-// Called on the calling thread with the fraction of batches done, in [0, 1].
-using ProgressCallback = std::function<void(double fraction_done)>;
-
-// Results are bitwise identical for any thread count: each photon's random stream depends only
-// on (seed, photon index), each batch is transported by one thread in photon order, and batches
-// are folded into the statistics in batch order.
+// Bitwise identical for any thread count (see batch_runner.hpp).
 SimulationOutput simulate(const SimulationSpec& spec, const ProgressCallback& progress = {});
 
 }  // namespace scatterlab

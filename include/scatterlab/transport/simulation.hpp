@@ -9,6 +9,7 @@
 
 #include "scatterlab/core/medium.hpp"
 #include "scatterlab/tally/axis.hpp"
+#include "scatterlab/transport/run_settings.hpp"
 
 namespace scatterlab {
 
@@ -47,16 +48,6 @@ struct TallyRequest {
   bool fluence_spherical = false;  // phi(rho); point source only
   bool split_by_order = false;     // siblings _unscattered, _single, _multiple
   Estimator estimator = Estimator::collision;
-};
-
-struct RunSettings {
-  std::uint64_t photons = 100'000'000;  // smooth lobes near the source in ~15 s on 2 cores
-  std::uint32_t batches = 64;   // batch statistics: standard error from batch-to-batch spread
-  std::uint64_t seed = 1;
-  int threads = 0;              // 0: all hardware threads
-  // Photons farther than this from the origin are counted as escaped and stopped. Infinite by
-  // default; required when albedo = 1, where nothing is ever absorbed.
-  double escape_radius = std::numeric_limits<double>::infinity();
 };
 
 struct SimulationSpec {

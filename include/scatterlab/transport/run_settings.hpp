@@ -1,0 +1,19 @@
+#pragma once
+// How many photons to run and how: shared by every transport kernel (batch_runner.hpp).
+
+#include <cstdint>
+#include <limits>
+
+namespace scatterlab {
+
+struct RunSettings {
+  std::uint64_t photons = 100'000'000;  // smooth lobes near the source in ~15 s on 2 cores
+  std::uint32_t batches = 64;   // batch statistics: standard error from batch-to-batch spread
+  std::uint64_t seed = 1;
+  int threads = 0;              // 0: all hardware threads
+  // Photons farther than this from the origin are counted as escaped and stopped. Infinite by
+  // default; required when albedo = 1, where nothing is ever absorbed.
+  double escape_radius = std::numeric_limits<double>::infinity();
+};
+
+}  // namespace scatterlab
