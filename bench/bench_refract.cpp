@@ -61,6 +61,7 @@ void BM_RefractivePaths(benchmark::State& state) {
   state.counters["nodes/query"] = double(stats.nodes_visited) / queries_run;
   state.counters["subtriangles/query"] = double(stats.subtriangles) / queries_run;
   state.counters["newton_iters/query"] = double(stats.newton_iterations) / queries_run;
+  state.counters["undecided"] = double(stats.undecided_at_depth_limit);
 }
 BENCHMARK(BM_RefractivePaths)
     ->ArgNames({"guaranteed", "tree", "tol_exp"})
