@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "scatterlab/core/constants.hpp"
 
@@ -20,16 +21,16 @@ constexpr double kEtaBound = 5.0;     // an aspect ratio of e^5 ~ 150 between th
 
 // log of the model averaged over one angular bin: log sum_q w_q exp(l_q), shifted by the
 // largest l_q so that a lobe with lambda ~ 1e3 neither overflows nor underflows.
-template <class Model, typename T>
-T log_average(const LobeGrid& grid, std::size_t bin, const T* axis, const T* shape) {
+template <class Evaluator, typename T = decltype(std::declval<Evaluator>().log_value({}))>
+T log_average(const LobeGrid& grid, std::size_t bin, const Evaluator& lobe) {
   using std::exp;
   using std::log;
   const std::span<const LobeNode> nodes = grid.nodes(bin);
   std::array<T, kMaxNodesPerBin> values;
-  T largest = Model::log_value(axis, shape, nodes[0].direction);
+  T largest = lobe.log_value(nodes[0].direction);
   values[0] = largest;
   for (std::size_t q = 1; q < nodes.size(); ++q) {
-    values[q] = Model::log_value(axis, shape, nodes[q].direction);
+    values[q] = lobe.log_value(nodes[q].direction);
     if (values[q] > largest) largest = values[q];
   }
   T sum(0.0);
@@ -46,9 +47,9 @@ struct LobeResidual {
   template <typename T>
   bool operator()(const T* axis, const T* shape, T* residuals) const {
     const LobeObservations& o = *observations;
+    const typename Model::template Evaluator<T> lobe(axis, shape);
     for (std::size_t k = 0; k < o.bins.size(); ++k) {
-      residuals[k] = o.weights[k] * (log_average<Model>(*grid, o.bins[k], axis, shape) -
-                                     o.log_radiance[k]);
+      residuals[k] = o.weights[k] * (log_average(*grid, o.bins[k], lobe) - o.log_radiance[k]);
     }
     return true;
   }
@@ -58,11 +59,11 @@ template <class Model>
 double cost_of(const LobeGrid& grid, const LobeObservations& observations,
                const LobeParameters& parameters) {
   double cost = 0.0;
+  const typename Model::template Evaluator<double> lobe(parameters.axis.data(),
+                                                        parameters.shape.data());
   for (std::size_t k = 0; k < observations.bins.size(); ++k) {
     const double r = observations.weights[k] *
-                     (log_average<Model>(grid, observations.bins[k], parameters.axis.data(),
-                                         parameters.shape.data()) -
-                      observations.log_radiance[k]);
+                     (log_average(grid, observations.bins[k], lobe) - observations.log_radiance[k]);
     cost += 0.5 * r * r;
   }
   return std::isfinite(cost) ? cost : std::numeric_limits<double>::infinity();
@@ -324,10 +325,12 @@ double log_bin_average(LobeModel model, const LobeGrid& grid, std::size_t bin,
   const double* shape = p.shape.data();
   switch (model) {
     case LobeModel::sg:
-    case LobeModel::sg_free: return log_average<SphericalGaussian>(grid, bin, axis, shape);
-    case LobeModel::dexp: return log_average<DoubleExponential>(grid, bin, axis, shape);
+    case LobeModel::sg_free:
+      return log_average(grid, bin, SphericalGaussian::Evaluator<double>(axis, shape));
+    case LobeModel::dexp:
+      return log_average(grid, bin, DoubleExponential::Evaluator<double>(axis, shape));
     case LobeModel::adexp:
-      return log_average<AnisotropicDoubleExponential>(grid, bin, axis, shape);
+      return log_average(grid, bin, AnisotropicDoubleExponential::Evaluator<double>(axis, shape));
   }
   return 0.0;
 }

@@ -77,12 +77,28 @@ T half_chord(const T* axis, const Eigen::Vector3d& w) {
 
 }  // namespace detail
 
+// Each model is an Evaluator built once per parameter set (what depends on p and the shape
+// alone is computed there, not per direction) with log_value(w); the static log_value is the
+// one-off form.
+
 // Vavassori §4.2.1, the SG: log G = log mu + lambda (v.p - 1). shape = (lambda, log mu).
 struct SphericalGaussian {
   static constexpr int kShape = 2;
   template <typename T>
+  class Evaluator {
+   public:
+    Evaluator(const T* axis, const T* shape) : axis_(axis), shape_(shape) {}
+    T log_value(const Eigen::Vector3d& w) const {
+      return shape_[1] + shape_[0] * (detail::dot(axis_, w) - T(1));
+    }
+
+   private:
+    const T* axis_;
+    const T* shape_;
+  };
+  template <typename T>
   static T log_value(const T* axis, const T* shape, const Eigen::Vector3d& w) {
-    return shape[1] + shape[0] * (detail::dot(axis, w) - T(1));
+    return Evaluator<T>(axis, shape).log_value(w);
   }
 };
 
@@ -91,9 +107,21 @@ struct SphericalGaussian {
 struct DoubleExponential {
   static constexpr int kShape = 3;
   template <typename T>
+  class Evaluator {
+   public:
+    Evaluator(const T* axis, const T* shape) : axis_(axis), shape_(shape) {}
+    T log_value(const Eigen::Vector3d& w) const {
+      using std::exp;
+      return shape_[0] + shape_[1] * exp(shape_[2] * detail::half_chord(axis_, w));
+    }
+
+   private:
+    const T* axis_;
+    const T* shape_;
+  };
+  template <typename T>
   static T log_value(const T* axis, const T* shape, const Eigen::Vector3d& w) {
-    using std::exp;
-    return shape[0] + shape[1] * exp(shape[2] * detail::half_chord(axis, w));
+    return Evaluator<T>(axis, shape).log_value(w);
   }
 };
 
@@ -105,24 +133,41 @@ struct DoubleExponential {
 struct AnisotropicDoubleExponential {
   static constexpr int kShape = 4;
   template <typename T>
+  class Evaluator {
+   public:
+    Evaluator(const T* axis, const T* shape) : axis_(axis), shape_(shape) {
+      using std::exp;
+      using std::sqrt;
+      // t2 = (e - (e.p) p) / |...| for e = e_phi, or e_r when p is (nearly) along e_phi.
+      const int k = axis[1] * axis[1] > T(1.0 - 1e-9) ? 0 : 1;
+      const T norm = sqrt(T(1) - axis[k] * axis[k]);
+      for (int i = 0; i < 3; ++i) t2_[i] = -axis[k] * axis[i];
+      t2_[k] += T(1);
+      for (T& c : t2_) c /= norm;
+      t1_[0] = t2_[1] * axis[2] - t2_[2] * axis[1];
+      t1_[1] = t2_[2] * axis[0] - t2_[0] * axis[2];
+      t1_[2] = t2_[0] * axis[1] - t2_[1] * axis[0];
+      along_scale_ = T(0.5) * exp(shape[3]);
+      across_scale_ = T(0.5) * exp(-shape[3]);
+    }
+    T log_value(const Eigen::Vector3d& w) const {
+      using std::exp;
+      const T along_plane = detail::dot(t1_, w), across_plane = detail::dot(t2_, w);
+      const T radial = T(1) - detail::dot(axis_, w);
+      const T s = detail::sqrt_zero_safe(along_scale_ * along_plane * along_plane +
+                                         across_scale_ * across_plane * across_plane +
+                                         T(0.5) * radial * radial);
+      return shape_[0] + shape_[1] * exp(shape_[2] * s);
+    }
+
+   private:
+    const T* axis_;
+    const T* shape_;
+    T t1_[3], t2_[3], along_scale_, across_scale_;
+  };
+  template <typename T>
   static T log_value(const T* axis, const T* shape, const Eigen::Vector3d& w) {
-    using std::exp;
-    using std::sqrt;
-    // t2 = (e - (e.p) p) / |...| for e = e_phi, or e_r when p is (nearly) along e_phi.
-    const bool along_phi = axis[1] * axis[1] > T(1.0 - 1e-9);
-    const int k = along_phi ? 0 : 1;
-    const T norm = sqrt(T(1) - axis[k] * axis[k]);
-    T t2[3] = {-axis[k] * axis[0], -axis[k] * axis[1], -axis[k] * axis[2]};
-    t2[k] += T(1);
-    for (T& c : t2) c /= norm;
-    const T t1[3] = {t2[1] * axis[2] - t2[2] * axis[1], t2[2] * axis[0] - t2[0] * axis[2],
-                     t2[0] * axis[1] - t2[1] * axis[0]};
-    const T along_plane = detail::dot(t1, w), across_plane = detail::dot(t2, w);
-    const T radial = T(1) - detail::dot(axis, w);
-    const T s = detail::sqrt_zero_safe(
-        T(0.5) * (exp(shape[3]) * along_plane * along_plane +
-                  exp(-shape[3]) * across_plane * across_plane + radial * radial));
-    return shape[0] + shape[1] * exp(shape[2] * s);
+    return Evaluator<T>(axis, shape).log_value(w);
   }
 };
 
