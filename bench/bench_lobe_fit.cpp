@@ -35,7 +35,7 @@ void synthetic_lobe(const fit::LobeGrid& grid, std::uint64_t seed, std::vector<d
                     std::vector<double>& error) {
   fit::LobeParameters truth;
   truth.axis = Eigen::Vector3d(std::sin(0.6), 0.0, std::cos(0.6));
-  truth.shape = {-3.0, 8.0, -3.0, -1.5};
+  truth.shape = fit::double_exponential_shape(-3.0, 8.0, -3.0, -1.5);
   for (std::size_t bin = 0; bin < grid.size(); ++bin) {
     const double value = std::exp(fit::log_bin_average(LobeModel::adexp, grid, bin, truth));
     PhotonRandom random(seed, bin);

@@ -17,7 +17,7 @@ namespace {
 
 constexpr std::size_t kMaxNodesPerBin = 8 * 8 * 2;  // order 8, mirrored on a folded grid
 constexpr double kGammaBound = 50.0;  // e^{50 sqrt 2}: far beyond any lobe, still finite
-constexpr double kEtaBound = 5.0;     // an aspect ratio of e^5 ~ 150 between the two tangents
+constexpr double kEtaBound = 8.0;     // the two tangents' widths differ by e^{8/2} ~ 55 at most
 
 // log of the model averaged over one angular bin: log sum_q w_q exp(l_q), shifted by the
 // largest l_q so that a lobe with lambda ~ 1e3 neither overflows nor underflows.
@@ -315,7 +315,7 @@ LobeParameters double_exponential_estimate(const LobeGrid& grid, const LobeObser
   }
   const double log_alpha = sxx > 0.0 ? sxy / sxx : log_peak - 1.0;
   // Step 4: beta = log M - log alpha.
-  start.shape = {log_alpha, log_peak - log_alpha, gamma, 0.0};
+  start.shape = double_exponential_shape(log_alpha, log_peak - log_alpha, gamma);
   return start;
 }
 

@@ -61,23 +61,32 @@ std::vector<std::string> parameter_names(LobeModel model) {
   switch (model) {
     case LobeModel::sg:
     case LobeModel::sg_free: return {"lambda", "mu", "p_r", "p_phi", "p_z"};
-    case LobeModel::dexp: return {"alpha", "beta", "gamma", "p_r", "p_phi", "p_z"};
-    case LobeModel::adexp: return {"alpha", "beta", "gamma", "eta", "p_r", "p_phi", "p_z"};
+    case LobeModel::dexp:
+      return {"alpha", "beta", "gamma", "log_peak", "slope", "p_r", "p_phi", "p_z"};
+    case LobeModel::adexp:
+      return {"alpha", "beta", "gamma", "eta", "log_peak", "slope", "p_r", "p_phi", "p_z"};
   }
   return {};
 }
 
 std::vector<double> reported_parameters(LobeModel model, const LobeParameters& parameters) {
   const auto& s = parameters.shape;
+  // beta = b / gamma, log alpha = a - beta: infinite for gamma = 0 (the writers store 0 then).
+  const double beta = s[1] / s[2], alpha = std::exp(s[0] - beta);
   std::vector<double> values;
   switch (model) {
     case LobeModel::sg:
     case LobeModel::sg_free: values = {s[0], std::exp(s[1])}; break;
-    case LobeModel::dexp: values = {std::exp(s[0]), s[1], s[2]}; break;
-    case LobeModel::adexp: values = {std::exp(s[0]), s[1], s[2], s[3]}; break;
+    case LobeModel::dexp: values = {alpha, beta, s[2], s[0], s[1]}; break;
+    case LobeModel::adexp: values = {alpha, beta, s[2], s[3], s[0], s[1]}; break;
   }
   for (int i = 0; i < 3; ++i) values.push_back(parameters.axis[i]);
   return values;
+}
+
+std::array<double, 4> double_exponential_shape(double log_alpha, double beta, double gamma,
+                                               double eta) {
+  return {log_alpha + beta, beta * gamma, gamma, eta};
 }
 
 double log_model_value(LobeModel model, const LobeParameters& parameters,

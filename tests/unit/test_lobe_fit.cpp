@@ -94,7 +94,7 @@ TEST(LobeModels, ResidualAndJacobianAreFiniteAtThePeak) {
     for (int i = 0; i < 4; ++i) shape[i] = Jet(values[i], 3 + i);
     for (const Jet& value : {fit::DoubleExponential::log_value(axis, shape, w),
                             fit::AnisotropicDoubleExponential::log_value(axis, shape, w)}) {
-      EXPECT_NEAR(value.a, -1.0 + 5.0, 1e-12);  // log alpha + beta at the peak
+      EXPECT_NEAR(value.a, -1.0, 1e-12);  // a = log alpha + beta: log L at the peak
       EXPECT_TRUE(value.v.allFinite()) << value.v.transpose();
     }
   }
@@ -120,7 +120,8 @@ TEST(LobeModels, NamesParseAndUnknownOnesAreInputErrors) {
     }
   }
   EXPECT_EQ(fit::parameter_names(LobeModel::dexp),
-            (std::vector<std::string>{"alpha", "beta", "gamma", "p_r", "p_phi", "p_z"}));
+            (std::vector<std::string>{"alpha", "beta", "gamma", "log_peak", "slope", "p_r", "p_phi",
+                                      "p_z"}));
 }
 
 // Degenerate lobes are flagged with a message, never fitted into NaN.
@@ -176,8 +177,11 @@ class LobeFitsFileTest : public ::testing::Test {
     const Eigen::Vector3d in_plane = direction(0.6, 0.0);
     const std::vector<testing::SyntheticLobe> lobes = {
         synthesize(LobeModel::sg, parameters(in_plane, {6.0, 0.0}), grid, 0.02, 1),
-        synthesize(LobeModel::dexp, parameters(in_plane, {-3.0, 6.0, -2.0}), grid, 0.02, 2),
-        synthesize(LobeModel::adexp, parameters(in_plane, {-3.0, 6.0, -2.0, -1.5}), grid, 0.02, 3)};
+        synthesize(LobeModel::dexp, parameters(in_plane, fit::double_exponential_shape(-3.0, 6.0, -2.0)),
+                   grid, 0.02, 2),
+        synthesize(LobeModel::adexp,
+                   parameters(in_plane, fit::double_exponential_shape(-3.0, 6.0, -2.0, -1.5)), grid,
+                   0.02, 3)};
     for (std::size_t bin = 0; bin < 6; ++bin) {
       testing::SyntheticLobe lobe;
       if (bin < 3) {

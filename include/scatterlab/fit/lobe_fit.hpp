@@ -94,7 +94,7 @@ double fit_cost(LobeModel model, const LobeGrid& grid, const LobeObservations& o
                 const LobeParameters& parameters);
 
 // Least squares from `start` with Ceres (Levenberg-Marquardt, dense QR). The axis is held at
-// start.axis for sg and moves on the sphere otherwise; lambda >= 0, |gamma| <= 50, |eta| <= 5.
+// start.axis for sg and moves on the sphere otherwise; lambda >= 0, |gamma| <= 50, |eta| <= 8.
 // Fills the errors from `data`. `observations` must come from observe() and not be skipped.
 LobeFit fit_lobe(LobeModel model, const LobeGrid& grid, const LobeData& data,
                  const LobeObservations& observations, const LobeParameters& start,

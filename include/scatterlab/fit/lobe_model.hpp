@@ -8,7 +8,11 @@
 //           G(v) = mu exp(lambda (v.p - 1)); shape (lambda, log mu)
 //   sg_free the same with p free on the sphere (a Ceres SphereManifold)
 //   dexp    double exponential (Vavassori §4.2.2): L = alpha exp(beta e^{gamma sqrt(1 - p.w)});
-//           shape (log alpha, beta, gamma), p free
+//           p free. Fitted as log L = a + b (e^{gamma s} - 1) / gamma, s = sqrt(1 - p.w), with
+//           a = log alpha + beta (log L at the peak) and b = beta gamma (its slope in s there):
+//           the same lobes, but where log L is straight in s the paper's (alpha, beta) run off
+//           to (0, infinity) with beta gamma fixed, while (a, b, gamma) stay finite with
+//           gamma -> 0. shape (a, b, gamma)
 //   adexp   anisotropic double exponential (this project, beyond §4.2): 1 - p.w = |w - p|^2 / 2
 //           is split along the two tangents of p, one in the lobe's plane of symmetry (phi = 0)
 //           and one across it, and the two are scaled by e^{eta} and e^{-eta}: a lobe flattened
@@ -49,7 +53,12 @@ struct LobeParameters {
   std::array<double, 4> shape{};
 };
 
-// What users see, in order: the model's parameters as the papers write them, then p.
+// (a, b, gamma, eta) of the double exponentials from Vavassori's (log alpha, beta, gamma).
+std::array<double, 4> double_exponential_shape(double log_alpha, double beta, double gamma,
+                                               double eta = 0.0);
+
+// What users see, in order: the model's parameters as the papers write them (for the double
+// exponentials also a = log_peak and b = slope), then p.
 std::vector<std::string> parameter_names(LobeModel model);
 std::vector<double> reported_parameters(LobeModel model, const LobeParameters& parameters);
 
@@ -73,6 +82,15 @@ template <typename T>
 T half_chord(const T* axis, const Eigen::Vector3d& w) {
   const T dx = T(w.x()) - axis[0], dy = T(w.y()) - axis[1], dz = T(w.z()) - axis[2];
   return sqrt_zero_safe(T(0.5) * (dx * dx + dy * dy + dz * dz));
+}
+
+// (e^{gamma s} - 1) / gamma, continuous through gamma = 0 (where it is s).
+template <typename T>
+T exp_ramp(const T& gamma, const T& s) {
+  using std::abs;
+  using std::expm1;
+  if (abs(gamma) > T(1e-6)) return expm1(gamma * s) / gamma;
+  return s * (T(1) + gamma * s * (T(0.5) + gamma * s / T(6)));
 }
 
 }  // namespace detail
@@ -102,8 +120,8 @@ struct SphericalGaussian {
   }
 };
 
-// Vavassori §4.2.2: log L = log alpha + beta exp(gamma sqrt(1 - p.w)).
-// shape = (log alpha, beta, gamma).
+// Vavassori §4.2.2: log L = log alpha + beta exp(gamma sqrt(1 - p.w)), written as
+// a + b (e^{gamma s} - 1) / gamma (see the top of this file). shape = (a, b, gamma).
 struct DoubleExponential {
   static constexpr int kShape = 3;
   template <typename T>
@@ -112,7 +130,7 @@ struct DoubleExponential {
     Evaluator(const T* axis, const T* shape) : axis_(axis), shape_(shape) {}
     T log_value(const Eigen::Vector3d& w) const {
       using std::exp;
-      return shape_[0] + shape_[1] * exp(shape_[2] * detail::half_chord(axis_, w));
+      return shape_[0] + shape_[1] * detail::exp_ramp(shape_[2], detail::half_chord(axis_, w));
     }
 
    private:
@@ -129,7 +147,7 @@ struct DoubleExponential {
 //   s_eta = sqrt((e^{eta} (w.t1)^2 + e^{-eta} (w.t2)^2 + (1 - w.p)^2) / 2),
 // with t2 the unit tangent of p across the plane of symmetry (along e_phi, or along e_r when p
 // lies on the e_phi axis) and t1 = t2 x p in the plane. For eta = 0 the sum is |w - p|^2, so
-// s_0 = sqrt(1 - p.w). shape = (log alpha, beta, gamma, eta).
+// s_0 = sqrt(1 - p.w). shape = (a, b, gamma, eta) as for DoubleExponential.
 struct AnisotropicDoubleExponential {
   static constexpr int kShape = 4;
   template <typename T>
@@ -157,7 +175,7 @@ struct AnisotropicDoubleExponential {
       const T s = detail::sqrt_zero_safe(along_scale_ * along_plane * along_plane +
                                          across_scale_ * across_plane * across_plane +
                                          T(0.5) * radial * radial);
-      return shape_[0] + shape_[1] * exp(shape_[2] * s);
+      return shape_[0] + shape_[1] * detail::exp_ramp(shape_[2], s);
     }
 
    private:
