@@ -17,7 +17,7 @@
 //           is split along the two tangents of p, one in the lobe's plane of symmetry (phi = 0)
 //           and one across it, and the two are scaled by e^{eta} and e^{-eta}: a lobe flattened
 //           across the plane (Figs. 4.6, 4.10) has eta < 0. eta = 0 is dexp. shape
-//           (log alpha, beta, gamma, eta), p free.
+//           (a, b, gamma, eta), p free.
 //
 // sqrt(1 - p.w) has an unbounded derivative at w = p when written that way. Written as a norm,
 // |w - p| / sqrt 2 (p and w unit), its gradient has length at most 1/sqrt 2 everywhere; only the
