@@ -42,6 +42,22 @@ if "$exe" simulate --scene "$source_dir/data/scenes/point-source.toml" --photons
 then pass; else fail "point-source scene"; fi
 if "$exe" simulate --help | grep -q -- "--albedo"; then pass; else fail "help"; fi
 
+# fit on the small run: fits in the file, a CSV, a summary; a re-run replaces them.
+if "$exe" fit "$work/run.h5" --threads 2 >"$work/fit" 2>&1 && grep -q "dexp beats sg" "$work/fit" &&
+  grep -q "adexp beats sg and dexp" "$work/fit" && grep -q "fits/s" "$work/fit" &&
+  [ -f "$work/run-fits.csv" ] && [ "$(wc -l <"$work/run-fits.csv")" -eq 601 ]; then pass; else
+  fail "fit: $(cat "$work/fit")"
+fi
+if "$exe" fit "$work/run.h5" --models sg,dexp --csv "$work/two.csv" >"$work/fit" 2>&1 &&
+  head -1 "$work/two.csv" | grep -q "^r_index,z_index,r,z,sg_status" && ! grep -qi nan "$work/two.csv" &&
+  ! compgen -G "$work/run.h5.tmp*" >/dev/null; then pass; else fail "fit re-run: $(cat "$work/fit")"; fi
+if "$exe" fit "$work/run.h5" --models sg,glow >/dev/null 2>"$work/stderr"; then fail "fit glow: exited 0"
+elif grep -q "models" "$work/stderr" && [ "$(grep -c . "$work/stderr")" -eq 1 ]; then pass
+else fail "fit glow: $(cat "$work/stderr")"; fi
+if "$exe" simulate --photons 2000 --batches 4 --tallies fluence --out "$work/noradiance.h5" >/dev/null 2>&1 &&
+  ! "$exe" fit "$work/noradiance.h5" 2>"$work/stderr" >/dev/null && grep -q "radiance" "$work/stderr"
+then pass; else fail "fit without radiance: $(cat "$work/stderr")"; fi
+
 expect_error albedo_above_one medium.albedo --albedo 1.5
 expect_error g_at_one medium.g --g 1
 expect_error g_below_minus_one medium.g --g -1.2
