@@ -27,15 +27,16 @@ constexpr int palette[][3] = {{0, 0, 0},       {230, 159, 0},  {86, 180, 233}, {
 constexpr int palette_size = static_cast<int>(std::size(palette));
 
 bool device_available(const char* name) {
-  const char** menu = nullptr;
-  const char** devices = nullptr;
-  int count = 0;
-  plgDevs(&menu, &devices, &count);
-  bool found = false;
-  for (int i = 0; i < count; ++i) found = found || std::string(devices[i]) == name;
-  std::free(static_cast<void*>(menu));
-  std::free(static_cast<void*>(devices));
-  return found;
+  // plgDevs fills caller-owned arrays; the count goes in as their capacity.
+  std::vector<const char*> menu(256), devices(256);
+  int count = static_cast<int>(devices.size());
+  const char** menu_data = menu.data();
+  const char** device_data = devices.data();
+  plgDevs(&menu_data, &device_data, &count);
+  for (int i = 0; i < count; ++i) {
+    if (devices[static_cast<std::size_t>(i)] != nullptr && std::string(devices[static_cast<std::size_t>(i)]) == name) return true;
+  }
+  return false;
 }
 
 // The y value as drawn: log10 on a log axis, sqrt on a sqrt axis; NaN where it cannot be shown.
@@ -146,7 +147,7 @@ void write_png(const LinePlot& plot, const std::filesystem::path& path) {
     for (int c = 0; c < palette_size; ++c) plscol0(c + 1, palette[c][0], palette[c][1], palette[c][2]);
     plinit();
     pladv(0);
-    plvpor(0.10, 0.95, 0.10, 0.92);
+    plvpor(0.10, 0.95, 0.10, 0.88);  // room above for the title and the axis exponent
     plwind(xr.lo, xr.hi, yr.lo, yr.hi);
     plcol0(1);
     if (plot.y_scale == AxisScale::sqrt) plslabelfunc(sqrt_axis_label, nullptr);
