@@ -83,8 +83,8 @@ MaterialLibrary parse_material_library(std::string_view toml_text, const std::st
     throw InputError("source.length_unit", "got \"" + library.length_unit + "\"", "um, mm, cm or m");
   }
   const auto eta = source->get_as<double>("eta");
-  if (eta == nullptr || !(eta->get() >= 0.5 && eta->get() <= 3.0)) {
-    throw InputError("source.eta", "missing or out of range", "a number in [0.5, 3]");
+  if (eta == nullptr || !(eta->get() >= 0.5 && eta->get() <= 2.5)) {
+    throw InputError("source.eta", "missing or out of range", "a number in [0.5, 2.5]");
   }
   library.eta = eta->get();
   const toml::array* channels = (*source)["channels"].as_array();

@@ -9,9 +9,9 @@ namespace scatterlab {
 namespace {
 
 void check_eta(double eta) {
-  if (!(eta >= 0.5 && eta <= 3.0)) {
+  if (!(eta >= 0.5 && eta <= 2.5)) {
     throw InputError("eta", "got " + std::to_string(eta),
-                     "a relative index of refraction in [0.5, 3]");
+                     "a relative index of refraction in [0.5, 2.5]");
   }
 }
 

@@ -75,6 +75,7 @@ double dipole_reflectance(const DipoleModel& m, double r) {
 
 double dipole_fluence(const DipoleModel& m, double r, double z) {
   check_point(r, z);
+  if (m.strength == 0.0) return 0.0;  // not 0 * infinity at the source point
   const double dr = std::hypot(r, z - m.source_depth);
   const double dv = std::hypot(r, z + m.image_height);
   return m.strength * inv_four_pi / m.diffusion * (green(m.sigma_tr, dr) - green(m.sigma_tr, dv));

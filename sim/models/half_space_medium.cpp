@@ -29,8 +29,8 @@ void HalfSpaceMedium::validate() const {
   if (!(std::abs(g) < 1.0)) {
     throw InputError("g", "got " + std::to_string(g), "a number with |g| < 1");
   }
-  if (!(eta >= 0.5 && eta <= 3.0)) {
-    throw InputError("eta", "got " + std::to_string(eta), "a relative index in [0.5, 3]");
+  if (!(eta >= 0.5 && eta <= 2.5)) {
+    throw InputError("eta", "got " + std::to_string(eta), "a relative index in [0.5, 2.5]");
   }
 }
 

@@ -27,6 +27,11 @@
 // entry point), so R_d(0) = +infinity; phi(0, z) = +infinity on the axis. Annulus and cell
 // averages are finite everywhere, and so is the total.
 //
+// Known limitation: the once-scattered light that leaves through the surface is counted once
+// as exitance and again as a source of the diffusion part (Grosjean's kernel assumes an infinite
+// medium, where all of it collides again); the image removes only part of it. So R_dr exceeds
+// the physical bound as alpha' -> 1: 1.15 at alpha' = 1, eta = 1 (the dipoles give 1.0).
+//
 // Cost: a point value is one adaptive quadrature over z'; a cell average of the fluence is a
 // nested one (z outside, z' inside), about 1 ms per cell.
 

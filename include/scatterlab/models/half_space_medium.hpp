@@ -11,7 +11,7 @@ struct HalfSpaceMedium {
   double sigma_a = 0.0;  // absorption coefficient, >= 0
   double sigma_s = 1.0;  // scattering coefficient, >= 0, sigma_a + sigma_s > 0
   double g = 0.0;        // Henyey-Greenstein mean cosine, |g| < 1
-  double eta = 1.0;      // relative index of refraction, in [0.5, 3]
+  double eta = 1.0;      // relative index of refraction, in [0.5, 2.5]
 
   // albedo c in [0, 1] with sigma_t = 1 (lengths in mfp).
   static HalfSpaceMedium from_albedo(double albedo, double g, double eta);

@@ -9,7 +9,7 @@
 // sigma_a = sigma_t' - sigma_s', and sigma_s = sigma_s' / (1 - g).
 //
 // Bad input is an InputError: "R_dr" outside (0, R_dr(alpha' -> 1)) (what the model can
-// reach), "l_d" not a finite number > 0, "g" with |g| >= 1, "eta" outside [0.5, 3].
+// reach), "l_d" not a finite number > 0, "g" with |g| >= 1, "eta" outside [0.5, 2.5].
 
 #include <string>
 
