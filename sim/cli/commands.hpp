@@ -14,5 +14,6 @@ using Action = std::function<int()>;
 Action add_simulate_command(CLI::App& app, const std::string& command_line);
 Action add_info_command(CLI::App& app);
 Action add_fit_command(CLI::App& app);
+Action add_validate_command(CLI::App& app);
 
 }  // namespace scatterlab::cli

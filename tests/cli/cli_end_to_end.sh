@@ -82,5 +82,26 @@ echo "not hdf5" >"$work/text.h5"
 if "$exe" info "$work/text.h5" >/dev/null 2>"$work/stderr"; then fail "info on text: exited 0"
 elif grep -q "not a scatterlab HDF5 file" "$work/stderr"; then pass; else fail "info on text: $(cat "$work/stderr")"; fi
 
+# validate deon --quick: the error table, both CSV files and every PNG (valid signature).
+if "$exe" validate deon --quick --threads 2 --out "$work/deon" >"$work/stdout" 2>"$work/stderr" &&
+  grep -q "Grosjean" "$work/stdout" && [ -s "$work/deon/deon_point_source.csv" ] &&
+  [ "$(grep -c "^0.5,grosjean" "$work/deon/deon_errors.csv")" -eq 1 ]; then pass; else
+  fail "validate deon: $(cat "$work/stdout" "$work/stderr")"
+fi
+pngs=0
+for albedo in 0.01 0.1 0.3 0.5 0.7 0.9 0.99; do
+  for scale in linear log; do
+    f="$work/deon/deon_albedo_${albedo}_${scale}.png"
+    [ "$(head -c 4 "$f" 2>/dev/null | tail -c 3)" = "PNG" ] && pngs=$((pngs + 1))
+  done
+done
+if [ "$pngs" -eq 14 ]; then pass; else fail "validate deon: $pngs of 14 PNG files"; fi
+if compgen -G "$work/deon/*.tmp-*" >/dev/null; then fail "validate deon left temporary files"; else pass; fi
+if "$exe" validate deon --photons 2.5 --out "$work/deon2" >/dev/null 2>"$work/stderr"; then
+  fail "validate deon --photons 2.5: exited 0"
+elif grep -q "photons" "$work/stderr" && [ ! -e "$work/deon2" ]; then pass; else
+  fail "validate deon --photons 2.5: $(cat "$work/stderr")"
+fi
+
 echo "cli: $passed passed, $failures failed"
 [ "$failures" -eq 0 ]
