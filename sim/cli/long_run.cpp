@@ -1,10 +1,14 @@
 #include "long_run.hpp"
 
+#include <signal.h>
+#include <sys/types.h>
+
 #include <fmt/format.h>
 
 #include <atomic>
 #include <cmath>
 #include <csignal>
+#include <cerrno>
 #include <cstdlib>
 #include <exception>
 
@@ -35,6 +39,23 @@ void catch_signals() {
 
 void restore_signals() {
   for (const int signal : kSignals) std::signal(signal, SIG_DFL);
+}
+
+// A run killed while writing a checkpoint leaves "<checkpoint>.tmp-<pid>-<n>" behind
+// (atomic_output.hpp); remove those whose process is gone.
+void remove_stale_temporaries(const std::filesystem::path& checkpoint) {
+  const std::string prefix = checkpoint.filename().string() + ".tmp-";
+  const std::filesystem::path directory =
+      checkpoint.has_parent_path() ? checkpoint.parent_path() : std::filesystem::path(".");
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(directory, error)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    const long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
+    if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) == -1 && errno == ESRCH) {
+      std::filesystem::remove(entry.path(), error);
+    }
+  }
 }
 
 }  // namespace
@@ -95,6 +116,7 @@ LongRun::LongRun(const LongRunOptions& options, const std::filesystem::path& out
   // Resume on the root; every rank must learn whether it failed, or the others would wait for it.
   std::exception_ptr failure;
   if (options.resume && world.is_root()) {
+    remove_stale_temporaries(checkpoint_path_);
     try {
       if (std::filesystem::exists(checkpoint_path_)) {
         state_ = read_checkpoint(checkpoint_path_, fingerprint_);

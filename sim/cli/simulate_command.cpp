@@ -203,6 +203,10 @@ int run_one(PlannedRun run, const LongRunOptions& options, const std::string& co
   const SimulationSpec& spec = run.spec;
   LongRun long_run(options, run.output, fingerprint(spec), world.communicator());
 
+  if (root && long_run.resumed_batches() > 0) {
+    fmt::print("scatterlab simulate: resuming after batch {} of {} from {}\n",
+               long_run.resumed_batches(), spec.run.batches, long_run.checkpoint_path().string());
+  }
   ProgressBar bar("simulate");
   ProgressCallback progress;
   if (root) progress = [&bar](double done) { bar.update(done); };
@@ -234,8 +238,9 @@ int run_simulate(CLI::App& command, const SimulateOptions& o, const LongRunOptio
     }
   }
   for (const PlannedRun& run : runs) {
-    // The root decides, so that every rank runs the same list.
-    const bool skip = world.communicator().broadcast_from_root(already_done(run) ? 1 : 0) != 0;
+    // Sweeps (--out-dir) skip what is done; the root decides, so that every rank runs the same.
+    const bool skip = !o.out_dir.empty() &&
+                      world.communicator().broadcast_from_root(already_done(run) ? 1 : 0) != 0;
     if (skip) {
       if (world.is_root()) fmt::print("skip {}: done already, same parameters\n", run.output.string());
       continue;
