@@ -133,7 +133,7 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
   auto last_checkpoint = clock_start;
   std::uint64_t last_checkpoint_batches = start;
   std::uint64_t done = start;
-  bool stop = false;
+  std::uint64_t round_flags = 0;  // written by the master before the round's last barrier
   std::exception_ptr failure;
 
   // The whole state, gathered on the root (a collective: every rank calls it).
@@ -187,13 +187,15 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
         statistics.add_batch(first + k, batch_sums, static_cast<double>(range.last - range.first),
                              begin, end);
       }
-#pragma omp barrier
+      // The master decides before the barrier, so that every thread reads the decision after it
+      // without a barrier of its own; a checkpoint reads the statistics after the barrier, before
+      // the master's next batch (the others wait for it before folding again).
 #pragma omp master
       {
         done = std::min(batches, first + per_round);
-        if (progress) progress(static_cast<double>(done) / static_cast<double>(batches));
         std::uint64_t flags = 0;
-        if (control.stop_requested != nullptr && control.stop_requested->load()) {
+        if ((control.stop_requested != nullptr && control.stop_requested->load()) ||
+            failure != nullptr) {
           flags |= detail::kStopFlag;
         }
         const auto now = std::chrono::steady_clock::now();
@@ -210,22 +212,24 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
         if ((flags & detail::kStopFlag) && done < batches && control.save_checkpoint) {
           flags |= detail::kCheckpointFlag;
         }
-        if (flags & detail::kCheckpointFlag) {
+        round_flags = flags;
+      }
+#pragma omp barrier
+#pragma omp master
+      {
+        if (progress) progress(static_cast<double>(done) / static_cast<double>(batches));
+        if (round_flags & detail::kCheckpointFlag) {
           try {
             const RunState state = gather_state();
             if (world.is_root()) control.save_checkpoint(state);
           } catch (...) {
-            failure = std::current_exception();
+            failure = std::current_exception();  // stops every rank after the next round
           }
           last_checkpoint = std::chrono::steady_clock::now();
           last_checkpoint_batches = done;
-          // A failed save stops every rank, not only the root.
-          if (world.bitwise_or(failure != nullptr ? 1 : 0) != 0) flags |= detail::kStopFlag;
         }
-        stop = (flags & detail::kStopFlag) != 0;
       }
-#pragma omp barrier
-      if (stop) break;
+      if (round_flags & detail::kStopFlag) break;
     }
   }
 
