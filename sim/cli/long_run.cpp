@@ -1,14 +1,13 @@
 #include "long_run.hpp"
 
+#include <fmt/format.h>
 #include <signal.h>
 #include <sys/types.h>
 
-#include <fmt/format.h>
-
 #include <atomic>
+#include <cerrno>
 #include <cmath>
 #include <csignal>
-#include <cerrno>
 #include <cstdlib>
 #include <exception>
 
@@ -25,7 +24,9 @@ constexpr int kInterruptedExit = 130;  // 128 + SIGINT, as shells report it
 std::atomic<bool> stop_requested{false};
 static_assert(std::atomic<bool>::is_always_lock_free);
 
-extern "C" void request_stop(int) { stop_requested.store(true); }
+extern "C" void request_stop(int) {
+  stop_requested.store(true);
+}
 
 constexpr int kSignals[] = {SIGINT, SIGTERM, SIGUSR1};
 
@@ -143,7 +144,9 @@ LongRun::LongRun(const LongRunOptions& options, const std::filesystem::path& out
   catch_signals();
 }
 
-LongRun::~LongRun() { restore_signals(); }
+LongRun::~LongRun() {
+  restore_signals();
+}
 
 int LongRun::finish(std::uint64_t batches_done, std::uint64_t batches,
                     const std::filesystem::path& output) const {

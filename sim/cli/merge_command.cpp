@@ -31,9 +31,10 @@ Action add_merge_command(CLI::App& app, const std::string& command_line) {
     fmt::print("scatterlab merge: {} runs, {} photons in {} batches: wrote {}\n", inputs.size(),
                summary.photons, summary.batches, o->out);
     if (summary.unequal_batches) {
-      fmt::print("  note: the runs differ in photons per batch; every batch weighs the same in "
-                 "the merged mean (unbiased, as is its standard error, but not the least "
-                 "variance possible)\n");
+      fmt::print(
+          "  note: the runs differ in photons per batch; every batch weighs the same in "
+          "the merged mean (unbiased, as is its standard error, but not the least "
+          "variance possible)\n");
     }
     return 0;
   };

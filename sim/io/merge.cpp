@@ -70,9 +70,8 @@ std::map<std::string, std::string> attribute_values(const hdf5::Object& object,
 
 [[noreturn]] void mismatch(const std::string& field, const fs::path& a, const std::string& in_a,
                            const fs::path& b, const std::string& in_b) {
-  throw InputError(field,
-                   fmt::format("{} has {} but {} has {}", b.string(), in_b, a.string(), in_a),
-                   kAccepted);
+  throw InputError(
+      field, fmt::format("{} has {} but {} has {}", b.string(), in_b, a.string(), in_a), kAccepted);
 }
 
 void check_same_attributes(const std::string& field, const hdf5::Object& first,
@@ -81,11 +80,14 @@ void check_same_attributes(const std::string& field, const hdf5::Object& first,
   const auto a = attribute_values(first, skip), b = attribute_values(other, skip);
   for (const auto& [name, value] : a) {
     const auto it = b.find(name);
-    if (it == b.end()) mismatch(fmt::format("{}.{}", field, name), first_path, value, other_path, "none");
-    if (it->second != value) mismatch(fmt::format("{}.{}", field, name), first_path, value, other_path, it->second);
+    if (it == b.end())
+      mismatch(fmt::format("{}.{}", field, name), first_path, value, other_path, "none");
+    if (it->second != value)
+      mismatch(fmt::format("{}.{}", field, name), first_path, value, other_path, it->second);
   }
   for (const auto& [name, value] : b) {
-    if (!a.count(name)) mismatch(fmt::format("{}.{}", field, name), first_path, "none", other_path, value);
+    if (!a.count(name))
+      mismatch(fmt::format("{}.{}", field, name), first_path, "none", other_path, value);
   }
 }
 
@@ -133,8 +135,8 @@ void check_grid(const Input& first, const Input& other) {
   for (const std::string& axis : a.member_names()) {
     const hdf5::Array x = a.read_dataset(axis), y = b.read_dataset(axis);
     if (x.values != y.values) {
-      mismatch(fmt::format("grid.{}", axis), first.path, fmt::format("{} bins", x.values.size() - 1),
-               other.path,
+      mismatch(fmt::format("grid.{}", axis), first.path,
+               fmt::format("{} bins", x.values.size() - 1), other.path,
                fmt::format("{} bins{}", y.values.size() - 1,
                            x.values.size() == y.values.size() ? " with other edges" : ""));
     }
@@ -189,8 +191,9 @@ MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs
     check_grid(first, other);
     const hdf5::Group tallies = other.file.root().open_group("tallies");
     if (tallies.member_names() != first_tallies.member_names()) {
-      mismatch("tallies", first.path, fmt::format("{}", fmt::join(first_tallies.member_names(), ",")),
-               other.path, fmt::format("{}", fmt::join(tallies.member_names(), ",")));
+      mismatch("tallies", first.path,
+               fmt::format("{}", fmt::join(first_tallies.member_names(), ",")), other.path,
+               fmt::format("{}", fmt::join(tallies.member_names(), ",")));
     }
   }
 
@@ -219,67 +222,71 @@ MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs
   root.write_string_attribute("merged_from", merged_from);
 
   {  // groups close before the file does
-  // Parameters: the first input's, with the totals and every seed.
-  hdf5::Group parameters = root.create_group("parameters");
-  const hdf5::Group first_parameters = first_root.open_group("parameters");
-  std::string seed_list;
-  for (const auto& entry : seeds) {
-    if (!seed_list.empty()) seed_list += ',';
-    seed_list += std::to_string(entry.first);
-  }
-  for (const std::string& name : first_parameters.attribute_names()) {
-    if (name == "photons") {
-      parameters.write_int64_attribute(name, static_cast<std::int64_t>(summary.photons));
-    } else if (name == "batches") {
-      parameters.write_int64_attribute(name, static_cast<std::int64_t>(summary.batches));
-    } else if (name == "seed" || name == "seeds") {
-      parameters.write_string_attribute("seeds", seed_list);
-    } else if (name != "threads") {
-      copy_attribute(first_parameters, parameters, name);
+    // Parameters: the first input's, with the totals and every seed.
+    hdf5::Group parameters = root.create_group("parameters");
+    const hdf5::Group first_parameters = first_root.open_group("parameters");
+    std::string seed_list;
+    for (const auto& entry : seeds) {
+      if (!seed_list.empty()) seed_list += ',';
+      seed_list += std::to_string(entry.first);
     }
-  }
-
-  hdf5::Group grid = root.create_group("grid");
-  const hdf5::Group first_grid = first_root.open_group("grid");
-  for (const std::string& name : first_grid.attribute_names()) copy_attribute(first_grid, grid, name);
-  for (const std::string& axis : first_grid.member_names()) {
-    const hdf5::Dataset from = first_grid.open_dataset(axis);
-    hdf5::Dataset to = grid.write_dataset(axis, from.read().values);
-    for (const std::string& name : from.attribute_names()) copy_attribute(from, to, name);
-  }
-
-  hdf5::Group tallies = root.create_group("tallies");
-  for (const std::string& name : first_tallies.member_names()) {
-    const hdf5::Group from = first_tallies.open_group(name);
-    hdf5::Group node = tallies.create_group(name);
-    for (const std::string& attribute : from.attribute_names()) copy_attribute(from, node, attribute);
-    hdf5::Array mean = from.read_dataset("mean");
-    std::vector<BatchSet> pooled(mean.values.size());
-    for (const Input& input : inputs) {
-      const hdf5::Group tally = input.file.root().open_group("tallies").open_group(name);
-      const hdf5::Array m = tally.read_dataset("mean"), e = tally.read_dataset("stderr");
-      if (m.shape != mean.shape || e.shape != mean.shape) {
-        mismatch(fmt::format("tallies.{}", name), first.path, "another shape", input.path, "this shape");
+    for (const std::string& name : first_parameters.attribute_names()) {
+      if (name == "photons") {
+        parameters.write_int64_attribute(name, static_cast<std::int64_t>(summary.photons));
+      } else if (name == "batches") {
+        parameters.write_int64_attribute(name, static_cast<std::int64_t>(summary.batches));
+      } else if (name == "seed" || name == "seeds") {
+        parameters.write_string_attribute("seeds", seed_list);
+      } else if (name != "threads") {
+        copy_attribute(first_parameters, parameters, name);
       }
+    }
+
+    hdf5::Group grid = root.create_group("grid");
+    const hdf5::Group first_grid = first_root.open_group("grid");
+    for (const std::string& name : first_grid.attribute_names())
+      copy_attribute(first_grid, grid, name);
+    for (const std::string& axis : first_grid.member_names()) {
+      const hdf5::Dataset from = first_grid.open_dataset(axis);
+      hdf5::Dataset to = grid.write_dataset(axis, from.read().values);
+      for (const std::string& name : from.attribute_names()) copy_attribute(from, to, name);
+    }
+
+    hdf5::Group tallies = root.create_group("tallies");
+    for (const std::string& name : first_tallies.member_names()) {
+      const hdf5::Group from = first_tallies.open_group(name);
+      hdf5::Group node = tallies.create_group(name);
+      for (const std::string& attribute : from.attribute_names())
+        copy_attribute(from, node, attribute);
+      hdf5::Array mean = from.read_dataset("mean");
+      std::vector<BatchSet> pooled(mean.values.size());
+      for (const Input& input : inputs) {
+        const hdf5::Group tally = input.file.root().open_group("tallies").open_group(name);
+        const hdf5::Array m = tally.read_dataset("mean"), e = tally.read_dataset("stderr");
+        if (m.shape != mean.shape || e.shape != mean.shape) {
+          mismatch(fmt::format("tallies.{}", name), first.path, "another shape", input.path,
+                   "this shape");
+        }
+        for (std::size_t i = 0; i < pooled.size(); ++i) {
+          const BatchSet run =
+              BatchSet::from_standard_error(m.values[i], e.values[i], input.batches);
+          pooled[i] = &input == &first ? run : pool(pooled[i], run);
+        }
+      }
+      std::vector<double> error(pooled.size());
       for (std::size_t i = 0; i < pooled.size(); ++i) {
-        const BatchSet run = BatchSet::from_standard_error(m.values[i], e.values[i], input.batches);
-        pooled[i] = &input == &first ? run : pool(pooled[i], run);
+        mean.values[i] = pooled[i].mean;
+        error[i] = pooled[i].standard_error();
+      }
+      for (const char* dataset : {"mean", "stderr"}) {
+        const hdf5::Dataset source = from.open_dataset(dataset);
+        hdf5::Dataset target = node.write_dataset(
+            dataset, std::string(dataset) == "mean" ? mean.values : error, mean.shape);
+        for (const std::string& attribute : source.attribute_names()) {
+          copy_attribute(source, target, attribute);
+        }
       }
     }
-    std::vector<double> error(pooled.size());
-    for (std::size_t i = 0; i < pooled.size(); ++i) {
-      mean.values[i] = pooled[i].mean;
-      error[i] = pooled[i].standard_error();
-    }
-    for (const char* dataset : {"mean", "stderr"}) {
-      const hdf5::Dataset source = from.open_dataset(dataset);
-      hdf5::Dataset target = node.write_dataset(
-          dataset, std::string(dataset) == "mean" ? mean.values : error, mean.shape);
-      for (const std::string& attribute : source.attribute_names()) {
-        copy_attribute(source, target, attribute);
-      }
-    }
-  }
   }
   file.close();
   out.commit();

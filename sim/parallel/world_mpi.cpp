@@ -134,6 +134,8 @@ void World::abort(int exit_code) {
   std::exit(exit_code);
 }
 
-bool World::built_with_mpi() { return true; }
+bool World::built_with_mpi() {
+  return true;
+}
 
 }  // namespace scatterlab

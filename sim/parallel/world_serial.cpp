@@ -19,8 +19,12 @@ World::World(int&, char**&) : communicator_(std::make_unique<SerialCommunicator>
 
 World::~World() = default;
 
-void World::abort(int exit_code) { std::exit(exit_code); }
+void World::abort(int exit_code) {
+  std::exit(exit_code);
+}
 
-bool World::built_with_mpi() { return false; }
+bool World::built_with_mpi() {
+  return false;
+}
 
 }  // namespace scatterlab

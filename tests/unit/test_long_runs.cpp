@@ -67,7 +67,8 @@ RunState interrupted(const SimulationSpec& spec, double stop_at, SimulationOutpu
   RunControl control;
   control.stop_requested = &stop;
   control.save_checkpoint = [&saved](const RunState& state) { saved = state; };
-  *output = simulate(spec, [&](double done) { stop = stop || done >= stop_at; }, control);
+  *output = simulate(
+      spec, [&](double done) { stop = stop || done >= stop_at; }, control);
   return saved;
 }
 
@@ -123,7 +124,9 @@ TEST(Checkpoints, SavedEveryKBatchesButNotAtTheEnd) {
   std::vector<std::uint64_t> saved_at;
   RunControl control;
   control.checkpoint.every_batches = 4;
-  control.save_checkpoint = [&](const RunState& state) { saved_at.push_back(state.batches_folded); };
+  control.save_checkpoint = [&](const RunState& state) {
+    saved_at.push_back(state.batches_folded);
+  };
   const SimulationOutput out = simulate(small_run(2), {}, control);
   EXPECT_EQ(saved_at, (std::vector<std::uint64_t>{4, 8}));
   expect_same_tallies(simulate(small_run(1)), out);
@@ -140,9 +143,9 @@ class CheckpointFileTest : public ::testing::Test {
  protected:
   void SetUp() override {
     directory_ = std::filesystem::temp_directory_path() /
-                 ("scatterlab-checkpoint-" + std::to_string(::testing::UnitTest::GetInstance()
-                                                                ->random_seed()) +
-                  "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+                 ("scatterlab-checkpoint-" +
+                  std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "-" +
+                  ::testing::UnitTest::GetInstance()->current_test_info()->name());
     std::filesystem::create_directories(directory_);
   }
   void TearDown() override { std::filesystem::remove_all(directory_); }

@@ -38,7 +38,8 @@ TEST(PooledStatistics, TwoHalvesEqualOneSetOfAllBatches) {
     return statistics;
   };
   const BatchStatistics all = fold(0, batches), a = fold(0, 16), b = fold(16, batches);
-  const BatchSet pooled = pool({a.mean()[0], a.squares()[0], 16}, {b.mean()[0], b.squares()[0], 24});
+  const BatchSet pooled =
+      pool({a.mean()[0], a.squares()[0], 16}, {b.mean()[0], b.squares()[0], 24});
   EXPECT_EQ(pooled.batches, 40.0);
   EXPECT_NEAR(pooled.mean, all.mean()[0], 1e-14 * std::abs(all.mean()[0]));
   EXPECT_NEAR(pooled.squares, all.squares()[0], 1e-12 * all.squares()[0]);
@@ -70,7 +71,8 @@ class MergeTest : public ::testing::Test {
     return s;
   }
 
-  fs::path write(const std::string& name, const SimulationSpec& s, SimulationOutput* out = nullptr) {
+  fs::path write(const std::string& name, const SimulationSpec& s,
+                 SimulationOutput* out = nullptr) {
     const SimulationOutput result = simulate(s);
     const fs::path path = directory_ / name;
     write_simulation_file(path, s, result.tallies,
@@ -128,8 +130,8 @@ TEST_F(MergeTest, PoolsBatchesAsTheHandFormulaSays) {
     const double m1 = f1->mean[i], m2 = f2->mean[i];
     const double s1 = f1->stderr_of_mean[i], s2 = f2->stderr_of_mean[i];
     const double m = (4 * m1 + 6 * m2) / 10;
-    const double squares = s1 * s1 * 4 * 3 + s2 * s2 * 6 * 5 + 4 * (m1 - m) * (m1 - m) +
-                           6 * (m2 - m) * (m2 - m);
+    const double squares =
+        s1 * s1 * 4 * 3 + s2 * s2 * 6 * 5 + 4 * (m1 - m) * (m1 - m) + 6 * (m2 - m) * (m2 - m);
     const double expected_error = std::sqrt(squares / (10 * 9));
     EXPECT_NEAR(mean.values[i], m, 1e-13 * std::abs(m) + 1e-300);
     EXPECT_NEAR(error.values[i], expected_error, 1e-11 * expected_error + 1e-300);

@@ -1,6 +1,7 @@
 // Sweep files: lists of values at scalar keys expand to every combination, each a valid scene.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -41,12 +42,12 @@ TEST(Sweep, KeysSharingTheirLastPartAreLabelledInFull) {
       "[source]\ntype = \"point\"\n[grid]\nr = { max = [1, 2] }\nrho = { max = 5 }\n"
       "[tallies]\nestimator = [\"collision\", \"track_length\"]\n",
       "s.toml");
-  EXPECT_EQ(labels(points),
-            (std::vector<std::string>{"max=1_estimator=collision", "max=1_estimator=track_length",
-                                      "max=2_estimator=collision", "max=2_estimator=track_length"}));
+  EXPECT_EQ(labels(points), (std::vector<std::string>{
+                                "max=1_estimator=collision", "max=1_estimator=track_length",
+                                "max=2_estimator=collision", "max=2_estimator=track_length"}));
   const auto both = parse_sweep("[grid]\nr = { max = [1, 2] }\nz = { max = [3] }\n", "s.toml");
-  EXPECT_EQ(labels(both), (std::vector<std::string>{"grid.r.max=1_grid.z.max=3",
-                                                    "grid.r.max=2_grid.z.max=3"}));
+  EXPECT_EQ(labels(both),
+            (std::vector<std::string>{"grid.r.max=1_grid.z.max=3", "grid.r.max=2_grid.z.max=3"}));
 }
 
 TEST(Sweep, EveryPointIsValidatedAndBadListsAreNamed) {
@@ -64,6 +65,13 @@ TEST(Sweep, EveryPointIsValidatedAndBadListsAreNamed) {
   EXPECT_EQ(field_of("[medium]\nalbdo = [0.5]\n"), "medium.albdo");
   // A single scene file still takes one value per key.
   EXPECT_THROW(parse_scene("[medium]\nalbedo = [0.5, 0.9]\n", "one.toml"), InputError);
+}
+
+TEST(Sweep, ShippedSweepHasNineRuns) {
+  const auto points =
+      load_sweep(std::filesystem::path(SCATTERLAB_SOURCE_DIR) / "data/scenes/sweep-albedo-g.toml");
+  ASSERT_EQ(points.size(), 9u);
+  EXPECT_EQ(points.back().label, "albedo=0.99_g=0.9");
 }
 
 }  // namespace

@@ -91,8 +91,7 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
   const std::uint64_t batches = run.batches;
   // Every rank uses the root's thread count, so that all agree on which batch is whose.
   const int threads = static_cast<int>(world.broadcast_from_root(std::min<std::uint64_t>(
-      batches,
-      static_cast<std::uint64_t>(run.threads > 0 ? run.threads : omp_get_max_threads()))));
+      batches, static_cast<std::uint64_t>(run.threads > 0 ? run.threads : omp_get_max_threads()))));
   const auto thread_count = static_cast<std::size_t>(threads);
   const std::uint64_t per_round = static_cast<std::uint64_t>(ranks) * thread_count;
 
@@ -101,9 +100,8 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
 
   // Resume: the root's saved state, dealt out slice by slice.
   const RunState* resume = world.is_root() ? control.resume_from : nullptr;
-  if (resume != nullptr &&
-      (resume->mean.size() != cells || resume->squares.size() != cells ||
-       resume->batches_folded > batches)) {
+  if (resume != nullptr && (resume->mean.size() != cells || resume->squares.size() != cells ||
+                            resume->batches_folded > batches)) {
     throw std::invalid_argument("run_batches: the state to resume from belongs to another run");
   }
   const std::uint64_t start = world.broadcast_from_root(resume ? resume->batches_folded : 0);
