@@ -26,22 +26,6 @@ constexpr const char* kAccepted =
 // Parameters that may differ between the runs being merged.
 const std::set<std::string> kPerRun = {"photons", "batches", "seed", "seeds", "threads"};
 
-std::string value_text(const hdf5::Object& object, const std::string& name) {
-  switch (object.attribute_type(name)) {
-    case hdf5::AttributeType::string:
-      return fmt::format("\"{}\"", object.read_string_attribute(name));
-    case hdf5::AttributeType::floating:
-      return fmt::format("{}", object.read_double_attribute(name));
-    case hdf5::AttributeType::signed_integer:
-      return fmt::format("{}", object.read_int64_attribute(name));
-    case hdf5::AttributeType::unsigned_integer:
-      return fmt::format("{}", object.read_uint64_attribute(name));
-    case hdf5::AttributeType::other:
-      break;
-  }
-  throw std::runtime_error(object.location() + ": attribute '" + name + "' has an unknown type");
-}
-
 void copy_attribute(const hdf5::Object& from, hdf5::Object& to, const std::string& name) {
   switch (from.attribute_type(name)) {
     case hdf5::AttributeType::string:
@@ -58,36 +42,33 @@ void copy_attribute(const hdf5::Object& from, hdf5::Object& to, const std::strin
   throw std::runtime_error(from.location() + ": attribute '" + name + "' has an unknown type");
 }
 
-// Attribute name -> value as text, less `skip`.
-std::map<std::string, std::string> attribute_values(const hdf5::Object& object,
-                                                    const std::set<std::string>& skip = {}) {
-  std::map<std::string, std::string> values;
-  for (const std::string& name : object.attribute_names()) {
-    if (!skip.count(name)) values[name] = value_text(object, name);
-  }
-  return values;
-}
-
 [[noreturn]] void mismatch(const std::string& field, const fs::path& a, const std::string& in_a,
                            const fs::path& b, const std::string& in_b) {
   throw InputError(
       field, fmt::format("{} has {} but {} has {}", b.string(), in_b, a.string(), in_a), kAccepted);
 }
 
-void check_same_attributes(const std::string& field, const hdf5::Object& first,
-                           const fs::path& first_path, const hdf5::Object& other,
-                           const fs::path& other_path, const std::set<std::string>& skip = {}) {
-  const auto a = attribute_values(first, skip), b = attribute_values(other, skip);
+// Parameter name -> value as `scatterlab info` shows it, less those that may differ.
+std::map<std::string, std::string> shared_parameters(const FileSummary& summary) {
+  std::map<std::string, std::string> values;
+  for (const auto& [name, value] : summary.parameters) {
+    if (!kPerRun.count(name)) values[name] = value;
+  }
+  return values;
+}
+
+void check_parameters(const FileSummary& first, const FileSummary& other) {
+  const auto a = shared_parameters(first), b = shared_parameters(other);
   for (const auto& [name, value] : a) {
     const auto it = b.find(name);
-    if (it == b.end())
-      mismatch(fmt::format("{}.{}", field, name), first_path, value, other_path, "none");
-    if (it->second != value)
-      mismatch(fmt::format("{}.{}", field, name), first_path, value, other_path, it->second);
+    const std::string field = fmt::format("parameters.{}", name);
+    if (it == b.end()) mismatch(field, first.path, value, other.path, "none");
+    if (it->second != value) mismatch(field, first.path, value, other.path, it->second);
   }
   for (const auto& [name, value] : b) {
-    if (!a.count(name))
-      mismatch(fmt::format("{}.{}", field, name), first_path, "none", other_path, value);
+    if (!a.count(name)) {
+      mismatch(fmt::format("parameters.{}", name), first.path, "none", other.path, value);
+    }
   }
 }
 
@@ -108,6 +89,7 @@ std::vector<std::uint64_t> seeds_of(const hdf5::Group& parameters) {
 
 struct Input {
   fs::path path;
+  FileSummary summary;
   hdf5::File file;
   double batches;
   std::uint64_t photons;
@@ -127,7 +109,10 @@ double batches_of(const hdf5::File& file) {
 void check_grid(const Input& first, const Input& other) {
   const hdf5::Group a = first.file.root().open_group("grid");
   const hdf5::Group b = other.file.root().open_group("grid");
-  check_same_attributes("grid", a, first.path, b, other.path);
+  if (first.summary.phi_folded != other.summary.phi_folded) {
+    mismatch("grid.fold_phi", first.path, fmt::format("{}", first.summary.phi_folded), other.path,
+             fmt::format("{}", other.summary.phi_folded));
+  }
   if (a.member_names() != b.member_names()) {
     mismatch("grid", first.path, fmt::format("axes {}", fmt::join(a.member_names(), ",")),
              other.path, fmt::format("axes {}", fmt::join(b.member_names(), ",")));
@@ -156,7 +141,7 @@ MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs
   std::map<std::uint64_t, fs::path> seeds;
   MergeSummary summary;
   for (const fs::path& path : paths) {
-    read_file_summary(path);  // an InputError unless it is a scatterlab file
+    FileSummary summary_of_input = read_file_summary(path);  // an InputError unless scatterlab's
     hdf5::File file = hdf5::File::open_read_only(path);
     const double batches = batches_of(file);
     if (batches < 2) {
@@ -174,7 +159,7 @@ MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs
                          "runs with different seeds");
       }
     }
-    inputs.push_back({path, std::move(file), batches, photons});
+    inputs.push_back({path, std::move(summary_of_input), std::move(file), batches, photons});
   }
 
   const Input& first = inputs.front();
@@ -186,8 +171,7 @@ MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs
     const double ratio = static_cast<double>(other.photons) / other.batches / per_batch;
     summary.unequal_batches = summary.unequal_batches || std::abs(ratio - 1.0) > 0.01;
     if (&other == &first) continue;
-    check_same_attributes("parameters", first.file.root().open_group("parameters"), first.path,
-                          other.file.root().open_group("parameters"), other.path, kPerRun);
+    check_parameters(first.summary, other.summary);
     check_grid(first, other);
     const hdf5::Group tallies = other.file.root().open_group("tallies");
     if (tallies.member_names() != first_tallies.member_names()) {

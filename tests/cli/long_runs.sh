@@ -5,12 +5,7 @@
 set -u
 exe=$(realpath "$1")
 same=$(realpath "$2")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
-failures=0 passed=0
-pass() { passed=$((passed + 1)); }
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/harness.sh"
 
 # Long enough to be stopped mid-run (about a second on 2 threads), short enough for CI.
 run=(simulate --photons 6000000 --batches 48 --threads 2 --seed 11 --theta-bins 6 --phi-bins 8)
@@ -86,5 +81,4 @@ then pass; else fail "sweep did not skip what was done"; fi
 if ! "$exe" simulate --scene sweep.toml 2>err.txt >/dev/null && grep -q -- --out-dir err.txt; then pass; else
   fail "sweep without --out-dir: $(cat err.txt)"; fi
 
-echo "long runs: $passed passed, $failures failed"
-[ $failures -eq 0 ]
+report "long runs"

@@ -6,12 +6,7 @@ set -u
 exe=$(realpath "$1")
 same=$(realpath "$2")
 mpiexec=$3
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
-failures=0 passed=0
-pass() { passed=$((passed + 1)); }
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/harness.sh"
 
 # Containers run tests as root, on loopback, with no shared-memory single-copy support.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
@@ -47,5 +42,4 @@ if ! mpi 2 "$exe" simulate --albedo 2 --photons 1000 --batches 4 --out bad.h5 >/
   [ "$(grep -c medium.albedo bad.err)" -eq 1 ] && [ ! -e bad.h5 ]; then pass; else
   fail "bad input under mpirun: $(cat bad.err)"; fi
 
-echo "mpi runs: $passed passed, $failures failed"
-[ $failures -eq 0 ]
+report "mpi runs"
