@@ -6,14 +6,18 @@
 #include <functional>
 #include <string>
 
+#include "scatterlab/parallel/world.hpp"
+
 namespace scatterlab::cli {
 
 using Action = std::function<int()>;
 
-// `command_line` is the whole command as typed, recorded in output files.
-Action add_simulate_command(CLI::App& app, const std::string& command_line);
+// `command_line` is the whole command as typed, recorded in output files. Commands that run
+// photons spread them over the ranks of `world`; only its root writes files and prints.
+Action add_simulate_command(CLI::App& app, const std::string& command_line, World& world);
 Action add_info_command(CLI::App& app);
 Action add_fit_command(CLI::App& app);
 Action add_validate_command(CLI::App& app);
+Action add_merge_command(CLI::App& app, const std::string& command_line);
 
 }  // namespace scatterlab::cli

@@ -3,28 +3,41 @@
 
 #include <CLI/CLI.hpp>
 #include <exception>
+#include <memory>
 #include <string>
 
 #include "commands.hpp"
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/parallel/world.hpp"
 
 int main(int argc, char** argv) {
   std::string command_line = argv[0];
   for (int i = 1; i < argc; ++i) command_line += std::string(" ") + argv[i];
+
+  // Under mpirun every rank runs this program; only the root writes files and prints.
+  std::unique_ptr<scatterlab::World> world;
+  try {
+    world = std::make_unique<scatterlab::World>(argc, argv);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "scatterlab: failed: {}\n", e.what());
+    return 1;
+  }
 
   CLI::App app{"scatterlab " SCATTERLAB_VERSION
                ": Monte Carlo light transport in participating media and the analytic models "
                "that approximate it"};
   app.set_version_flag("--version", SCATTERLAB_VERSION);
   app.require_subcommand(1);
-  const auto simulate = scatterlab::cli::add_simulate_command(app, command_line);
+  const auto simulate = scatterlab::cli::add_simulate_command(app, command_line, *world);
   const auto info = scatterlab::cli::add_info_command(app);
   const auto fit = scatterlab::cli::add_fit_command(app);
   const auto validate = scatterlab::cli::add_validate_command(app);
+  const auto merge = scatterlab::cli::add_merge_command(app, command_line);
 
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    if (!world->is_root()) return e.get_exit_code();
     return app.exit(e);
   }
   try {
@@ -32,11 +45,14 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("info")) return info();
     if (app.got_subcommand("fit")) return fit();
     if (app.got_subcommand("validate")) return validate();
+    if (app.got_subcommand("merge")) return merge();
   } catch (const scatterlab::InputError& e) {
-    fmt::print(stderr, "scatterlab: error: {}\n", e.what());
+    // Bad input is found alike on every rank, before any of them waits on another.
+    if (world->is_root()) fmt::print(stderr, "scatterlab: error: {}\n", e.what());
     return 2;
   } catch (const std::exception& e) {
     fmt::print(stderr, "scatterlab: failed: {}\n", e.what());
+    if (world->size() > 1) world->abort(1);  // the other ranks may be waiting on this one
     return 1;
   }
   return 1;

@@ -3,16 +3,19 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <sstream>
 
 #include "commands.hpp"
+#include "long_run.hpp"
 #include "progress_bar.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/simulation_file.hpp"
+#include "scatterlab/parallel/world.hpp"
 #include "scatterlab/transport/simulate.hpp"
 
 namespace scatterlab::cli {
@@ -20,7 +23,7 @@ namespace {
 
 // Every flag, as given on the command line; only those given override the scene.
 struct SimulateOptions {
-  std::string scene, out, source, estimator, tallies;
+  std::string scene, out, out_dir, source, estimator, tallies;
   double albedo = 0, g = 0, sigma_t = 0, escape_radius = 0;
   double photons = 0;  // a double, so that 1e8 reads as it does in scene files
   std::uint64_t seed = 0;
@@ -52,11 +55,13 @@ void print_summary(const SimulationSpec& spec, const SimulationOutput& out,
   fmt::print("scatterlab simulate: {} source, albedo {}, g {}, {} estimator\n",
              to_string(spec.source), spec.medium.albedo, spec.medium.g,
              to_string(spec.tallies.estimator));
-  fmt::print("  {} photons in {} batches on {} thread{}: {:.2f} s ({:.3g} photons/s, {:.3g} "
+  const int workers = out.threads * out.ranks;
+  const std::string ranks = out.ranks > 1 ? fmt::format("{} ranks x ", out.ranks) : "";
+  fmt::print("  {} photons in {} batches on {}{} thread{}: {:.2f} s ({:.3g} photons/s, {:.3g} "
              "scattering events, {:.1f} ns per event per thread)\n",
-             out.photons, spec.run.batches, out.threads, out.threads == 1 ? "" : "s",
+             out.photons, out.batches_done, ranks, out.threads, out.threads == 1 ? "" : "s",
              out.wall_seconds, static_cast<double>(out.photons) / out.wall_seconds, events,
-             events > 0 ? out.wall_seconds * out.threads / events * 1e9 : 0.0);
+             events > 0 ? out.wall_seconds * workers / events * 1e9 : 0.0);
   std::string energy = "  energy per W incident:";
   double total = 0.0;
   for (const char* name : {"absorbed", "absorbed_outside_grid", "escaped"}) {
@@ -92,12 +97,9 @@ void apply_tally_list(const std::string& list, TallyRequest& tallies) {
   }
 }
 
-int run_simulate(CLI::App& command, const SimulateOptions& o, const std::string& command_line) {
+// The flags given override the scene (or the defaults when there is none).
+void apply_flags(CLI::App& command, const SimulateOptions& o, SimulationSpec& spec) {
   auto given = [&command](const char* flag) { return command.get_option(flag)->count() > 0; };
-
-  Scene scene;
-  if (given("--scene")) scene = load_scene(o.scene);
-  SimulationSpec& spec = scene.spec;
   Medium& medium = spec.medium;
   if (given("--albedo")) medium.albedo = o.albedo;
   if (given("--g")) medium.g = o.g;
@@ -134,25 +136,124 @@ int run_simulate(CLI::App& command, const SimulateOptions& o, const std::string&
   if (given("--rho-max")) grid.rho.max = o.rho_max;
   if (given("--rho-bins")) grid.rho.bins = o.rho_bins;
   spec.validate();
+}
 
-  const std::string path = given("--out") ? o.out : scene.output_path.value_or("scatterlab.h5");
-  { const AtomicOutput check(path); }  // a bad output path fails now, not after the run
+// A run to do: what, and where its file goes.
+struct PlannedRun {
+  SimulationSpec spec;
+  std::filesystem::path output;
+};
 
+// One run, or one per combination of a sweep (scene.hpp), each with its output path.
+std::vector<PlannedRun> plan_runs(CLI::App& command, const SimulateOptions& o,
+                                  const LongRunOptions& long_run) {
+  auto given = [&command](const char* flag) { return command.get_option(flag)->count() > 0; };
+  std::vector<SweepPoint> points = given("--scene") ? load_sweep(o.scene)
+                                                    : std::vector<SweepPoint>{SweepPoint{}};
+  const bool sweep = points.size() > 1 || !points.front().label.empty();
+  if (sweep && given("--out")) {
+    throw InputError("--out", fmt::format("given with a sweep of {} runs", points.size()),
+                     "--out-dir DIR for a scene with lists of values (one file per run)");
+  }
+  if (sweep && !given("--out-dir")) {
+    throw InputError("--out-dir",
+                     fmt::format("missing: the scene sweeps {} combinations", points.size()),
+                     "a directory for one file per combination");
+  }
+  if (sweep && !long_run.checkpoint.empty()) {
+    throw InputError("--checkpoint", "given with a sweep: every run checkpoints beside its file",
+                     "--checkpoint only for a single run");
+  }
+  std::vector<PlannedRun> runs;
+  for (SweepPoint& point : points) {
+    apply_flags(command, o, point.scene.spec);
+    std::filesystem::path output;
+    if (given("--out-dir")) {
+      const std::string name =
+          point.label.empty()
+              ? std::filesystem::path(point.scene.output_path.value_or("scatterlab.h5"))
+                    .filename()
+                    .string()
+              : point.label + ".h5";
+      output = std::filesystem::path(o.out_dir) / name;
+    } else {
+      output = given("--out") ? o.out : point.scene.output_path.value_or("scatterlab.h5");
+    }
+    runs.push_back({point.scene.spec, output});
+  }
+  return runs;
+}
+
+// A complete file of the same run (same fingerprint) is already there.
+bool already_done(const PlannedRun& run) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(run.output, error)) return false;
+  try {
+    const FileSummary summary = read_file_summary(run.output);
+    return !summary.partial && summary.spec_fingerprint == fingerprint(run.spec);
+  } catch (const std::exception&) {
+    return false;  // not a scatterlab file: replaced by the run
+  }
+}
+
+int run_one(PlannedRun run, const LongRunOptions& options, const std::string& command_line,
+            World& world) {
+  const bool root = world.is_root();
+  { const AtomicOutput check(run.output); }  // a bad output path fails now, not after the run
+  const SimulationSpec& spec = run.spec;
+  LongRun long_run(options, run.output, fingerprint(spec), world.communicator());
+
+  if (root && long_run.resumed_batches() > 0) {
+    fmt::print("scatterlab simulate: resuming after batch {} of {} from {}\n",
+               long_run.resumed_batches(), spec.run.batches, long_run.checkpoint_path().string());
+  }
   ProgressBar bar("simulate");
-  const SimulationOutput out = simulate(spec, [&bar](double done) { bar.update(done); });
+  ProgressCallback progress;
+  if (root) progress = [&bar](double done) { bar.update(done); };
+  const SimulationOutput out = simulate(spec, progress, long_run.control());
   bar.finish();
 
-  const Provenance provenance{SCATTERLAB_VERSION, command_line,     iso8601_now(),
-                              out.wall_seconds,   out.photons,      out.scattering_events};
-  spec.run.threads = out.threads;  // record what ran, not "all cores"
-  write_simulation_file(path, spec, out.tallies, provenance);
-  print_summary(spec, out, path);
+  if (root) {
+    const Provenance provenance{SCATTERLAB_VERSION, command_line,     iso8601_now(),
+                                out.wall_seconds,   out.photons,      out.scattering_events,
+                                out.batches_done,   out.ranks};
+    run.spec.run.threads = out.threads;  // record what ran, not "all cores"
+    write_simulation_file(run.output, run.spec, out.tallies, provenance);
+    print_summary(run.spec, out, run.output.string());
+  }
+  return long_run.finish(out.batches_done, spec.run.batches, run.output);
+}
+
+int run_simulate(CLI::App& command, const SimulateOptions& o, const LongRunOptions& long_run,
+                 const std::string& command_line, World& world) {
+  const std::vector<PlannedRun> runs = plan_runs(command, o, long_run);
+  if (!o.out_dir.empty()) {
+    // Made by the root; the others wait for it (a broadcast is a barrier here).
+    std::error_code error;
+    if (world.is_root()) std::filesystem::create_directories(o.out_dir, error);
+    world.communicator().broadcast_from_root(0);
+    if (!std::filesystem::is_directory(o.out_dir)) {
+      throw InputError("--out-dir", fmt::format("cannot create '{}'", o.out_dir),
+                       "a directory that exists or can be made");
+    }
+  }
+  for (const PlannedRun& run : runs) {
+    // Sweeps (--out-dir) skip what is done; the root decides, so that every rank runs the same.
+    const bool skip = !o.out_dir.empty() &&
+                      world.communicator().broadcast_from_root(already_done(run) ? 1 : 0) != 0;
+    if (skip) {
+      if (world.is_root()) fmt::print("skip {}: done already, same parameters\n", run.output.string());
+      continue;
+    }
+    const int status = run_one(run, long_run, command_line, world);
+    if (status != 0) return status;
+  }
   return 0;
 }
 
 }  // namespace
 
-Action add_simulate_command(CLI::App& app, const std::string& command_line) {
+Action add_simulate_command(CLI::App& app, const std::string& command_line, World& world) {
   auto* command = app.add_subcommand(
       "simulate",
       "Pencil beam (or isotropic point source) in an infinite medium: binned radiance "
@@ -164,6 +265,10 @@ Action add_simulate_command(CLI::App& app, const std::string& command_line) {
   command->add_option("--scene", o->scene, "TOML scene file (see data/scenes/paper-beam.toml)")
       ->check(CLI::ExistingFile);
   command->add_option("--out", o->out, "Output HDF5 file [scatterlab.h5]");
+  command->add_option("--out-dir", o->out_dir,
+                      "Directory for the output: needed for a sweep (a scene whose keys hold "
+                      "lists of values), one file per combination named from its values; done "
+                      "combinations are skipped");
   command->add_option("--source", o->source, "Source: beam (along +z) or point (isotropic)")
       ->check(CLI::IsMember({"beam", "point"}));
   command->add_option("--albedo", o->albedo, "Single-scattering albedo in [0, 1] [0.5]");
@@ -193,7 +298,10 @@ Action add_simulate_command(CLI::App& app, const std::string& command_line) {
   command->add_flag("--fold-phi{true}", o->fold_phi, "Fold phi onto [0, pi] (L is even in phi)");
   command->add_option("--rho-max", o->rho_max, "Spherical-shell grid extent, mfp [10]");
   command->add_option("--rho-bins", o->rho_bins, "Spherical shells [200]");
-  return [command, o, command_line] { return run_simulate(*command, *o, command_line); };
+  const auto long_run = add_long_run_options(*command);
+  return [command, o, long_run, command_line, &world] {
+    return run_simulate(*command, *o, *long_run, command_line, world);
+  };
 }
 
 }  // namespace scatterlab::cli

@@ -334,22 +334,19 @@ class SceneReader {
   const std::string& origin_;
 };
 
-}  // namespace
 
-Scene parse_scene(std::string_view toml_text, const std::string& origin) {
-  toml::table root;
+toml::table parse_toml(std::string_view toml_text, const std::string& origin) {
   try {
-    root = toml::parse(toml_text, origin);
+    return toml::parse(toml_text, origin);
   } catch (const toml::parse_error& error) {
     const auto& begin = error.source().begin;
     throw InputError(
         "scene", fmt::format("{}:{}:{}: {}", origin, begin.line, begin.column, error.description()),
         "a valid TOML file");
   }
-  return SceneReader(origin).read(root);
 }
 
-Scene load_scene(const std::filesystem::path& path) {
+std::string read_text(const std::filesystem::path& path) {
   const std::string name = path.string();
   std::error_code code;
   if (!std::filesystem::exists(path, code)) {
@@ -364,7 +361,108 @@ Scene load_scene(const std::filesystem::path& path) {
   if (!in.is_open() || in.bad()) {
     throw InputError("scene", fmt::format("cannot read '{}'", name), "a readable TOML file");
   }
-  return parse_scene(text, name);
+  return text;
+}
+
+// A key of the scene that holds a list of values to sweep over.
+struct SweptKey {
+  std::vector<std::string> path;  // tables down to the key, then the key
+  const toml::array* values;
+};
+
+std::string join_path(const std::vector<std::string>& path) {
+  std::string joined;
+  for (const std::string& part : path) {
+    if (!joined.empty()) joined += '.';
+    joined += part;
+  }
+  return joined;
+}
+
+// Every array in the document, in file order (toml++ keeps insertion order).
+void find_lists(const toml::table& table, std::vector<std::string>& path,
+                std::vector<SweptKey>& found, const std::string& origin) {
+  for (auto&& [key, node] : table) {
+    path.emplace_back(key.str());
+    if (const auto* sub = node.as_table()) {
+      find_lists(*sub, path, found, origin);
+    } else if (const auto* list = node.as_array()) {
+      const auto& begin = node.source().begin;
+      const std::string where = fmt::format(" ({}:{}:{})", origin, begin.line, begin.column);
+      if (list->empty()) {
+        throw InputError(join_path(path), "is an empty list" + where,
+                         "a value, or a non-empty list of values to sweep over");
+      }
+      for (const toml::node& value : *list) {
+        if (value.is_array() || value.is_table()) {
+          throw InputError(join_path(path), "is a list holding a list or table" + where,
+                           "a value, or a list of plain values to sweep over");
+        }
+      }
+      found.push_back({path, list});
+    }
+    path.pop_back();
+  }
+}
+
+std::string value_label(const toml::node& node) {
+  if (const auto* v = node.as_floating_point()) return fmt::format("{}", v->get());
+  if (const auto* v = node.as_integer()) return fmt::format("{}", v->get());
+  if (const auto* v = node.as_boolean()) return v->get() ? "true" : "false";
+  if (const auto* v = node.as_string()) return v->get();
+  return "value";
+}
+
+// "albedo" unless another swept key also ends in "albedo"; then the dotted path.
+std::string key_label(const std::vector<SweptKey>& swept, std::size_t index) {
+  const std::string& last = swept[index].path.back();
+  for (std::size_t j = 0; j < swept.size(); ++j) {
+    if (j != index && swept[j].path.back() == last) return join_path(swept[index].path);
+  }
+  return last;
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view toml_text, const std::string& origin) {
+  return SceneReader(origin).read(parse_toml(toml_text, origin));
+}
+
+Scene load_scene(const std::filesystem::path& path) {
+  return parse_scene(read_text(path), path.string());
+}
+
+std::vector<SweepPoint> parse_sweep(std::string_view toml_text, const std::string& origin) {
+  const toml::table root = parse_toml(toml_text, origin);
+  std::vector<SweptKey> swept;
+  std::vector<std::string> path;
+  find_lists(root, path, swept, origin);
+  std::vector<SweepPoint> points;
+  // Odometer over the lists, the last fastest.
+  std::vector<std::size_t> index(swept.size(), 0);
+  while (true) {
+    toml::table point = root;
+    std::string label;
+    for (std::size_t k = 0; k < swept.size(); ++k) {
+      toml::table* table = &point;
+      for (std::size_t depth = 0; depth + 1 < swept[k].path.size(); ++depth) {
+        table = table->get(swept[k].path[depth])->as_table();
+      }
+      const toml::node& value = *swept[k].values->get(index[k]);
+      table->insert_or_assign(swept[k].path.back(), value);
+      label += fmt::format("{}{}={}", label.empty() ? "" : "_", key_label(swept, k),
+                           value_label(value));
+    }
+    points.push_back({label, SceneReader(origin).read(point)});
+    std::size_t k = swept.size();
+    while (k > 0 && ++index[k - 1] == swept[k - 1].values->size()) index[--k] = 0;
+    if (k == 0) break;
+  }
+  return points;
+}
+
+std::vector<SweepPoint> load_sweep(const std::filesystem::path& path) {
+  return parse_sweep(read_text(path), path.string());
 }
 
 }  // namespace scatterlab

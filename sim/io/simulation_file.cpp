@@ -66,7 +66,8 @@ std::string join(const std::vector<std::string>& parts, const char* separator) {
   return joined;
 }
 
-void write_provenance(hdf5::Group& root, const Provenance& provenance) {
+void write_provenance(hdf5::Group& root, const Provenance& provenance,
+                      const SimulationSpec& spec) {
   root.write_string_attribute("format", "scatterlab");
   root.write_int64_attribute("format_version", kSimulationFormatVersion);
   root.write_string_attribute("scatterlab_version", provenance.version);
@@ -76,6 +77,11 @@ void write_provenance(hdf5::Group& root, const Provenance& provenance) {
   root.write_int64_attribute("photons_run", as_int64(provenance.photons_run, "photons_run"));
   root.write_int64_attribute("scattering_events",
                              as_int64(provenance.scattering_events, "scattering_events"));
+  const std::uint64_t batches_done = provenance.batches_done.value_or(spec.run.batches);
+  root.write_int64_attribute("batches_done", as_int64(batches_done, "batches_done"));
+  root.write_bool_attribute("partial", batches_done < spec.run.batches);
+  root.write_int64_attribute("ranks", provenance.ranks);
+  root.write_string_attribute("spec_fingerprint", fingerprint(spec));
 }
 
 void write_parameters(hdf5::Group& root, const SimulationSpec& spec) {
@@ -223,6 +229,13 @@ FileSummary summarize(const hdf5::File& file) {
   summary.photons_run =
       root.has_attribute("photons_run") ? root.read_int64_attribute("photons_run") : 0;
   summary.scattering_events = root.read_int64_attribute("scattering_events");
+  // Files from before checkpoints and merging lack these; they were complete, single-process runs.
+  summary.batches_done =
+      root.has_attribute("batches_done") ? root.read_int64_attribute("batches_done") : 0;
+  summary.partial = root.has_attribute("partial") && root.read_int64_attribute("partial") != 0;
+  summary.ranks = root.has_attribute("ranks") ? root.read_int64_attribute("ranks") : 1;
+  summary.spec_fingerprint = string_or_empty(root, "spec_fingerprint");
+  summary.merged_from = string_or_empty(root, "merged_from");
 
   const hdf5::Group parameters = root.open_group("parameters");
   for (const std::string& name : parameters.attribute_names()) {
@@ -287,7 +300,7 @@ void write_simulation_file(const std::filesystem::path& path, const SimulationSp
   check_tallies(tallies);
   {
     hdf5::File file = hdf5::File::create(output.temporary_path());
-    write_provenance(file.root(), provenance);
+    write_provenance(file.root(), provenance, spec);
     write_parameters(file.root(), spec);
     write_grid(file.root(), spec);
     write_tallies(file.root(), tallies);
@@ -327,6 +340,20 @@ std::string describe(const FileSummary& summary) {
   text += fmt::format("wall time   {:.3g} s\n", summary.wall_seconds);
   text += fmt::format("photons run {} ({} scattering events)\n", summary.photons_run,
                       summary.scattering_events);
+  if (summary.partial) {
+    text += fmt::format("status      PARTIAL: stopped after {} batches; tallies are the mean of "
+                        "those batches\n",
+                        summary.batches_done);
+  }
+  if (summary.ranks > 1) text += fmt::format("ranks       {} (MPI processes)\n", summary.ranks);
+  if (!summary.merged_from.empty()) {
+    std::string inputs = summary.merged_from;
+    for (std::size_t at = inputs.find('\n'); at != std::string::npos; at = inputs.find('\n', at)) {
+      inputs.replace(at, 1, "\n            ");
+      at += 13;
+    }
+    text += fmt::format("merged from {}\n", inputs);
+  }
 
   text += "\nparameters\n";
   std::size_t width = 0;

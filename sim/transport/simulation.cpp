@@ -177,6 +177,27 @@ void SimulationSpec::validate() const {
   check_run(run, medium);
 }
 
+std::string fingerprint(const SimulationSpec& spec) {
+  // Doubles in hexadecimal ({:a}) so that the text, and so the hash, is exact.
+  auto axis = [](const UniformAxis& a) { return fmt::format("{:a},{:a},{};", a.min, a.max, a.bins); };
+  const Medium& m = spec.medium;
+  const TallyRequest& t = spec.tallies;
+  const RunSettings& run = spec.run;
+  const std::string canonical = fmt::format(
+      "medium {:a} {:a} {:a} {}|source {}|grid {}{}{}{}{}{}|tallies {}{}{}{}{} {}|run {} {} {} {:a}",
+      m.albedo, m.g, m.sigma_t, m.length_unit, to_string(spec.source), axis(spec.grid.r),
+      axis(spec.grid.z), axis(spec.grid.theta), axis(spec.grid.phi), axis(spec.grid.rho),
+      spec.grid.fold_phi, t.radiance, t.fluence, t.flux, t.fluence_spherical, t.split_by_order,
+      to_string(t.estimator), run.photons, run.batches, run.seed, run.escape_radius);
+  // FNV-1a, 64 bit (Fowler, Noll, Vo): a fingerprint, not a defence against forgery.
+  std::uint64_t hash = 0xcbf29ce484222325ull;
+  for (const char c : canonical) {
+    hash ^= static_cast<unsigned char>(c);
+    hash *= 0x100000001b3ull;
+  }
+  return fmt::format("{:016x}", hash);
+}
+
 std::string to_string(SourceKind source) {
   switch (source) {
     case SourceKind::pencil_beam:

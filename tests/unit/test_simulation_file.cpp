@@ -111,7 +111,9 @@ Provenance small_provenance() {
           "2024-05-01T12:34:56Z",
           12.5,
           1000,
-          123456789012};
+          123456789012,
+          std::nullopt,  // every batch ran
+          1};
 }
 
 TEST_F(SimulationFileTest, RoundTripKeepsLayoutValuesAndAttributes) {

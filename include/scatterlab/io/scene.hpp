@@ -27,6 +27,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "scatterlab/transport/simulation.hpp"
 
@@ -42,5 +43,22 @@ Scene parse_scene(std::string_view toml_text, const std::string& origin);
 
 // Reads and parses a file; an unreadable file is an InputError for "scene".
 Scene load_scene(const std::filesystem::path& path);
+
+// Parameter sweeps: in a sweep file any scalar key may hold a list of values instead of one,
+//   [medium]
+//   albedo = [0.5, 0.9]
+//   g = [0, 0.9]
+// and the file stands for every combination (here four scenes), each read and validated as a
+// scene. Combinations are ordered as the lists appear in the file, the last varying fastest.
+struct SweepPoint {
+  // The swept keys and values, e.g. "albedo=0.5_g=0.9": names the point's output file. Keys
+  // are the last part of the dotted key unless two swept keys share it ("r.max=2_rho.max=10").
+  // Empty for a file without lists.
+  std::string label;
+  Scene scene;
+};
+
+std::vector<SweepPoint> parse_sweep(std::string_view toml_text, const std::string& origin);
+std::vector<SweepPoint> load_sweep(const std::filesystem::path& path);
 
 }  // namespace scatterlab

@@ -2,7 +2,10 @@
 // The simulation file: one self-describing HDF5 file per run (DESIGN.md, HDF5 layout).
 //
 //   /                  attrs format="scatterlab", format_version=1, scatterlab_version, command,
-//                            created (ISO 8601 UTC), wall_seconds, photons_run, scattering_events
+//                            created (ISO 8601 UTC), wall_seconds, photons_run, scattering_events,
+//                            batches_done, partial (1 when stopped before every batch ran),
+//                            ranks, spec_fingerprint (simulation.hpp); merged files have
+//                            merged_from (the input paths, one per line) instead of a fingerprint
 //   /parameters        attrs source, albedo, g, sigma_t, sigma_a, sigma_s, length_unit, phase,
 //                            photons, batches, seed, estimator, escape_radius (when finite),
 //                            split_by_order, threads
@@ -13,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,6 +36,9 @@ struct Provenance {
   double wall_seconds = 0.0;
   std::uint64_t photons_run = 0;
   std::uint64_t scattering_events = 0;
+  // Fewer than parameters.batches marks the file partial; unset means all of them ran.
+  std::optional<std::uint64_t> batches_done;
+  int ranks = 1;
 };
 
 // The current time as ISO 8601 UTC with second resolution: "YYYY-MM-DDTHH:MM:SSZ".
@@ -78,6 +85,11 @@ struct FileSummary {
   double wall_seconds = 0.0;
   std::int64_t photons_run = 0;
   std::int64_t scattering_events = 0;
+  std::int64_t batches_done = 0;
+  bool partial = false;
+  std::int64_t ranks = 1;
+  std::string spec_fingerprint;  // empty for merged files
+  std::string merged_from;       // input paths, one per line; empty unless merged
   std::vector<std::pair<std::string, std::string>> parameters;  // name, value as text
   std::vector<AxisSummary> grid;
   bool phi_folded = false;

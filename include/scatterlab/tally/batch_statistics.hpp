@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <cstddef>
+#include <limits>
+#include <utility>
 #include <vector>
 
 namespace scatterlab {
@@ -14,6 +16,9 @@ namespace scatterlab {
 class BatchStatistics {
  public:
   explicit BatchStatistics(std::size_t cells) : mean_(cells, 0.0), squares_(cells, 0.0) {}
+  // Continues from a saved state (a checkpoint): the Welford mean and sum of squares per cell.
+  BatchStatistics(std::vector<double> mean, std::vector<double> squares)
+      : mean_(std::move(mean)), squares_(std::move(squares)) {}
 
   // Adds x_b = batch_sums / photons_in_batch for cells [begin, end) and clears batch_sums
   // there. Call once per batch for every cell range, with batch_index counting from 0 in order.
@@ -32,11 +37,19 @@ class BatchStatistics {
 
   std::size_t size() const { return mean_.size(); }
   const std::vector<double>& mean() const { return mean_; }
+  const std::vector<double>& squares() const { return squares_; }
 
   std::vector<double> standard_error(std::size_t batches) const {
-    std::vector<double> error(mean_.size());
+    return standard_error_from_squares(squares_, batches);
+  }
+
+  // NaN for fewer than two batches: one batch says nothing about the spread.
+  static std::vector<double> standard_error_from_squares(const std::vector<double>& squares,
+                                                         std::size_t batches) {
+    std::vector<double> error(squares.size(), std::numeric_limits<double>::quiet_NaN());
+    if (batches < 2) return error;
     const double scale = 1.0 / (static_cast<double>(batches) * static_cast<double>(batches - 1));
-    for (std::size_t i = 0; i < error.size(); ++i) error[i] = std::sqrt(squares_[i] * scale);
+    for (std::size_t i = 0; i < error.size(); ++i) error[i] = std::sqrt(squares[i] * scale);
     return error;
   }
 

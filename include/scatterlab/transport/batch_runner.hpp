@@ -1,21 +1,34 @@
 #pragma once
-// Runs photons in independent, seeded batches over threads and folds every tally cell into batch
-// statistics. Shared by every random-walk kernel (infinite medium, half-space, ...): a kernel
-// only says how to transport photons [first, last) into a buffer of per-cell sums.
+// Runs photons in independent, seeded batches over threads and ranks and folds every tally cell
+// into batch statistics. Shared by every random-walk kernel (infinite medium, half-space, ...): a
+// kernel only says how to transport photons [first, last) into a buffer of per-cell sums.
 //
-// Results are bitwise identical for any thread count: each photon's random stream depends only
-// on (seed, photon index), each batch is transported by one thread in photon order, and batches
-// are folded into the statistics in batch order.
+// Results are bitwise identical for any number of threads and ranks, and for a run resumed from a
+// checkpoint: each photon's random stream depends only on (seed, photon index), each batch is
+// transported by one thread in photon order into a zeroed buffer, and every cell folds the batches
+// with the same Welford arithmetic in batch order.
+//
+// Work is dealt in rounds of ranks x threads batches: thread t of rank q transports batch
+// (first of round + q * threads + t). Each rank owns a contiguous slice of the cells; after a
+// round the per-batch sums are exchanged so that each rank holds its slice of every batch of the
+// round, and its threads fold sub-slices in batch order. Memory per rank is independent of the
+// rank count: a buffer per thread, the round's received slices (threads x cells values) and the
+// statistics of its slice.
 
 #include <omp.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <functional>
+#include <stdexcept>
 #include <vector>
 
 #include "scatterlab/tally/batch_statistics.hpp"
+#include "scatterlab/transport/communicator.hpp"
+#include "scatterlab/transport/run_control.hpp"
 #include "scatterlab/transport/run_settings.hpp"
 
 namespace scatterlab {
@@ -36,72 +49,199 @@ inline BatchRange batch_range(std::uint64_t photons, std::uint64_t batches, std:
 }
 
 struct BatchOutcome {
+  // On the root rank; empty on the others.
   std::vector<double> mean;            // per photon, for every tally cell
   std::vector<double> standard_error;  // of that mean, from the batch-to-batch spread
   std::uint64_t scattering_events = 0;
-  int threads = 1;
+  std::uint64_t batches_done = 0;  // < the batches asked for when stopped early
+  std::uint64_t photons_done = 0;  // photons in those batches
+  int threads = 1;                 // per rank
+  int ranks = 1;
+
+  bool complete(const RunSettings& run) const { return batches_done == run.batches; }
 };
+
+namespace detail {
+
+// Rank p owns cells [cells * p / ranks, cells * (p + 1) / ranks).
+inline std::vector<std::size_t> cell_slices(std::size_t cells, int ranks) {
+  std::vector<std::size_t> counts(static_cast<std::size_t>(ranks));
+  const auto r = static_cast<std::size_t>(ranks);
+  for (std::size_t p = 0; p < r; ++p) counts[p] = cells * (p + 1) / r - cells * p / r;
+  return counts;
+}
+
+constexpr std::uint64_t kStopFlag = 1, kCheckpointFlag = 2;
+
+}  // namespace detail
 
 // `Walk` provides
 //   Scratch make_scratch() const;        per-thread working memory, made once per thread
 //   std::uint64_t run(std::uint64_t first, std::uint64_t last, double* sums, Scratch&) const;
 // where run adds the scores of photons [first, last) to sums[0, cells) and returns the number
-// of scattering events.
+// of scattering events. With a communicator, every rank calls this with the same arguments.
 template <class Walk>
 BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& walk,
-                         const ProgressCallback& progress) {
+                         const ProgressCallback& progress, const RunControl& control = {}) {
+  SerialCommunicator serial;
+  Communicator& world = control.communicator != nullptr ? *control.communicator : serial;
+  const int ranks = world.size();
+  const auto rank = static_cast<std::size_t>(world.rank());
   const std::uint64_t photons = run.photons;
   const std::uint64_t batches = run.batches;
-  const int hardware = omp_get_max_threads();
-  const int threads = static_cast<int>(std::min<std::uint64_t>(
-      batches, static_cast<std::uint64_t>(run.threads > 0 ? run.threads : hardware)));
-  const auto thread_count = static_cast<std::uint64_t>(threads);
+  // Every rank uses the root's thread count, so that all agree on which batch is whose.
+  const int threads = static_cast<int>(world.broadcast_from_root(std::min<std::uint64_t>(
+      batches, static_cast<std::uint64_t>(run.threads > 0 ? run.threads : omp_get_max_threads()))));
+  const auto thread_count = static_cast<std::size_t>(threads);
+  const std::uint64_t per_round = static_cast<std::uint64_t>(ranks) * thread_count;
 
-  BatchStatistics statistics(cells);
-  // One score buffer per thread: thread t transports batch (round * threads + t).
-  std::vector<std::vector<double>> sums(static_cast<std::size_t>(threads),
-                                        std::vector<double>(cells, 0.0));
-  std::vector<std::uint64_t> scatterings(static_cast<std::size_t>(threads), 0);
-  const std::uint64_t rounds = (batches + thread_count - 1) / thread_count;
+  const std::vector<std::size_t> slices = detail::cell_slices(cells, ranks);
+  const std::size_t slice = slices[rank];
+
+  // Resume: the root's saved state, dealt out slice by slice.
+  const RunState* resume = world.is_root() ? control.resume_from : nullptr;
+  if (resume != nullptr && (resume->mean.size() != cells || resume->squares.size() != cells ||
+                            resume->batches_folded > batches)) {
+    throw std::invalid_argument("run_batches: the state to resume from belongs to another run");
+  }
+  const std::uint64_t start = world.broadcast_from_root(resume ? resume->batches_folded : 0);
+  BatchStatistics statistics(slice);
+  if (start > 0) {
+    std::vector<double> mean = world.scatter_from_root(
+        resume ? std::span<const double>(resume->mean) : std::span<const double>(), slices);
+    std::vector<double> squares = world.scatter_from_root(
+        resume ? std::span<const double>(resume->squares) : std::span<const double>(), slices);
+    statistics = BatchStatistics(std::move(mean), std::move(squares));
+  }
+
+  // One score buffer per thread; with several ranks, the round's slices of every batch.
+  std::vector<std::vector<double>> sums(thread_count, std::vector<double>(cells, 0.0));
+  std::vector<std::uint64_t> scatterings(thread_count, 0);
+  if (resume != nullptr) scatterings[0] = resume->scattering_events;
+  std::vector<double> send, received;
+  std::vector<std::size_t> send_counts, receive_counts;
+  if (ranks > 1) {
+    send.resize(thread_count * cells);
+    received.resize(per_round * slice);
+    for (const std::size_t count : slices) send_counts.push_back(thread_count * count);
+    receive_counts.assign(static_cast<std::size_t>(ranks), thread_count * slice);
+  }
+
+  const auto clock_start = std::chrono::steady_clock::now();
+  auto last_checkpoint = clock_start;
+  std::uint64_t last_checkpoint_batches = start;
+  std::uint64_t done = start;
+  std::uint64_t round_flags = 0;  // written by the master before the round's last barrier
+  std::exception_ptr failure;
+
+  // The whole state, gathered on the root (a collective: every rank calls it).
+  auto gather_state = [&]() {
+    RunState state;
+    state.batches_folded = done;
+    std::uint64_t local = 0;
+    for (const std::uint64_t s : scatterings) local += s;
+    state.scattering_events = world.sum(local);
+    state.mean = world.gather_to_root(statistics.mean(), slices);
+    state.squares = world.gather_to_root(statistics.squares(), slices);
+    return state;
+  };
 
 #pragma omp parallel num_threads(threads)
   {
-    const int t = omp_get_thread_num();
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
     auto scratch = walk.make_scratch();
-    // Each thread folds its own slice of cells, over the round's batches in batch order.
-    const std::size_t slice = (cells + static_cast<std::size_t>(threads) - 1) /
-                              static_cast<std::size_t>(threads);
-    const std::size_t begin = std::min(cells, slice * static_cast<std::size_t>(t));
-    const std::size_t end = std::min(cells, begin + slice);
-    for (std::uint64_t round = 0; round < rounds; ++round) {
-      const std::uint64_t batch = round * thread_count + static_cast<std::uint64_t>(t);
+    // Each thread folds its own part of the rank's slice, over the round's batches in order.
+    const std::size_t part = (slice + thread_count - 1) / thread_count;
+    const std::size_t begin = std::min(slice, part * t);
+    const std::size_t end = std::min(slice, begin + part);
+    for (std::uint64_t first = start; first < batches; first += per_round) {
+      const std::uint64_t batch = first + rank * thread_count + t;
       if (batch < batches) {
         const BatchRange range = batch_range(photons, batches, batch);
-        scatterings[static_cast<std::size_t>(t)] +=
-            walk.run(range.first, range.last, sums[static_cast<std::size_t>(t)].data(), scratch);
+        scatterings[t] += walk.run(range.first, range.last, sums[t].data(), scratch);
       }
 #pragma omp barrier
-      for (int k = 0; k < threads; ++k) {
-        const std::uint64_t folded = round * thread_count + static_cast<std::uint64_t>(k);
-        if (folded >= batches) break;
-        const BatchRange range = batch_range(photons, batches, folded);
-        statistics.add_batch(folded, sums[static_cast<std::size_t>(k)].data(),
-                             static_cast<double>(range.last - range.first), begin, end);
+      if (ranks > 1) {
+#pragma omp master
+        {
+          // Pack [owner][thread][owner's cells], clearing the buffers for the next round.
+          double* out = send.data();
+          std::size_t offset = 0;
+          for (const std::size_t count : slices) {
+            for (std::vector<double>& buffer : sums) {
+              std::copy_n(buffer.begin() + static_cast<std::ptrdiff_t>(offset), count, out);
+              std::fill_n(buffer.begin() + static_cast<std::ptrdiff_t>(offset), count, 0.0);
+              out += count;
+            }
+            offset += count;
+          }
+          world.all_to_all(send, send_counts, received, receive_counts);
+        }
+#pragma omp barrier
+      }
+      for (std::uint64_t k = 0; k < per_round && first + k < batches; ++k) {
+        const BatchRange range = batch_range(photons, batches, first + k);
+        double* batch_sums = ranks > 1 ? received.data() + k * slice : sums[k].data();
+        statistics.add_batch(first + k, batch_sums, static_cast<double>(range.last - range.first),
+                             begin, end);
+      }
+      // The master decides before the barrier, so that every thread reads the decision after it
+      // without a barrier of its own; a checkpoint reads the statistics after the barrier, before
+      // the master's next batch (the others wait for it before folding again).
+#pragma omp master
+      {
+        done = std::min(batches, first + per_round);
+        std::uint64_t flags = 0;
+        if ((control.stop_requested != nullptr && control.stop_requested->load()) ||
+            failure != nullptr) {
+          flags |= detail::kStopFlag;
+        }
+        const auto now = std::chrono::steady_clock::now();
+        const CheckpointPolicy& policy = control.checkpoint;
+        const bool due =
+            (policy.every_batches > 0 && done - last_checkpoint_batches >= policy.every_batches) ||
+            (policy.every_seconds > 0.0 &&
+             std::chrono::duration<double>(now - last_checkpoint).count() >= policy.every_seconds);
+        if (world.is_root() && due && done < batches && control.save_checkpoint) {
+          flags |= detail::kCheckpointFlag;
+        }
+        flags = world.bitwise_or(flags);
+        // Stopping early saves the state too, so that the run can be resumed from there.
+        if ((flags & detail::kStopFlag) && done < batches && control.save_checkpoint) {
+          flags |= detail::kCheckpointFlag;
+        }
+        round_flags = flags;
       }
 #pragma omp barrier
 #pragma omp master
-      if (progress) {
-        progress(static_cast<double>(std::min(batches, (round + 1) * thread_count)) /
-                 static_cast<double>(batches));
+      {
+        if (progress) progress(static_cast<double>(done) / static_cast<double>(batches));
+        if (round_flags & detail::kCheckpointFlag) {
+          try {
+            const RunState state = gather_state();
+            if (world.is_root()) control.save_checkpoint(state);
+          } catch (...) {
+            failure = std::current_exception();  // stops every rank after the next round
+          }
+          last_checkpoint = std::chrono::steady_clock::now();
+          last_checkpoint_batches = done;
+        }
       }
+      if (round_flags & detail::kStopFlag) break;
     }
   }
 
+  RunState state = gather_state();
+  if (failure) std::rethrow_exception(failure);
   BatchOutcome outcome;
-  outcome.mean = statistics.mean();
-  outcome.standard_error = statistics.standard_error(batches);
+  outcome.batches_done = done;
+  outcome.photons_done = batch_range(photons, batches, done).first;  // photons before batch `done`
+  outcome.standard_error = BatchStatistics::standard_error_from_squares(state.squares, done);
+  if (!world.is_root()) outcome.standard_error.clear();
+  outcome.mean = std::move(state.mean);
+  outcome.scattering_events = state.scattering_events;
   outcome.threads = threads;
-  for (std::uint64_t s : scatterings) outcome.scattering_events += s;
+  outcome.ranks = ranks;
   return outcome;
 }
 

@@ -68,6 +68,11 @@ struct SimulationSpec {
   void validate() const;
 };
 
+// 16 hex digits naming everything that determines the tallies bit for bit: medium, source, grid,
+// tallies, photons, batches, seed and escape radius; not threads or ranks, which never change a
+// result. Checkpoints and sweeps use it to recognise the same run.
+std::string fingerprint(const SimulationSpec& spec);
+
 std::string to_string(SourceKind source);
 std::string to_string(Estimator estimator);
 

@@ -1,0 +1,58 @@
+// The cost of folding batches into statistics and of packing a round's sums for the exchange
+// between ranks (batch_runner.hpp), per batch, for the default grid and a fine radiance grid.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "scatterlab/tally/batch_statistics.hpp"
+#include "scatterlab/tally/tally_layout.hpp"
+#include "scatterlab/transport/simulation.hpp"
+
+namespace {
+
+using scatterlab::SimulationSpec;
+
+// 0: the default grid (15 x 40 x 18 x 36 radiance); 1: a fine one (60 x 160 x 36 x 72).
+std::size_t cells_of(int grid) {
+  SimulationSpec spec;
+  if (grid == 1) {
+    spec.grid.r.bins = 60;
+    spec.grid.z.bins = 160;
+    spec.grid.theta.bins = 36;
+    spec.grid.phi.bins = 72;
+  }
+  return scatterlab::TallyLayout(spec).size;
+}
+
+// One batch folded into every cell: the work the folding side does per batch.
+void BM_FoldBatch(benchmark::State& state) {
+  const std::size_t cells = cells_of(static_cast<int>(state.range(0)));
+  scatterlab::BatchStatistics statistics(cells);
+  std::vector<double> sums(cells, 1.0);
+  std::size_t batch = 0;
+  for (auto _ : state) {
+    statistics.add_batch(batch++, sums.data(), 1000.0, 0, cells);
+    benchmark::DoNotOptimize(statistics.mean().data());
+  }
+  state.counters["cells"] = static_cast<double>(cells);
+  state.counters["ns_per_cell"] =
+      benchmark::Counter(static_cast<double>(cells), benchmark::Counter::kIsIterationInvariantRate |
+                                                         benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_FoldBatch)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// Packing one thread's batch sums by owner rank, clearing them: the copy before MPI_Alltoallv.
+void BM_PackBatch(benchmark::State& state) {
+  const std::size_t cells = cells_of(static_cast<int>(state.range(0)));
+  std::vector<double> sums(cells, 1.0), send(cells);
+  for (auto _ : state) {
+    std::copy(sums.begin(), sums.end(), send.begin());
+    std::fill(sums.begin(), sums.end(), 0.0);
+    benchmark::DoNotOptimize(send.data());
+  }
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * cells * sizeof(double)));
+}
+BENCHMARK(BM_PackBatch)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+}  // namespace

@@ -1,0 +1,65 @@
+#pragma once
+// Checkpoints, --resume and interruption for any command that runs batches (simulate,
+// searchlight, ...). A command registers the options with add_long_run_options, then for each
+// run makes a LongRun, passes long_run.control() to the transport, and calls finish():
+//
+//   LongRun long_run(*options, output_path, fingerprint(spec), world);
+//   const auto out = simulate(spec, progress, long_run.control());
+//   ... write the file (partial or not) on the root ...
+//   return long_run.finish(out.batches_done, spec.run.batches, output_path);
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "scatterlab/transport/communicator.hpp"
+#include "scatterlab/transport/run_control.hpp"
+
+namespace scatterlab::cli {
+
+struct LongRunOptions {
+  std::string checkpoint;  // path; default "<out>.checkpoint"
+  std::string interval;    // "600", "600s", "10m", "2h" or "8b" (batches)
+  bool resume = false;
+};
+
+// --checkpoint PATH, --checkpoint-interval INTERVAL, --resume
+std::shared_ptr<LongRunOptions> add_long_run_options(CLI::App& command);
+
+// "600", "600s", "10m", "2h": seconds; "8b": batches. Throws InputError naming
+// --checkpoint-interval.
+CheckpointPolicy parse_checkpoint_interval(const std::string& text);
+
+class LongRun {
+ public:
+  // Reads the checkpoint on the root when resuming (every rank learns whether that failed, so
+  // that an error stops all of them) and catches SIGINT, SIGTERM and SIGUSR1 (which mpirun
+  // forwards) until destroyed: the run then stops after the current round of batches.
+  LongRun(const LongRunOptions& options, const std::filesystem::path& output,
+          std::string fingerprint, Communicator& world);
+  LongRun(const LongRun&) = delete;
+  LongRun& operator=(const LongRun&) = delete;
+  ~LongRun();
+
+  const RunControl& control() const { return control_; }
+  const std::filesystem::path& checkpoint_path() const { return checkpoint_path_; }
+  // Batches already done by the run being resumed (0 when starting afresh).
+  std::uint64_t resumed_batches() const { return state_ ? state_->batches_folded : 0; }
+
+  // After the output is written: removes the checkpoint of a complete run and returns 0; for a
+  // run stopped early prints why and how to continue (root only) and returns 130.
+  int finish(std::uint64_t batches_done, std::uint64_t batches,
+             const std::filesystem::path& output) const;
+
+ private:
+  Communicator& world_;
+  std::filesystem::path checkpoint_path_;
+  std::string fingerprint_;
+  std::optional<RunState> state_;
+  RunControl control_;
+};
+
+}  // namespace scatterlab::cli

@@ -1,0 +1,43 @@
+// scatterlab merge: independent runs of one scene (different seeds) pooled into one file.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include "commands.hpp"
+#include "scatterlab/io/merge.hpp"
+
+namespace scatterlab::cli {
+
+Action add_merge_command(CLI::App& app, const std::string& command_line) {
+  auto* merge = app.add_subcommand(
+      "merge",
+      "Pool independent runs of the same scene (different seeds) into one file: every batch of "
+      "every run counts once in the mean and the standard error; photons add up. Refuses runs "
+      "that differ in anything but seed, photons, batches and threads.");
+  struct Options {
+    std::vector<std::string> inputs;
+    std::string out;
+  };
+  auto o = std::make_shared<Options>();
+  merge->add_option("FILES", o->inputs, "Two or more files written by scatterlab simulate")
+      ->required()
+      ->check(CLI::ExistingFile);
+  merge->add_option("-o,--out", o->out, "Merged HDF5 file")->required();
+  return [o, command_line] {
+    const std::vector<std::filesystem::path> inputs(o->inputs.begin(), o->inputs.end());
+    const MergeSummary summary = merge_simulation_files(inputs, o->out, command_line);
+    fmt::print("scatterlab merge: {} runs, {} photons in {} batches: wrote {}\n", inputs.size(),
+               summary.photons, summary.batches, o->out);
+    if (summary.unequal_batches) {
+      fmt::print(
+          "  note: the runs differ in photons per batch; every batch weighs the same in "
+          "the merged mean (unbiased, as is its standard error, but not the least "
+          "variance possible)\n");
+    }
+    return 0;
+  };
+}
+
+}  // namespace scatterlab::cli

@@ -1,0 +1,280 @@
+#include "scatterlab/io/merge.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/io/atomic_output.hpp"
+#include "scatterlab/io/hdf5_file.hpp"
+#include "scatterlab/io/simulation_file.hpp"
+#include "scatterlab/tally/pooled_statistics.hpp"
+
+namespace scatterlab {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kAccepted =
+    "runs of the same scene that differ only in seed, photons, batches and threads";
+
+// Parameters that may differ between the runs being merged.
+const std::set<std::string> kPerRun = {"photons", "batches", "seed", "seeds", "threads"};
+
+void copy_attribute(const hdf5::Object& from, hdf5::Object& to, const std::string& name) {
+  switch (from.attribute_type(name)) {
+    case hdf5::AttributeType::string:
+      return to.write_string_attribute(name, from.read_string_attribute(name));
+    case hdf5::AttributeType::floating:
+      return to.write_double_attribute(name, from.read_double_attribute(name));
+    case hdf5::AttributeType::signed_integer:
+      return to.write_int64_attribute(name, from.read_int64_attribute(name));
+    case hdf5::AttributeType::unsigned_integer:
+      return to.write_uint64_attribute(name, from.read_uint64_attribute(name));
+    case hdf5::AttributeType::other:
+      break;
+  }
+  throw std::runtime_error(from.location() + ": attribute '" + name + "' has an unknown type");
+}
+
+[[noreturn]] void mismatch(const std::string& field, const fs::path& a, const std::string& in_a,
+                           const fs::path& b, const std::string& in_b) {
+  throw InputError(
+      field, fmt::format("{} has {} but {} has {}", b.string(), in_b, a.string(), in_a), kAccepted);
+}
+
+// Parameter name -> value as `scatterlab info` shows it, less those that may differ.
+std::map<std::string, std::string> shared_parameters(const FileSummary& summary) {
+  std::map<std::string, std::string> values;
+  for (const auto& [name, value] : summary.parameters) {
+    if (!kPerRun.count(name)) values[name] = value;
+  }
+  return values;
+}
+
+void check_parameters(const FileSummary& first, const FileSummary& other) {
+  const auto a = shared_parameters(first), b = shared_parameters(other);
+  for (const auto& [name, value] : a) {
+    const auto it = b.find(name);
+    const std::string field = fmt::format("parameters.{}", name);
+    if (it == b.end()) mismatch(field, first.path, value, other.path, "none");
+    if (it->second != value) mismatch(field, first.path, value, other.path, it->second);
+  }
+  for (const auto& [name, value] : b) {
+    if (!a.count(name)) {
+      mismatch(fmt::format("parameters.{}", name), first.path, "none", other.path, value);
+    }
+  }
+}
+
+std::vector<std::uint64_t> seeds_of(const hdf5::Group& parameters) {
+  if (parameters.has_attribute("seed")) return {parameters.read_uint64_attribute("seed")};
+  std::vector<std::uint64_t> seeds;
+  const std::string list =
+      parameters.has_attribute("seeds") ? parameters.read_string_attribute("seeds") : "";
+  std::size_t at = 0;
+  while (at < list.size()) {
+    std::size_t next = list.find(',', at);
+    if (next == std::string::npos) next = list.size();
+    seeds.push_back(std::stoull(list.substr(at, next - at)));
+    at = next + 1;
+  }
+  return seeds;
+}
+
+struct Input {
+  fs::path path;
+  FileSummary summary;
+  hdf5::File file;
+  double batches;
+  std::uint64_t photons;
+};
+
+std::uint64_t count(const hdf5::Group& group, const char* name) {
+  return static_cast<std::uint64_t>(group.read_int64_attribute(name));
+}
+
+// The batches a file's tallies are the mean of: all of them unless it is partial.
+double batches_of(const hdf5::File& file) {
+  const hdf5::Group& root = file.root();
+  if (root.has_attribute("batches_done")) return static_cast<double>(count(root, "batches_done"));
+  return static_cast<double>(count(root.open_group("parameters"), "batches"));
+}
+
+void check_grid(const Input& first, const Input& other) {
+  const hdf5::Group a = first.file.root().open_group("grid");
+  const hdf5::Group b = other.file.root().open_group("grid");
+  if (first.summary.phi_folded != other.summary.phi_folded) {
+    mismatch("grid.fold_phi", first.path, fmt::format("{}", first.summary.phi_folded), other.path,
+             fmt::format("{}", other.summary.phi_folded));
+  }
+  if (a.member_names() != b.member_names()) {
+    mismatch("grid", first.path, fmt::format("axes {}", fmt::join(a.member_names(), ",")),
+             other.path, fmt::format("axes {}", fmt::join(b.member_names(), ",")));
+  }
+  for (const std::string& axis : a.member_names()) {
+    const hdf5::Array x = a.read_dataset(axis), y = b.read_dataset(axis);
+    if (x.values != y.values) {
+      mismatch(fmt::format("grid.{}", axis), first.path,
+               fmt::format("{} bins", x.values.size() - 1), other.path,
+               fmt::format("{} bins{}", y.values.size() - 1,
+                           x.values.size() == y.values.size() ? " with other edges" : ""));
+    }
+  }
+}
+
+}  // namespace
+
+MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs::path& output,
+                                    const std::string& command) {
+  if (paths.size() < 2) {
+    throw InputError("FILES", fmt::format("got {} file(s)", paths.size()),
+                     "two or more files written by scatterlab simulate");
+  }
+  AtomicOutput out(output);  // a bad output path fails before anything is read
+  std::vector<Input> inputs;
+  std::map<std::uint64_t, fs::path> seeds;
+  MergeSummary summary;
+  for (const fs::path& path : paths) {
+    FileSummary summary_of_input = read_file_summary(path);  // an InputError unless scatterlab's
+    hdf5::File file = hdf5::File::open_read_only(path);
+    const double batches = batches_of(file);
+    if (batches < 2) {
+      throw InputError("FILES", fmt::format("{} holds {} batch(es)", path.string(), batches),
+                       "files of at least 2 batches (a standard error needs two)");
+    }
+    const std::uint64_t photons = count(file.root(), "photons_run");
+    for (const std::uint64_t seed : seeds_of(file.root().open_group("parameters"))) {
+      const auto [it, fresh] = seeds.emplace(seed, path);
+      if (!fresh) {
+        throw InputError("parameters.seed",
+                         fmt::format("{} and {} both ran seed {}: their photons are the same, "
+                                     "not independent",
+                                     it->second.string(), path.string(), seed),
+                         "runs with different seeds");
+      }
+    }
+    inputs.push_back({path, std::move(summary_of_input), std::move(file), batches, photons});
+  }
+
+  const Input& first = inputs.front();
+  const hdf5::Group first_tallies = first.file.root().open_group("tallies");
+  const double per_batch = static_cast<double>(first.photons) / first.batches;
+  for (const Input& other : inputs) {
+    summary.photons += other.photons;
+    summary.batches += static_cast<std::uint64_t>(other.batches);
+    const double ratio = static_cast<double>(other.photons) / other.batches / per_batch;
+    summary.unequal_batches = summary.unequal_batches || std::abs(ratio - 1.0) > 0.01;
+    if (&other == &first) continue;
+    check_parameters(first.summary, other.summary);
+    check_grid(first, other);
+    const hdf5::Group tallies = other.file.root().open_group("tallies");
+    if (tallies.member_names() != first_tallies.member_names()) {
+      mismatch("tallies", first.path,
+               fmt::format("{}", fmt::join(first_tallies.member_names(), ",")), other.path,
+               fmt::format("{}", fmt::join(tallies.member_names(), ",")));
+    }
+  }
+
+  hdf5::File file = hdf5::File::create(out.temporary_path());
+  hdf5::Group& root = file.root();
+  const hdf5::Group& first_root = first.file.root();
+  double wall_seconds = 0.0;
+  std::uint64_t scattering_events = 0;
+  std::string merged_from;
+  for (const Input& input : inputs) {
+    wall_seconds += input.file.root().read_double_attribute("wall_seconds");
+    scattering_events += count(input.file.root(), "scattering_events");
+    if (!merged_from.empty()) merged_from += '\n';
+    merged_from += input.path.string();
+  }
+  root.write_string_attribute("format", "scatterlab");
+  root.write_int64_attribute("format_version", kSimulationFormatVersion);
+  root.write_string_attribute("scatterlab_version", SCATTERLAB_VERSION);
+  root.write_string_attribute("command", command);
+  root.write_string_attribute("created", iso8601_now());
+  root.write_double_attribute("wall_seconds", wall_seconds);
+  root.write_int64_attribute("photons_run", static_cast<std::int64_t>(summary.photons));
+  root.write_int64_attribute("scattering_events", static_cast<std::int64_t>(scattering_events));
+  root.write_int64_attribute("batches_done", static_cast<std::int64_t>(summary.batches));
+  root.write_bool_attribute("partial", false);
+  root.write_string_attribute("merged_from", merged_from);
+
+  {  // groups close before the file does
+    // Parameters: the first input's, with the totals and every seed.
+    hdf5::Group parameters = root.create_group("parameters");
+    const hdf5::Group first_parameters = first_root.open_group("parameters");
+    std::string seed_list;
+    for (const auto& entry : seeds) {
+      if (!seed_list.empty()) seed_list += ',';
+      seed_list += std::to_string(entry.first);
+    }
+    for (const std::string& name : first_parameters.attribute_names()) {
+      if (name == "photons") {
+        parameters.write_int64_attribute(name, static_cast<std::int64_t>(summary.photons));
+      } else if (name == "batches") {
+        parameters.write_int64_attribute(name, static_cast<std::int64_t>(summary.batches));
+      } else if (name == "seed" || name == "seeds") {
+        parameters.write_string_attribute("seeds", seed_list);
+      } else if (name != "threads") {
+        copy_attribute(first_parameters, parameters, name);
+      }
+    }
+
+    hdf5::Group grid = root.create_group("grid");
+    const hdf5::Group first_grid = first_root.open_group("grid");
+    for (const std::string& name : first_grid.attribute_names())
+      copy_attribute(first_grid, grid, name);
+    for (const std::string& axis : first_grid.member_names()) {
+      const hdf5::Dataset from = first_grid.open_dataset(axis);
+      hdf5::Dataset to = grid.write_dataset(axis, from.read().values);
+      for (const std::string& name : from.attribute_names()) copy_attribute(from, to, name);
+    }
+
+    hdf5::Group tallies = root.create_group("tallies");
+    for (const std::string& name : first_tallies.member_names()) {
+      const hdf5::Group from = first_tallies.open_group(name);
+      hdf5::Group node = tallies.create_group(name);
+      for (const std::string& attribute : from.attribute_names())
+        copy_attribute(from, node, attribute);
+      hdf5::Array mean = from.read_dataset("mean");
+      std::vector<BatchSet> pooled(mean.values.size());
+      for (const Input& input : inputs) {
+        const hdf5::Group tally = input.file.root().open_group("tallies").open_group(name);
+        const hdf5::Array m = tally.read_dataset("mean"), e = tally.read_dataset("stderr");
+        if (m.shape != mean.shape || e.shape != mean.shape) {
+          mismatch(fmt::format("tallies.{}", name), first.path, "another shape", input.path,
+                   "this shape");
+        }
+        for (std::size_t i = 0; i < pooled.size(); ++i) {
+          const BatchSet run =
+              BatchSet::from_standard_error(m.values[i], e.values[i], input.batches);
+          pooled[i] = &input == &first ? run : pool(pooled[i], run);
+        }
+      }
+      std::vector<double> error(pooled.size());
+      for (std::size_t i = 0; i < pooled.size(); ++i) {
+        mean.values[i] = pooled[i].mean;
+        error[i] = pooled[i].standard_error();
+      }
+      for (const char* dataset : {"mean", "stderr"}) {
+        const hdf5::Dataset source = from.open_dataset(dataset);
+        hdf5::Dataset target = node.write_dataset(
+            dataset, std::string(dataset) == "mean" ? mean.values : error, mean.shape);
+        for (const std::string& attribute : source.attribute_names()) {
+          copy_attribute(source, target, attribute);
+        }
+      }
+    }
+  }
+  file.close();
+  out.commit();
+  return summary;
+}
+
+}  // namespace scatterlab
