@@ -198,7 +198,9 @@ class LobeFitsFileTest : public ::testing::Test {
       flux.mean.insert(flux.mean.end(), {lobe.flux.x(), lobe.flux.z()});
       flux.stderr_of_mean.insert(flux.stderr_of_mean.end(), {0.0, 0.0});
     }
-    Provenance provenance{"test", "test", "2024-01-01T00:00:00Z", 1.0, 1, 1};
+    Provenance provenance;
+    provenance.version = provenance.command = "test";
+    provenance.created = "2024-01-01T00:00:00Z";
     write_simulation_file(path_, spec, {radiance, flux}, provenance);
   }
 
@@ -299,7 +301,7 @@ TEST_F(LobeFitsFileTest, CsvHasOneRowPerSpatialBin) {
 TEST_F(LobeFitsFileTest, FilesWithoutRadianceAreInputErrors) {
   const fs::path other = directory_ / "no-radiance.h5";
   SimulationSpec spec;
-  write_simulation_file(other, spec, {}, Provenance{"t", "t", "t", 0, 0, 0});
+  write_simulation_file(other, spec, {}, Provenance{});
   try {
     fit::read_radiance_lobes(other);
     ADD_FAILURE();
