@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   const auto simulate = scatterlab::cli::add_simulate_command(app, command_line);
   const auto info = scatterlab::cli::add_info_command(app);
+  const auto report = scatterlab::cli::add_report_command(app, command_line);
 
   try {
     app.parse(argc, argv);
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("simulate")) return simulate();
     if (app.got_subcommand("info")) return info();
+    if (app.got_subcommand("report")) return report();
   } catch (const scatterlab::InputError& e) {
     fmt::print(stderr, "scatterlab: error: {}\n", e.what());
     return 2;
