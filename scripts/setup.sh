@@ -10,6 +10,7 @@ packages=(
   libopenmpi-dev openmpi-bin
   libplplot-dev plplot-driver-cairo
   clang-format
+  python3-h5py python3-matplotlib python3-nbconvert python3-nbclient python3-ipykernel
 )
 
 missing=()

@@ -19,5 +19,6 @@ Action add_info_command(CLI::App& app);
 Action add_fit_command(CLI::App& app);
 Action add_validate_command(CLI::App& app);
 Action add_merge_command(CLI::App& app, const std::string& command_line);
+Action add_report_command(CLI::App& app, const std::string& command_line);
 
 }  // namespace scatterlab::cli

@@ -1,0 +1,26 @@
+#pragma once
+// The sections of `scatterlab report`: each runs its cases, compares them with an exact
+// reference and returns a Section. The quick profile is sized for the test suite (a few
+// minutes on 2 cores in all); the full profile for a workstation.
+
+#include <cstdint>
+
+#include "scatterlab/report/section.hpp"
+
+namespace scatterlab::report {
+
+struct Profile {
+  bool quick = true;
+  int threads = 0;  // 0: all hardware threads
+  std::uint64_t seed = 1;
+};
+
+// Infinite medium, isotropic point source: Monte Carlo fluence on shells against the exact
+// transport solution, at doubling photon budgets, for both estimators. Error against run time.
+Section infinite_medium_convergence(const Profile& profile);
+
+// Infinite medium, pencil beam, over albedo x g extremes: energy balance, the mean absorption
+// depth 1 / (1 - albedo g) and the mean number of scattering events albedo / (1 - albedo).
+Section infinite_medium_extremes(const Profile& profile);
+
+}  // namespace scatterlab::report

@@ -1,0 +1,56 @@
+#include <fmt/format.h>
+
+#include <functional>
+#include <memory>
+
+#include "commands.hpp"
+#include "scatterlab/report/report_writer.hpp"
+#include "scatterlab/report/suites.hpp"
+
+namespace scatterlab::cli {
+namespace {
+
+struct ReportOptions {
+  bool quick = false;
+  std::string out = "scatterlab-report";
+  report::Profile profile;
+};
+
+}  // namespace
+
+Action add_report_command(CLI::App& app, const std::string& command_line) {
+  auto* command = app.add_subcommand(
+      "report",
+      "Run the accuracy suite: every method against its exact reference, error against run "
+      "time, stiff and extreme cases; write a Markdown report with CSVs. Exits 1 if any check "
+      "fails");
+  auto options = std::make_shared<ReportOptions>();
+  command->add_flag("--quick", options->quick, "Small budgets, for the test suite (minutes)");
+  command->add_option("--out", options->out, "Directory to write (created if missing)")
+      ->capture_default_str();
+  command->add_option("--threads", options->profile.threads, "Threads (0: all)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--seed", options->profile.seed, "Seed of the first run")
+      ->capture_default_str();
+
+  return [options, command_line] {
+    options->profile.quick = options->quick;
+    const std::vector<std::function<report::Section(const report::Profile&)>> suites = {
+        report::infinite_medium_convergence, report::infinite_medium_extremes};
+    std::vector<report::Section> sections;
+    int failed = 0;
+    for (const auto& suite : suites) {
+      sections.push_back(suite(options->profile));
+      const report::Section& section = sections.back();
+      fmt::print("{:<55} {}\n", section.title, section.passed() ? "pass" : "FAIL");
+      for (const std::string& failure : section.failures()) fmt::print("    {}\n", failure);
+      failed += !section.passed();
+    }
+    report::write_report(options->out, command_line, sections);
+    fmt::print("{} of {} sections pass; report in {}/report.md\n", sections.size() - failed,
+               sections.size(), options->out);
+    return failed == 0 ? 0 : 1;
+  };
+}
+
+}  // namespace scatterlab::cli

@@ -1,0 +1,28 @@
+#pragma once
+// Small helpers the report's Monte Carlo sections share.
+
+#include <cmath>
+#include <string>
+
+#include "scatterlab/transport/simulate.hpp"
+
+namespace scatterlab::report {
+
+inline const TallyResult& tally(const SimulationOutput& output, const std::string& name) {
+  for (const TallyResult& t : output.tallies) {
+    if (t.name == name) return t;
+  }
+  throw std::logic_error("report: simulation has no tally " + name);
+}
+
+inline int count_non_finite(const SimulationOutput& output) {
+  int count = 0;
+  for (const TallyResult& t : output.tallies) {
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      count += !std::isfinite(t.mean[i]) || !std::isfinite(t.stderr_of_mean[i]);
+    }
+  }
+  return count;
+}
+
+}  // namespace scatterlab::report

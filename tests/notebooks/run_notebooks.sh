@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Usage: run_notebooks.sh SCATTERLAB SOURCE_DIR
+# Makes small data with the scatterlab program, then executes every notebook in notebooks/ top to
+# bottom, headless, against it. Executed copies go to a temporary folder: outputs are never
+# written back into the source tree.
+set -euo pipefail
+exe=$1
+source_dir=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+data=$work/data
+mkdir -p "$data"
+
+"$exe" simulate --albedo 0.5 --g 0.9 --photons 2e5 --batches 16 --theta-bins 9 --phi-bins 12 \
+  --out "$data/paper-beam.h5" >/dev/null
+for albedo in 0.3 0.9; do
+  "$exe" simulate --source point --albedo "$albedo" --g 0 --photons 5e4 --batches 16 \
+    --out "$data/point-$albedo.h5" >/dev/null
+done
+
+failures=0
+for notebook in "$source_dir"/notebooks/*.ipynb; do
+  name=$(basename "$notebook")
+  if SCATTERLAB_DATA=$data MPLBACKEND=Agg PYDEVD_DISABLE_FILE_VALIDATION=1 \
+      /usr/bin/python3 -m nbconvert --to notebook --execute --ExecutePreprocessor.timeout=300 \
+      --output-dir "$work/executed" "$notebook" >"$work/log" 2>&1; then
+    echo "ok: $name"
+  else
+    echo "FAIL: $name"
+    cat "$work/log"
+    failures=$((failures + 1))
+  fi
+done
+exit "$failures"
