@@ -101,8 +101,8 @@ std::vector<EyeRay> make_eye_rays(int count) {
   return rays;
 }
 
-// Per eye ray: support intervals and pruning alone (range(0) = 0), or all paths at 32 regular
-// sample points found by range(0) = 1: intervals, then only the triangles whose interval holds
+// Per eye ray: support intervals and pruning alone (range(0) = 0), or all paths at range(1)
+// regular sample points found by range(0) = 1: intervals, then only the triangles whose interval holds
 // the sample; 2: the tree at every sample; 3: every triangle at every sample.
 void BM_EyeRaySupports(benchmark::State& state) {
   const int mode = static_cast<int>(state.range(0));
@@ -110,7 +110,7 @@ void BM_EyeRaySupports(benchmark::State& state) {
   options.use_tree = mode != 3;
   const RefractiveSolver solver(bumpy_sphere(), 1.5, options);
   const std::vector<EyeRay> rays = make_eye_rays(16);
-  constexpr int samples = 32;
+  const int samples = static_cast<int>(state.range(1));
   SupportStats support_stats;
   RefractionStats path_stats;
   std::vector<TriangleSupport> supports;
@@ -153,7 +153,17 @@ void BM_EyeRaySupports(benchmark::State& state) {
         support_stats.supports > 0 ? interval_fraction / double(support_stats.supports) : 0.0;
   }
 }
-BENCHMARK(BM_EyeRaySupports)->ArgName("mode")->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
+// 16 iterations: each ray once, so the modes' per-ray counters are over the same rays.
+BENCHMARK(BM_EyeRaySupports)
+    ->ArgNames({"mode", "samples"})
+    ->Args({0, 0})
+    ->Args({1, 32})
+    ->Args({2, 32})
+    ->Args({3, 32})
+    ->Args({1, 128})
+    ->Args({2, 128})
+    ->Iterations(16)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace scatterlab
