@@ -102,17 +102,20 @@ bool PositionNormalTree::may_contain_path(const Node& node, const PathQuery& q) 
     }
   }
   if (q.eta == 1.0) return true;  // no half-vector: the spindle is the segment
-
-  const DirectionCone& normals = node.normals;
   const DirectionCone v_cone = cone_towards(center, radius, q.v);
   const DirectionCone l_cone = q.light.at_infinity
                                    ? DirectionCone{q.light.direction_to_light, 0.0}
                                    : cone_towards(center, radius, q.light.position);
+  return cones_admit_path(node.normals, v_cone, l_cone, q.eta);
+}
+
+bool cones_admit_path(const DirectionCone& normals, const DirectionCone& v_cone,
+                      const DirectionCone& l_cone, double eta) {
   if (!normals.is_everything()) {
     // Sidedness (§3.4): omega_L within 90 degrees of N_s (within the critical angle asin(eta)
     // when eta < 1), -omega_V within the critical angle asin(1/eta) when eta > 1.
-    const double max_theta_l = q.eta < 1.0 ? std::asin(q.eta) : 0.5 * pi;
-    const double max_theta_v = q.eta > 1.0 ? std::asin(1.0 / q.eta) : 0.5 * pi;
+    const double max_theta_l = eta < 1.0 ? std::asin(eta) : 0.5 * pi;
+    const double max_theta_v = eta > 1.0 ? std::asin(1.0 / eta) : 0.5 * pi;
     const double slack = 1e-9;
     if (!l_cone.is_everything() &&
         angle_between(l_cone.axis, normals.axis) - l_cone.half_angle - normals.half_angle >
@@ -126,8 +129,9 @@ bool PositionNormalTree::may_contain_path(const Node& node, const PathQuery& q) 
     }
   }
   // Cone overlap (§3.4, as §3.3.1 with a box for the positions).
-  const DirectionCone h_cone = half_vector_cone(v_cone, l_cone, q.eta);
-  return overlap({-q.target_sign * h_cone.axis, h_cone.half_angle}, normals);
+  const double target_sign = eta > 1.0 ? 1.0 : -1.0;
+  const DirectionCone h_cone = half_vector_cone(v_cone, l_cone, eta);
+  return overlap({-target_sign * h_cone.axis, h_cone.half_angle}, normals);
 }
 
 }  // namespace scatterlab

@@ -57,6 +57,17 @@ void RefractiveSolver::find_paths(const Vec3& v, const Light& light,
   } else {
     for (const RefractiveTriangle& tri : triangles_) search_triangle(tri, q, paths, stats);
   }
+  merge_duplicates(paths, first, stats);
+}
+
+void RefractiveSolver::find_paths_through(std::size_t triangle, const Vec3& v, const Light& light,
+                                          std::vector<RefractionPath>& paths,
+                                          RefractionStats& stats) const {
+  search_triangle(triangles_[triangle], PathQuery(v, light, eta_), paths, stats);
+}
+
+void RefractiveSolver::merge_duplicates(std::vector<RefractionPath>& paths, std::size_t first,
+                                        RefractionStats& stats) const {
   // Merge the copies a solution on a shared edge (or found from two sub-triangles) produces.
   std::size_t kept = first;
   for (std::size_t i = first; i < paths.size(); ++i) {

@@ -200,48 +200,31 @@ KrawczykVerdict krawczyk_test(const RefractiveTriangle& tri, const PathQuery& q,
   return KrawczykVerdict::undecided;
 }
 
+Vec3 residual_derivative_along_v(const RefractiveTriangle& tri, const PathQuery& q, double a,
+                                 double b, const Vec3& direction) {
+  const Vec3 p = tri.point(a, b);
+  const Vec3 to_v = q.v - p;
+  const double length_v = to_v.norm();
+  const Vec3 omega_v = to_v / length_v;
+  const Vec3 omega_l = q.light.direction_from(p);
+  const Vec3 h = q.eta * omega_v + omega_l;
+  const double length_h = h.norm();
+  const Vec3 d_omega_v = unit_derivative(omega_v, length_v, direction);
+  return unit_derivative(h / length_h, length_h, q.eta * d_omega_v);
+}
+
 std::optional<Eigen::Vector2d> newton_2d(const RefractiveTriangle& tri, const PathQuery& q,
                                          Eigen::Vector2d start, double step_limit,
                                          const RefractionOptions& options,
                                          RefractionStats& stats) {
-  ++stats.newton_runs;
-  Vec2 x = start;
-  Residual r = evaluate_residual(tri, q, x.x(), x.y());
-  double norm = r.f.norm();
-  for (int iteration = 0; iteration < options.max_newton_iterations; ++iteration) {
-    if (!(norm > options.newton_tolerance)) return x.allFinite() ? std::optional(x) : std::nullopt;
-    ++stats.newton_iterations;
-    const Eigen::Matrix2d normal_matrix = r.jacobian.transpose() * r.jacobian;
-    Vec2 step = -normal_matrix.ldlt().solve(r.jacobian.transpose() * r.f);  // eq. 9
-    if (!step.allFinite()) return std::nullopt;
-    const double step_length = step.norm();
-    if (step_length > step_limit) step *= step_limit / step_length;
-    // Shorten a step that does not reduce |f| (Walter §3.3).
-    bool reduced = false;
-    for (int halving = 0; halving < 12; ++halving) {
-      const Vec2 trial = x + step;
-      const Residual tr = evaluate_residual(tri, q, trial.x(), trial.y());
-      const double trial_norm = tr.f.norm();
-      if (trial_norm < norm) {
-        x = trial;
-        r = tr;
-        norm = trial_norm;
-        reduced = true;
-        break;
-      }
-      step *= 0.5;
-    }
-    // A stall at the rounding floor is still a solution to well within Snell's 1e-10.
-    if (!reduced) return norm <= 1e-11 ? std::optional(x) : std::nullopt;
-    // Far outside the triangle: this start belongs to another triangle's search.
-    if (std::abs(x.x()) > 4.0 || std::abs(x.y()) > 4.0) return std::nullopt;
-  }
-  return norm <= options.newton_tolerance ? std::optional(x) : std::nullopt;
+  return gauss_newton_2d(
+      [&](const Vec2& ab) { return evaluate_residual(tri, q, ab.x(), ab.y()); }, start,
+      step_limit, options, stats);
 }
 
 std::optional<RefractionPath> accept_path(const RefractiveTriangle& tri, const PathQuery& q,
                                           double a, double b) {
-  constexpr double tolerance = 1e-9;  // barycentric slack; neighbours' duplicates are merged
+  constexpr double tolerance = barycentric_tolerance;  // neighbours' duplicates are merged
   if (!(a >= -tolerance && b >= -tolerance && a + b <= 1.0 + tolerance)) return std::nullopt;
   RefractionPath path;
   path.point = tri.point(a, b);
@@ -271,8 +254,8 @@ std::optional<RefractionPath> accept_path(const RefractiveTriangle& tri, const P
   return path;
 }
 
-std::optional<RefractionPath> find_flat_path(const RefractiveTriangle& tri, const PathQuery& q,
-                                             RefractionStats& stats) {
+std::optional<Vec3> flat_refraction_point(const RefractiveTriangle& tri, const PathQuery& q,
+                                          RefractionStats& stats) {
   const Vec3& ng = tri.geometric_normal;
   if (ng.squaredNorm() == 0.0) return std::nullopt;  // degenerate triangle: no plane
   // Walter §3.2, Fig. 3: V at depth d below the plane, L at height h above it, P = V' + x e on
@@ -327,7 +310,14 @@ std::optional<RefractionPath> find_flat_path(const RefractiveTriangle& tri, cons
     }
   }
   ++stats.newton_runs;
-  const Vec2 ab = tri.barycentric(p);
+  return p;
+}
+
+std::optional<RefractionPath> find_flat_path(const RefractiveTriangle& tri, const PathQuery& q,
+                                             RefractionStats& stats) {
+  const auto p = flat_refraction_point(tri, q, stats);
+  if (!p) return std::nullopt;
+  const Vec2 ab = tri.barycentric(*p);
   return accept_path(tri, q, ab.x(), ab.y());
 }
 

@@ -11,6 +11,12 @@
 
 namespace scatterlab {
 
+// The normal-dependent tests of §3.4 for positions whose directions to V and to the light lie in
+// v_cone and l_cone and whose shading normals lie in `normals`: sidedness (with the critical
+// angles) and the overlap of -s H with the normals. False means no path can exist.
+bool cones_admit_path(const DirectionCone& normals, const DirectionCone& v_cone,
+                      const DirectionCone& l_cone, double eta);
+
 class PositionNormalTree {
  public:
   struct Node {
@@ -32,6 +38,14 @@ class PositionNormalTree {
   // Calls visit(triangle_index) for every triangle of every leaf that survives pruning.
   template <class Visit>
   void for_each_candidate(const PathQuery& q, RefractionStats& stats, Visit&& visit) const {
+    for_each_leaf_triangle([&](const Node& node) { return may_contain_path(node, q); },
+                           stats.nodes_visited, visit);
+  }
+
+  // Depth-first descent: calls visit(triangle_index) for every triangle of every leaf reached
+  // through nodes for which keep(node) holds; counts the nodes tested.
+  template <class Keep, class Visit>
+  void for_each_leaf_triangle(Keep&& keep, std::uint64_t& nodes_visited, Visit&& visit) const {
     if (nodes_.empty()) return;
     std::uint32_t stack[64];
     int size = 0;
@@ -39,8 +53,8 @@ class PositionNormalTree {
     while (size > 0) {
       const std::uint32_t index = stack[--size];
       const Node& node = nodes_[index];
-      ++stats.nodes_visited;
-      if (!may_contain_path(node, q)) continue;
+      ++nodes_visited;
+      if (!keep(node)) continue;
       if (node.count > 0) {
         for (std::uint32_t i = 0; i < node.count; ++i) visit(order_[node.first + i]);
       } else {

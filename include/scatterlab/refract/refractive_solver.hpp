@@ -22,6 +22,15 @@ class RefractiveSolver {
                   RefractionStats& stats) const;
   std::vector<RefractionPath> find_paths(const Vec3& v, const Light& light) const;
 
+  // The paths through one triangle only, appended unmerged (for callers that already know which
+  // triangles can contribute, e.g. from support intervals along an eye ray).
+  void find_paths_through(std::size_t triangle, const Vec3& v, const Light& light,
+                          std::vector<RefractionPath>& paths, RefractionStats& stats) const;
+  // Merges the copies of one path among paths[first..] (solutions on shared edges), keeping the
+  // first of each; adds the number kept to stats.paths.
+  void merge_duplicates(std::vector<RefractionPath>& paths, std::size_t first,
+                        RefractionStats& stats) const;
+
   double eta() const { return eta_; }
   const RefractionOptions& options() const { return options_; }
   void set_options(const RefractionOptions& options) { options_ = options; }

@@ -66,16 +66,73 @@ enum class KrawczykVerdict { no_solution, unique_solution, undecided };
 KrawczykVerdict krawczyk_test(const RefractiveTriangle& tri, const PathQuery& q, Interval a,
                               Interval b);
 
-// 2D Newton with the pseudo-inverse (eq. 9), steps limited to step_limit in (a, b) and shortened
-// until |f| decreases. Returns (a, b) once |f| <= tolerance.
+// d f / d V . direction at (a, b): how the residual moves when the scattering point V moves
+// (Holzschuch 2013, §3.2.3: the x column of the 3 x 3 Jacobian, by the rule of eq. 8; omega_L and
+// N_s do not depend on V).
+Vec3 residual_derivative_along_v(const RefractiveTriangle& tri, const PathQuery& q, double a,
+                                 double b, const Vec3& direction);
+
+// Gauss-Newton with the pseudo-inverse (Walter eq. 9) for any residual R^2 -> R^3 whose two
+// parameters are of unit scale: `residual(x)` returns a Residual (f and the 3 x 2 Jacobian).
+// Steps are limited to step_limit and shortened until |f| decreases (Walter §3.3); the search
+// gives up once it wanders beyond |x_i| > 4. Returns x once |f| <= options.newton_tolerance.
+template <class ResidualAt>
+std::optional<Eigen::Vector2d> gauss_newton_2d(ResidualAt&& residual, Eigen::Vector2d start,
+                                               double step_limit, const RefractionOptions& options,
+                                               RefractionStats& stats) {
+  ++stats.newton_runs;
+  Eigen::Vector2d x = start;
+  Residual r = residual(x);
+  double norm = r.f.norm();
+  for (int iteration = 0; iteration < options.max_newton_iterations; ++iteration) {
+    if (!(norm > options.newton_tolerance)) return x.allFinite() ? std::optional(x) : std::nullopt;
+    ++stats.newton_iterations;
+    const Eigen::Matrix2d normal_matrix = r.jacobian.transpose() * r.jacobian;
+    Eigen::Vector2d step = -normal_matrix.ldlt().solve(r.jacobian.transpose() * r.f);  // eq. 9
+    if (!step.allFinite()) return std::nullopt;
+    const double step_length = step.norm();
+    if (step_length > step_limit) step *= step_limit / step_length;
+    bool reduced = false;
+    for (int halving = 0; halving < 12; ++halving) {
+      const Eigen::Vector2d trial = x + step;
+      const Residual tr = residual(trial);
+      const double trial_norm = tr.f.norm();
+      if (trial_norm < norm) {
+        x = trial;
+        r = tr;
+        norm = trial_norm;
+        reduced = true;
+        break;
+      }
+      step *= 0.5;
+    }
+    // A stall at the rounding floor is still a solution to well within Snell's 1e-10.
+    if (!reduced) return norm <= 1e-11 ? std::optional(x) : std::nullopt;
+    // Far outside the unit domain: this start belongs to another search.
+    if (std::abs(x.x()) > 4.0 || std::abs(x.y()) > 4.0) return std::nullopt;
+  }
+  return norm <= options.newton_tolerance ? std::optional(x) : std::nullopt;
+}
+
+// 2D Newton with the pseudo-inverse (eq. 9) on the triangle's (a, b), steps limited to
+// step_limit in (a, b) and shortened until |f| decreases. Returns (a, b) once |f| <= tolerance.
 std::optional<Eigen::Vector2d> newton_2d(const RefractiveTriangle& tri, const PathQuery& q,
                                          Eigen::Vector2d start, double step_limit,
                                          const RefractionOptions& options, RefractionStats& stats);
+
+// Slack on the barycentric coordinates with which accept_path admits a point to the triangle.
+inline constexpr double barycentric_tolerance = 1e-9;
 
 // A path at barycentric (a, b) if it lies in the triangle and meets the sidedness conditions
 // (Walter §3.1: omega_L on the outer and omega_V on the inner side of both N_s and N_g).
 std::optional<RefractionPath> accept_path(const RefractiveTriangle& tri, const PathQuery& q,
                                           double a, double b);
+
+// The refraction point of the flat search (§3.2) in the triangle's plane, whether or not it lies
+// in the triangle: nullopt if V is not below the plane, a point light not above it, or a
+// directional light beyond the critical angle.
+std::optional<Vec3> flat_refraction_point(const RefractiveTriangle& tri, const PathQuery& q,
+                                          RefractionStats& stats);
 
 // The 1D search for a flat triangle (§3.2); at most one path.
 std::optional<RefractionPath> find_flat_path(const RefractiveTriangle& tri, const PathQuery& q,

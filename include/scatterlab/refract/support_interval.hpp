@@ -1,0 +1,100 @@
+#pragma once
+// Holzschuch 2013, §3.2: the support of each triangle's single-scattering contribution along an
+// eye ray, so that an integrator samples the ray only where some triangle can refract light from
+// the light to the scattering point V(x).
+//
+// For an eye-ray segment V(x) = origin + x direction, x in [t0, t1], inside the medium, the zeros
+// of f(x, a, b) = H(x, a, b) + s N_s(a, b) (Walter eq. 8 with V moving, Holzschuch §3.2.2) form a
+// curve; the triangle contributes at x when the curve's point lies in the triangle. The support
+// interval [x_min, x_max] is found in three steps:
+//  1. V(x) must lie below the triangle's plane and the light above it (sidedness about N_g, exact).
+//  2. An outer bound by bisection on x with a sound cone test on each sub-segment: the directions
+//     from the triangle to the sub-segment (the six corner-to-end directions span them), to the
+//     light, and the shading normals are bounded by cones, and the sidedness, deviation
+//     (Holzschuch's spindle-based test, §3.2.4) and half-vector overlap tests (Walter §3.3.1)
+//     reject sub-segments on which no path exists. Leaves are 1/8 of the longest triangle edge.
+//  3. Flat triangles: within that window, where a barycentric coordinate changes sign between the
+//     window's ends, the curve crosses that edge line; the crossing (x, tau) is solved with the
+//     pseudo-inverse Newton on the 3 x 2 system (Holzschuch §3.2.2), and the sign rules of §3.2.3
+//     (d f / d x = lambda d f / d a + mu d f / d b, eq. 11; da/dx = -lambda, db/dx = -mu, eq. 12)
+//     say whether it is a lower or an upper bound. Bisection on the flat refraction point takes
+//     over where Newton fails. Exact (to the barycentric slack of accept_path) when the curve
+//     crosses each edge line at most once inside the window, which the small window of step 2
+//     makes the rule; a coordinate negative at both ends discards the triangle.
+//     Triangles with interpolated normals keep the outer bound of step 2: conservative, not tight
+//     (the curve may fold at caustics, so edge crossings alone do not bound the support there).
+//  eta = 1: V must see the light through the triangle, the intersection of three half-spaces
+//  (planes through the light and each edge), exact.
+//
+// Whole segments (§3.2.4): the position-normal tree's node bounds are tested against the segment
+// with cones swept along it (axis from the ends' directions, widened by asin(r / d_min)), and the
+// surviving triangles get their intervals.
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "scatterlab/refract/position_normal_tree.hpp"
+#include "scatterlab/refract/refraction_path.hpp"
+#include "scatterlab/refract/refractive_solver.hpp"
+#include "scatterlab/refract/triangle_search.hpp"
+
+namespace scatterlab {
+
+// V(x) = origin + x direction for x in [t0, t1]; direction is unit.
+struct EyeSegment {
+  Vec3 origin = Vec3::Zero();
+  Vec3 direction = Vec3::UnitX();
+  double t0 = 0.0, t1 = 0.0;
+
+  Vec3 at(double x) const { return origin + x * direction; }
+};
+
+struct SupportInterval {
+  double x_min = 0.0, x_max = 0.0;
+
+  double length() const { return x_max - x_min; }
+  bool contains(double x) const { return x_min <= x && x <= x_max; }
+};
+
+struct TriangleSupport {
+  std::uint32_t triangle = 0;
+  SupportInterval interval;
+};
+
+// Work counters, summed over segments.
+struct SupportStats {
+  std::uint64_t segments = 0;
+  std::uint64_t nodes_visited = 0;
+  std::uint64_t triangles_tested = 0;  // triangles that reached the per-triangle interval
+  std::uint64_t cone_tests = 0;        // sub-segment tests of step 2
+  std::uint64_t edge_newton_runs = 0;  // crossings solved by Newton (step 3)
+  std::uint64_t edge_bisections = 0;   // crossings where Newton failed and bisection took over
+  std::uint64_t supports = 0;          // non-empty intervals returned
+
+  SupportStats& operator+=(const SupportStats& o);
+};
+
+// Step 2's test: whether any V on the segment [va, vb] can receive a refracted path through tri.
+// False only when none can (sound); eta = 1 uses the deviation test alone.
+bool triangle_may_contribute(const RefractiveTriangle& tri, const Vec3& va, const Vec3& vb,
+                             const Light& light, double eta);
+
+// The same test for a tree node (its box bounded by a ball) and a segment.
+bool node_may_contribute(const PositionNormalTree::Node& node, const Vec3& va, const Vec3& vb,
+                         const Light& light, double eta);
+
+// The support interval of one triangle along the segment; nullopt when it cannot contribute.
+std::optional<SupportInterval> triangle_support_interval(const RefractiveTriangle& tri,
+                                                         const EyeSegment& segment,
+                                                         const Light& light, double eta,
+                                                         SupportStats& stats);
+
+// Every triangle of the solver's mesh that can contribute somewhere on the segment, with its
+// interval, in the order of the tree's depth-first leaves (the order find_paths visits them).
+// Throws InputError for a segment with a non-unit direction or t1 < t0.
+void find_segment_supports(const RefractiveSolver& solver, const EyeSegment& segment,
+                           const Light& light, std::vector<TriangleSupport>& supports,
+                           SupportStats& stats);
+
+}  // namespace scatterlab

@@ -1,0 +1,384 @@
+#include "scatterlab/refract/support_interval.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/refract/bounding_cone.hpp"
+
+namespace scatterlab {
+namespace {
+
+using Vec2 = Eigen::Vector2d;
+
+// Splits of a triangle with interpolated normals in step 2's test (up to 4^k parts).
+constexpr int smooth_split_depth = 2;
+
+// Largest turn refraction can give a ray, pi/2 - asin(1 / eta_max) (Walter §3.4; Holzschuch
+// §3.2.4's spindle-based test): the angle between omega_V and -omega_L is at most this.
+double max_deviation(double eta) {
+  const double eta_max = std::max(eta, 1.0 / eta);
+  return 0.5 * pi - std::asin(1.0 / eta_max);
+}
+
+bool cones_may_connect(const DirectionCone& normals, const DirectionCone& v_cone,
+                       const DirectionCone& l_cone, double eta) {
+  if (!v_cone.is_everything() && !l_cone.is_everything() &&
+      angle_between(v_cone.axis, -l_cone.axis) - v_cone.half_angle - l_cone.half_angle >
+          max_deviation(eta) + 1e-9) {
+    return false;
+  }
+  if (eta == 1.0) return true;  // no half-vector
+  return cones_admit_path(normals, v_cone, l_cone, eta);
+}
+
+// Step 2's test on the sub-triangle with barycentric corners ab. With interpolated normals the
+// normal cone does not shrink as the segment is bisected, so the test also splits the triangle
+// (at the edge midpoints, Walter §3.3.1) up to `splits` times and keeps the segment if any part
+// may connect.
+bool subtriangle_may_contribute(const RefractiveTriangle& tri, const std::array<Vec2, 3>& ab,
+                                const Vec3& va, const Vec3& vb, const Light& light, double eta,
+                                int splits) {
+  std::array<Vec3, 3> corners, to_l, normals;
+  for (std::size_t i = 0; i < 3; ++i) corners[i] = tri.point(ab[i].x(), ab[i].y());
+  // Directions from the triangle to the segment: V - P ranges over a convex polytope whose
+  // vertices are the six corner-to-end differences, so a cone (< 90 degrees) holding their
+  // directions holds all (as Walter §3.3.1 argues for sub-triangles).
+  std::array<Vec3, 6> to_v;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const Vec3 da = va - corners[i], db = vb - corners[i];
+    if (!(da.norm() > 0.0 && db.norm() > 0.0)) return true;
+    to_v[2 * i] = da.normalized();
+    to_v[2 * i + 1] = db.normalized();
+    if (!light.at_infinity) {
+      const Vec3 dl = light.position - corners[i];
+      if (!(dl.norm() > 0.0)) return true;
+      to_l[i] = dl.normalized();
+    }
+  }
+  const DirectionCone v_cone = cone_of_directions(to_v);
+  const DirectionCone l_cone = light.at_infinity ? DirectionCone{light.direction_to_light, 0.0}
+                                                 : cone_of_directions(to_l);
+  DirectionCone normal_cone{tri.geometric_normal, 0.0};
+  if (tri.smooth) {
+    // n(a, b) is linear, so inside the sub-triangle it is a non-negative combination of the
+    // corners' n: its direction lies in their cone.
+    for (std::size_t i = 0; i < 3; ++i) normals[i] = tri.shading_normal(ab[i].x(), ab[i].y());
+    normal_cone = cone_of_directions(normals);
+  }
+  if (!cones_may_connect(normal_cone, v_cone, l_cone, eta)) return false;
+  if (splits == 0) return true;
+  const Vec2 m01 = 0.5 * (ab[0] + ab[1]), m12 = 0.5 * (ab[1] + ab[2]), m20 = 0.5 * (ab[2] + ab[0]);
+  const std::array<std::array<Vec2, 3>, 4> parts{{{ab[0], m01, m20},
+                                                  {m01, ab[1], m12},
+                                                  {m20, m12, ab[2]},
+                                                  {m01, m12, m20}}};
+  for (const auto& part : parts) {
+    if (subtriangle_may_contribute(tri, part, va, vb, light, eta, splits - 1)) return true;
+  }
+  return false;
+}
+
+// Restricts [lo, hi] to c0 + c1 x >= 0.
+void clip_half_line(double c0, double c1, double& lo, double& hi) {
+  if (c1 > 0.0) {
+    lo = std::max(lo, -c0 / c1);
+  } else if (c1 < 0.0) {
+    hi = std::min(hi, -c0 / c1);
+  } else if (c0 < 0.0) {
+    hi = lo - 1.0;  // empty
+  }
+}
+
+std::array<Vec3, 3> triangle_corners(const RefractiveTriangle& tri) {
+  return {tri.p0, Vec3(tri.p0 + tri.edge1), Vec3(tri.p0 + tri.edge2)};
+}
+
+// eta = 1: V(x) sees the light through the triangle: for each edge (A, B) with opposite corner C,
+// V on C's side of the plane through A, B and the light (or containing the light's direction).
+void clip_to_light_pyramid(const RefractiveTriangle& tri, const EyeSegment& segment,
+                           const Light& light, double& lo, double& hi) {
+  const auto c = triangle_corners(tri);
+  const double slack = 1e-12 * (std::abs(segment.t1 - segment.t0) + tri.edge1.norm());
+  for (std::size_t k = 0; k < 3; ++k) {
+    const Vec3& a = c[k];
+    const Vec3& b = c[(k + 1) % 3];
+    const Vec3& opposite = c[(k + 2) % 3];
+    const Vec3 towards = light.at_infinity ? light.direction_to_light : Vec3(light.position - a);
+    Vec3 normal = (b - a).cross(towards);
+    if (normal.dot(opposite - a) < 0.0) normal = -normal;
+    const double scale = normal.norm();
+    if (!(scale > 0.0)) continue;
+    normal /= scale;
+    clip_half_line(normal.dot(segment.origin - a) + slack, normal.dot(segment.direction), lo, hi);
+  }
+}
+
+// Barycentric constraints of the triangle (each >= 0 inside): b, a, 1 - a - b for the edges
+// b = 0 (tau = a), a = 0 (tau = b) and a + b = 1 (a = 1 - tau, b = tau).
+std::array<double, 3> edge_constraints(const Vec2& ab) {
+  return {ab.y(), ab.x(), 1.0 - ab.x() - ab.y()};
+}
+
+Vec2 edge_point(int edge, double tau) {
+  if (edge == 0) return {tau, 0.0};
+  if (edge == 1) return {0.0, tau};
+  return {1.0 - tau, tau};
+}
+
+Vec2 edge_tangent(int edge) {
+  if (edge == 0) return {1.0, 0.0};
+  if (edge == 1) return {0.0, 1.0};
+  return {-1.0, 1.0};
+}
+
+double edge_parameter(int edge, const Vec2& ab) {
+  if (edge == 0) return ab.x();
+  if (edge == 1) return ab.y();
+  return ab.y() + 0.5 * (1.0 - ab.x() - ab.y());  // nearest point of a + b = 1
+}
+
+class FlatSupport {
+ public:
+  FlatSupport(const RefractiveTriangle& tri, const EyeSegment& segment, const Light& light,
+              double eta, SupportStats& stats)
+      : tri_(tri), segment_(segment), light_(light), eta_(eta), stats_(stats) {}
+
+  // The barycentric (a, b) of the flat refraction point for V(x); nullopt where none exists.
+  std::optional<Vec2> curve_point(double x) const {
+    const auto p = flat_refraction_point(tri_, PathQuery(segment_.at(x), light_, eta_), scratch_);
+    if (!p) return std::nullopt;
+    return tri_.barycentric(*p);
+  }
+
+  // Narrows [lo, hi] (V below the plane) to the support; false if it is empty.
+  bool tighten(double& lo, double& hi) const {
+    const double width = hi - lo;
+    if (!(width > 0.0)) return true;
+    // Ends nudged inward: at the plane V has no flat refraction point.
+    const double nudge = 1e-9 * width;
+    const auto at_lo = curve_point(lo + nudge);
+    const auto at_hi = curve_point(hi - nudge);
+    if (!at_lo || !at_hi) return at_lo || at_hi;  // directional light beyond the critical angle
+    const auto c_lo = edge_constraints(*at_lo);
+    const auto c_hi = edge_constraints(*at_hi);
+    double new_lo = lo, new_hi = hi;
+    for (int k = 0; k < 3; ++k) {
+      const auto ku = static_cast<std::size_t>(k);
+      const bool inside_lo = c_lo[ku] >= -barycentric_tolerance;
+      const bool inside_hi = c_hi[ku] >= -barycentric_tolerance;
+      if (inside_lo && inside_hi) continue;
+      if (!inside_lo && !inside_hi) return false;
+      // The curve crosses edge line k once inside the window.
+      const double fraction = c_lo[ku] / (c_lo[ku] - c_hi[ku]);
+      const Vec2 guess_ab = *at_lo + fraction * (*at_hi - *at_lo);
+      double x = 0.0;
+      if (!newton_crossing(k, lo, width, fraction, edge_parameter(k, guess_ab), inside_hi, x)) {
+        x = bisect_crossing(k, lo + nudge, hi - nudge, c_lo[ku] < 0.0);
+      }
+      if (inside_hi) {
+        new_lo = std::max(new_lo, x);
+      } else {
+        new_hi = std::min(new_hi, x);
+      }
+    }
+    lo = new_lo;
+    hi = new_hi;
+    return lo <= hi;
+  }
+
+ private:
+  // Holzschuch §3.2.2: Newton with the pseudo-inverse on (xi, tau), x = lo + xi width, P on edge
+  // line k; the 3 x 3 Jacobian's x column is d f / d V . u (§3.2.3), and the tau column combines
+  // the a and b columns. The sign rule of §3.2.3 then says whether x bounds from below; it must
+  // agree with the sign change seen at the window's ends, else the crossing is not the one sought.
+  bool newton_crossing(int k, double lo, double width, double xi0, double tau0,
+                       bool expect_lower, double& x_out) const {
+    ++stats_.edge_newton_runs;
+    const Vec2 tangent = edge_tangent(k);
+    const auto residual = [&](const Vec2& unknowns) {
+      const double x = lo + unknowns.x() * width;
+      const PathQuery q(segment_.at(x), light_, eta_);
+      const Vec2 ab = edge_point(k, unknowns.y());
+      const Residual r = evaluate_residual(tri_, q, ab.x(), ab.y());
+      Residual out;
+      out.f = r.f;
+      out.jacobian.col(0) =
+          width * residual_derivative_along_v(tri_, q, ab.x(), ab.y(), segment_.direction);
+      out.jacobian.col(1) = tangent.x() * r.jacobian.col(0) + tangent.y() * r.jacobian.col(1);
+      return out;
+    };
+    RefractionOptions options;
+    options.newton_tolerance = 1e-13;
+    const auto solution = gauss_newton_2d(residual, Vec2(xi0, tau0), 0.5, options, scratch_);
+    if (!solution || !(solution->x() >= 0.0 && solution->x() <= 1.0)) return false;
+    const double x = lo + solution->x() * width;
+    const PathQuery q(segment_.at(x), light_, eta_);
+    const Vec2 ab = edge_point(k, solution->y());
+    const Residual r = evaluate_residual(tri_, q, ab.x(), ab.y());
+    const Vec3 f_x = residual_derivative_along_v(tri_, q, ab.x(), ab.y(), segment_.direction);
+    // Eq. 11: f_x = lambda f_a + mu f_b (least squares, the pseudo-inverse of eq. 3).
+    const Vec2 lambda_mu =
+        (r.jacobian.transpose() * r.jacobian).ldlt().solve(r.jacobian.transpose() * f_x);
+    // Eq. 12: da/dx = -lambda, db/dx = -mu; the constraint's rate along the curve.
+    const std::array<double, 3> rate{-lambda_mu.y(), -lambda_mu.x(),
+                                     lambda_mu.x() + lambda_mu.y()};
+    const double rate_k = rate[static_cast<std::size_t>(k)];
+    if (!std::isfinite(rate_k) || rate_k == 0.0 || (rate_k > 0.0) != expect_lower) return false;
+    // Widen by the x-width of accept_path's barycentric slack, plus rounding.
+    const double slack = 2.0 * barycentric_tolerance / std::abs(rate_k) + 1e-12 * width;
+    x_out = expect_lower ? x - slack : x + slack;
+    return true;
+  }
+
+  // Bisection on the constraint along the flat refraction point (a fallback; it needs no start).
+  double bisect_crossing(int k, double lo, double hi, bool outside_at_lo) const {
+    ++stats_.edge_bisections;
+    for (int iteration = 0; iteration < 80 && hi - lo > 1e-15 * (std::abs(lo) + 1.0); ++iteration) {
+      const double mid = 0.5 * (lo + hi);
+      const auto ab = curve_point(mid);
+      const bool outside =
+          ab && edge_constraints(*ab)[static_cast<std::size_t>(k)] < -barycentric_tolerance;
+      (outside == outside_at_lo ? lo : hi) = mid;
+    }
+    return outside_at_lo ? lo : hi;  // the bracket's outside end: a conservative bound
+  }
+
+  const RefractiveTriangle& tri_;
+  const EyeSegment& segment_;
+  const Light& light_;
+  double eta_;
+  SupportStats& stats_;
+  mutable RefractionStats scratch_;
+};
+
+// Step 2: the first (from_left) or last surviving leaf of the bisection of [lo, hi].
+std::optional<double> extreme_surviving_x(const RefractiveTriangle& tri, const EyeSegment& segment,
+                                          const Light& light, double eta, double lo, double hi,
+                                          double leaf, bool from_left, int depth,
+                                          SupportStats& stats) {
+  ++stats.cone_tests;
+  if (!triangle_may_contribute(tri, segment.at(lo), segment.at(hi), light, eta)) {
+    return std::nullopt;
+  }
+  if (hi - lo <= leaf || depth >= 24) return from_left ? lo : hi;
+  const double mid = 0.5 * (lo + hi);
+  const std::array<std::array<double, 2>, 2> halves{{{lo, mid}, {mid, hi}}};
+  for (int i = 0; i < 2; ++i) {
+    const auto& half = halves[static_cast<std::size_t>(from_left ? i : 1 - i)];
+    if (auto x = extreme_surviving_x(tri, segment, light, eta, half[0], half[1], leaf, from_left,
+                                     depth + 1, stats)) {
+      return x;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+SupportStats& SupportStats::operator+=(const SupportStats& o) {
+  segments += o.segments;
+  nodes_visited += o.nodes_visited;
+  triangles_tested += o.triangles_tested;
+  cone_tests += o.cone_tests;
+  edge_newton_runs += o.edge_newton_runs;
+  edge_bisections += o.edge_bisections;
+  supports += o.supports;
+  return *this;
+}
+
+bool triangle_may_contribute(const RefractiveTriangle& tri, const Vec3& va, const Vec3& vb,
+                             const Light& light, double eta) {
+  return subtriangle_may_contribute(tri, {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)}, va, vb, light, eta,
+                                    tri.smooth ? smooth_split_depth : 0);
+}
+
+bool node_may_contribute(const PositionNormalTree::Node& node, const Vec3& va, const Vec3& vb,
+                         const Light& light, double eta) {
+  const Vec3 center = 0.5 * (node.lo + node.hi);
+  const double radius = 0.5 * (node.hi - node.lo).norm();
+  // Holzschuch §3.2.4: the sweeping cone of omega_V, axis from u_Vmin to u_Vmax (the arc between
+  // them lies in any cone < 90 degrees holding both), angle asin(r / d_min).
+  const Vec3 along = vb - va;
+  const double length2 = along.squaredNorm();
+  const double s = length2 > 0.0 ? std::clamp((center - va).dot(along) / length2, 0.0, 1.0) : 0.0;
+  const double d_min = (va + s * along - center).norm();
+  DirectionCone v_cone = DirectionCone::everything();
+  if (d_min > radius) {
+    const std::array<Vec3, 2> ends{Vec3((va - center).normalized()),
+                                   Vec3((vb - center).normalized())};
+    v_cone = cone_of_directions(ends);
+    v_cone.half_angle += std::asin(radius / d_min);
+    if (v_cone.half_angle >= 0.5 * pi) v_cone = DirectionCone::everything();
+  }
+  const DirectionCone l_cone = light.at_infinity ? DirectionCone{light.direction_to_light, 0.0}
+                                                 : cone_towards(center, radius, light.position);
+  return cones_may_connect(node.normals, v_cone, l_cone, eta);
+}
+
+std::optional<SupportInterval> triangle_support_interval(const RefractiveTriangle& tri,
+                                                         const EyeSegment& segment,
+                                                         const Light& light, double eta,
+                                                         SupportStats& stats) {
+  ++stats.triangles_tested;
+  const Vec3& ng = tri.geometric_normal;
+  if (ng.squaredNorm() == 0.0) return std::nullopt;  // degenerate: no plane, no path
+  // Step 1: the light above the plane, V(x) below it (Walter §3.1 sidedness about N_g).
+  if (light.at_infinity ? !(light.direction_to_light.dot(ng) > 0.0)
+                        : !((light.position - tri.p0).dot(ng) > 0.0)) {
+    return std::nullopt;
+  }
+  double lo = segment.t0, hi = segment.t1;
+  clip_half_line((tri.p0 - segment.origin).dot(ng), -segment.direction.dot(ng), lo, hi);
+  if (!(lo <= hi)) return std::nullopt;
+  if (eta == 1.0) {
+    clip_to_light_pyramid(tri, segment, light, lo, hi);
+    if (!(lo <= hi)) return std::nullopt;
+  } else {
+    // Step 2: outer bound.
+    const double leaf = 0.125 * std::max({tri.edge1.norm(), tri.edge2.norm(),
+                                          (tri.edge2 - tri.edge1).norm()});
+    const auto first = extreme_surviving_x(tri, segment, light, eta, lo, hi, leaf, true, 0, stats);
+    if (!first) return std::nullopt;
+    const auto last = extreme_surviving_x(tri, segment, light, eta, lo, hi, leaf, false, 0, stats);
+    lo = *first;
+    hi = last ? *last : hi;
+    // Step 3: exact ends for flat triangles.
+    if (!tri.smooth && !FlatSupport(tri, segment, light, eta, stats).tighten(lo, hi)) {
+      return std::nullopt;
+    }
+  }
+  ++stats.supports;
+  return SupportInterval{lo, hi};
+}
+
+void find_segment_supports(const RefractiveSolver& solver, const EyeSegment& segment,
+                           const Light& light, std::vector<TriangleSupport>& supports,
+                           SupportStats& stats) {
+  if (!(std::abs(segment.direction.norm() - 1.0) <= 1e-9)) {
+    throw InputError("segment.direction", fmt::format("has length {}", segment.direction.norm()),
+                     "a unit vector");
+  }
+  if (!(segment.t0 <= segment.t1) || !std::isfinite(segment.t0) || !std::isfinite(segment.t1)) {
+    throw InputError("segment.t0, segment.t1", fmt::format("got [{}, {}]", segment.t0, segment.t1),
+                     "finite numbers with t0 <= t1");
+  }
+  ++stats.segments;
+  const Vec3 va = segment.at(segment.t0), vb = segment.at(segment.t1);
+  const double eta = solver.eta();
+  solver.tree().for_each_leaf_triangle(
+      [&](const PositionNormalTree::Node& node) {
+        return node_may_contribute(node, va, vb, light, eta);
+      },
+      stats.nodes_visited,
+      [&](std::uint32_t t) {
+        if (auto interval = triangle_support_interval(solver.triangle(t), segment, light, eta, stats)) {
+          supports.push_back({t, *interval});
+        }
+      });
+}
+
+}  // namespace scatterlab
