@@ -98,8 +98,19 @@ std::string to_string(AxisScale scale) {
   return "linear";
 }
 
-void write_png(const LinePlot& plot, const std::filesystem::path& path) {
-  check(plot);
+// The plot with x replaced by log10 x on a logarithmic x axis (x <= 0 becomes NaN: not drawn).
+LinePlot with_drawn_x(const LinePlot& plot) {
+  LinePlot drawn = plot;
+  if (!plot.log_x) return drawn;
+  for (PlotSeries& s : drawn.series) {
+    for (double& x : s.x) x = x > 0.0 ? std::log10(x) : std::numeric_limits<double>::quiet_NaN();
+  }
+  return drawn;
+}
+
+void write_png(const LinePlot& requested, const std::filesystem::path& path) {
+  check(requested);
+  const LinePlot plot = with_drawn_x(requested);
   // Transformed copies and the drawn ranges.
   std::vector<std::vector<double>> ys(plot.series.size()), lows(plot.series.size()),
       highs(plot.series.size());
@@ -154,7 +165,7 @@ void write_png(const LinePlot& plot, const std::filesystem::path& path) {
     const char* y_options = plot.y_scale == AxisScale::log    ? "bcnstlv"
                             : plot.y_scale == AxisScale::sqrt ? "bcnstov"
                                                               : "bcnstv";
-    plbox("bcnst", 0.0, 0, y_options, 0.0, 0);
+    plbox(plot.log_x ? "bcnstl" : "bcnst", 0.0, 0, y_options, 0.0, 0);
     plslabelfunc(nullptr, nullptr);
     const std::string y_label =
         plot.y_label + (plot.y_scale == AxisScale::linear ? "" : " (" + to_string(plot.y_scale) + " scale)");

@@ -80,6 +80,8 @@ Section infinite_medium_convergence(const Profile& profile) {
         point_source_fluence_shell_average(kAlbedo, shells.edge(i), shells.edge(i + 1));
   }
 
+  LinePlot plot{"Infinite medium, point source: error against run time", "wall seconds",
+                "relative RMS error of the shell fluence", AxisScale::log, true, {}};
   const int budgets = profile.quick ? 6 : 8;
   const double first_budget = profile.quick ? 2e4 : 1e5;
   for (Estimator estimator : {Estimator::collision, Estimator::track_length}) {
@@ -110,6 +112,7 @@ Section infinite_medium_convergence(const Profile& profile) {
            fmt::format("{:.4g}", last.predicted_relative_rms),
            fmt::format("{:.3f}", last.mean_squared_z)});
     }
+    plot.series.push_back({to_string(estimator), seconds, errors, {}, true});
     const double slope = log_log_slope(photons, errors);
     const double time_slope = log_log_slope(seconds, errors);
     section.checks.push_back(
@@ -127,6 +130,7 @@ Section infinite_medium_convergence(const Profile& profile) {
         "against log photons {:.3f}, against log seconds {:.3f} (1/sqrt law: -0.5).\n",
         to_string(estimator), errors.back(), seconds.back(), photons.back(), slope, time_slope);
   }
+  section.figures.push_back({section.id, plot});
   return section;
 }
 

@@ -77,6 +77,10 @@ void write_report(const std::filesystem::path& directory, const std::string& com
         "Data: [`{}.csv`]({}.csv)\n",
         section.id, section.title, section.reference, section.tolerance, section.findings,
         to_markdown(section.table), section.id, section.id);
+    for (const Figure& figure : section.figures) {
+      write_png(figure.plot, directory / (figure.id + ".png"));
+      markdown += fmt::format("\n![{}]({}.png)\n", figure.plot.title, figure.id);
+    }
     const auto failures = section.failures();
     if (!failures.empty()) {
       markdown += "\n**Failed:**\n\n";

@@ -25,6 +25,7 @@ struct LinePlot {
   std::string x_label;
   std::string y_label;
   AxisScale y_scale = AxisScale::linear;
+  bool log_x = false;  // a logarithmic x axis (error against run time); linear otherwise
   std::vector<PlotSeries> series;
   int width = 1000, height = 700;  // pixels
 };

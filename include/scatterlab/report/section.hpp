@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "scatterlab/io/plot.hpp"
+
 namespace scatterlab::report {
 
 struct Table {
@@ -19,6 +21,12 @@ struct Check {
   bool passed = false;
 };
 
+// A figure of the report, written as <id>.png beside report.md.
+struct Figure {
+  std::string id;
+  LinePlot plot;
+};
+
 struct Section {
   std::string id;          // file stem of its CSV, e.g. "infinite_medium_convergence"
   std::string title;
@@ -26,6 +34,7 @@ struct Section {
   std::string tolerance;   // the tolerance, and why it is the right one
   std::string findings;    // Markdown: what the numbers show
   Table table;
+  std::vector<Figure> figures;
   std::vector<Check> checks;
   int non_finite_values = 0;  // NaN or Inf seen anywhere in the section's results; must be 0
 
