@@ -23,6 +23,10 @@ Section infinite_medium_convergence(const Profile& profile);
 // depth 1 / (1 - albedo g) and the mean number of scattering events albedo / (1 - albedo).
 Section infinite_medium_extremes(const Profile& profile);
 
+// Lobe fits against synthetic lobes of known parameters: parameter error against the
+// quadrature order of the bin averages, and time per fit.
+Section lobe_fit_accuracy(const Profile& profile);
+
 // The refractive single-scatter solver on a bumpy sphere: heuristic and guaranteed search at
 // several Newton tolerances, completeness against the guaranteed mode, Snell residuals, time.
 Section refractive_solver_accuracy(const Profile& profile);
