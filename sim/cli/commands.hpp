@@ -12,6 +12,7 @@ using Action = std::function<int()>;
 
 // `command_line` is the whole command as typed, recorded in output files.
 Action add_simulate_command(CLI::App& app, const std::string& command_line);
+Action add_searchlight_command(CLI::App& app, const std::string& command_line);
 Action add_info_command(CLI::App& app);
 
 }  // namespace scatterlab::cli

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", SCATTERLAB_VERSION);
   app.require_subcommand(1);
   const auto simulate = scatterlab::cli::add_simulate_command(app, command_line);
+  const auto searchlight = scatterlab::cli::add_searchlight_command(app, command_line);
   const auto info = scatterlab::cli::add_info_command(app);
 
   try {
@@ -27,6 +28,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("simulate")) return simulate();
+    if (app.got_subcommand("searchlight")) return searchlight();
     if (app.got_subcommand("info")) return info();
   } catch (const scatterlab::InputError& e) {
     fmt::print(stderr, "scatterlab: error: {}\n", e.what());

@@ -78,10 +78,7 @@ void write_provenance(hdf5::Group& root, const Provenance& provenance) {
                              as_int64(provenance.scattering_events, "scattering_events"));
 }
 
-void write_parameters(hdf5::Group& root, const SimulationSpec& spec) {
-  hdf5::Group parameters = root.create_group("parameters");
-  const Medium& medium = spec.medium;
-  parameters.write_string_attribute("source", to_string(spec.source));
+void write_medium(hdf5::Group& parameters, const Medium& medium) {
   parameters.write_double_attribute("albedo", medium.albedo);
   parameters.write_double_attribute("g", medium.g);
   parameters.write_double_attribute("sigma_t", medium.sigma_t);
@@ -90,15 +87,42 @@ void write_parameters(hdf5::Group& root, const SimulationSpec& spec) {
   parameters.write_string_attribute("length_unit", medium.length_unit);
   // g = 0 samples isotropically (DESIGN.md, "Leave out what a scene does not need").
   parameters.write_string_attribute("phase", medium.g == 0.0 ? "isotropic" : "henyey-greenstein");
-  parameters.write_int64_attribute("photons", as_int64(spec.run.photons, "photons"));
-  parameters.write_int64_attribute("batches", spec.run.batches);
+}
+
+void write_run(hdf5::Group& parameters, const RunSettings& run) {
+  parameters.write_int64_attribute("photons", as_int64(run.photons, "photons"));
+  parameters.write_int64_attribute("batches", run.batches);
   // Any 64-bit seed is valid, so it is the one unsigned attribute.
-  parameters.write_uint64_attribute("seed", spec.run.seed);
+  parameters.write_uint64_attribute("seed", run.seed);
+}
+
+void write_parameters(hdf5::Group& root, const SimulationSpec& spec) {
+  hdf5::Group parameters = root.create_group("parameters");
+  parameters.write_string_attribute("source", to_string(spec.source));
+  write_medium(parameters, spec.medium);
+  write_run(parameters, spec.run);
   parameters.write_string_attribute("estimator", to_string(spec.tallies.estimator));
   if (std::isfinite(spec.run.escape_radius)) {
     parameters.write_double_attribute("escape_radius", spec.run.escape_radius);
   }
   parameters.write_bool_attribute("split_by_order", spec.tallies.split_by_order);
+  parameters.write_int64_attribute("threads", spec.run.threads);
+}
+
+// The half-space run (DESIGN.md: /parameters eta): geometry, interface and beam first.
+void write_searchlight_parameters(hdf5::Group& root, const SearchlightSpec& spec) {
+  hdf5::Group parameters = root.create_group("parameters");
+  parameters.write_string_attribute("geometry", "half_space");
+  parameters.write_string_attribute("source", "beam");
+  parameters.write_double_attribute("eta", spec.eta);
+  parameters.write_double_attribute("incidence_deg", spec.incidence_deg);
+  write_medium(parameters, spec.medium);
+  write_run(parameters, spec.run);
+  parameters.write_string_attribute("estimator", "collision");
+  if (std::isfinite(spec.run.escape_radius)) {
+    parameters.write_double_attribute("escape_radius", spec.run.escape_radius);
+  }
+  parameters.write_bool_attribute("split_by_order", true);
   parameters.write_int64_attribute("threads", spec.run.threads);
 }
 
@@ -116,6 +140,14 @@ void write_grid(hdf5::Group& root, const SimulationSpec& spec) {
   write_axis(grid, "theta", spec.grid.theta, "rad");
   write_axis(grid, "phi", spec.grid.phi, "rad");
   if (spec.tallies.fluence_spherical) write_axis(grid, "rho", spec.grid.rho, "mfp");
+}
+
+// r from the entry point and z depth in mfp; theta_o from the outward normal, outside.
+void write_searchlight_grid(hdf5::Group& root, const SearchlightSpec& spec) {
+  hdf5::Group grid = root.create_group("grid");
+  write_axis(grid, "r", spec.grid.r, "mfp");
+  if (spec.tallies.fluence) write_axis(grid, "z", spec.grid.z, "mfp");
+  write_axis(grid, "theta_o", spec.grid.theta_o, "rad");
 }
 
 void write_tallies(hdf5::Group& root, const std::vector<TallyResult>& tallies) {
@@ -267,7 +299,7 @@ std::string tally_text(const TallySummary& tally) {
 [[noreturn]] void not_a_simulation_file(const std::filesystem::path& path,
                                         const std::string& reason) {
   throw InputError("FILE", path.string() + " is not a scatterlab HDF5 file (" + reason + ")",
-                   "a file written by scatterlab simulate");
+                   "a file written by scatterlab simulate or searchlight");
 }
 
 }  // namespace
@@ -290,6 +322,22 @@ void write_simulation_file(const std::filesystem::path& path, const SimulationSp
     write_provenance(file.root(), provenance);
     write_parameters(file.root(), spec);
     write_grid(file.root(), spec);
+    write_tallies(file.root(), tallies);
+    file.close();
+  }
+  output.commit();
+}
+
+void write_searchlight_file(const std::filesystem::path& path, const SearchlightSpec& spec,
+                            const std::vector<TallyResult>& tallies,
+                            const Provenance& provenance) {
+  AtomicOutput output(path);
+  check_tallies(tallies);
+  {
+    hdf5::File file = hdf5::File::create(output.temporary_path());
+    write_provenance(file.root(), provenance);
+    write_searchlight_parameters(file.root(), spec);
+    write_searchlight_grid(file.root(), spec);
     write_tallies(file.root(), tallies);
     file.close();
   }

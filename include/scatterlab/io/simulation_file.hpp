@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "scatterlab/tally/tally_result.hpp"
+#include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/transport/simulation.hpp"
 
 namespace scatterlab {
@@ -43,6 +44,12 @@ std::string iso8601_now();
 // Tallies are written in the order given. Does not validate `spec` (the caller did).
 void write_simulation_file(const std::filesystem::path& path, const SimulationSpec& spec,
                            const std::vector<TallyResult>& tallies, const Provenance& provenance);
+
+// The same file for the half-space (scatterlab searchlight): /parameters adds geometry =
+// "half_space", eta and incidence_deg; /grid holds r, z (with the fluence) and theta_o, the exit
+// angle outside the medium; the tallies are those of finalize_half_space_tallies.
+void write_searchlight_file(const std::filesystem::path& path, const SearchlightSpec& spec,
+                            const std::vector<TallyResult>& tallies, const Provenance& provenance);
 
 // What `scatterlab info FILE` reports, read back from a file.
 struct AxisSummary {
