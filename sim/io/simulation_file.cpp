@@ -385,7 +385,7 @@ std::string describe(const FileSummary& summary) {
 
   text += summary.phi_folded ? "\ngrid (phi folded onto [0, pi])\n" : "\ngrid\n";
   for (const AxisSummary& axis : summary.grid) {
-    text += fmt::format("  {:<6} {:>4} bins in [{:.6g}, {:.6g}] {}\n", axis.name, axis.bins,
+    text += fmt::format("  {:<7} {:>4} bins in [{:.6g}, {:.6g}] {}\n", axis.name, axis.bins,
                         axis.min, axis.max, axis.units);
   }
 

@@ -61,6 +61,44 @@ expect_error negative_coefficient medium.sigma_a --scene "$work/negative.toml"
 printf '[medium\nalbedo = 0.3\n' >"$work/syntax.toml"
 expect_error syntax_error "syntax.toml:" --scene "$work/syntax.toml"
 
+# searchlight: a small half-space run, info on it, and bad input.
+if "$exe" searchlight --photons 20000 --batches 8 --eta 1.33 --out "$work/half.h5" >"$work/stdout" 2>"$work/stderr" &&
+  grep -q "wrote $work/half.h5" "$work/stdout" && grep -q "specular_reflectance" "$work/stdout"; then pass; else
+  fail "searchlight run: $(cat "$work/stdout" "$work/stderr")"
+fi
+if "$exe" info "$work/half.h5" >"$work/info" && grep -q "eta *1.33" "$work/info" &&
+  grep -q "geometry *half_space" "$work/info" && grep -q "reflectance_single" "$work/info" &&
+  grep -q "theta_o" "$work/info"; then pass; else fail "info on searchlight: $(cat "$work/info")"; fi
+if "$exe" searchlight --eta 1 --albedo 0.9 --photons 20000 --batches 8 --no-fluence \
+  --out "$work/matched.h5" | grep -q "exact diffuse reflectance"; then pass; else fail "index-matched summary"; fi
+if "$exe" searchlight --help | grep -q -- "--incidence"; then pass; else fail "searchlight help"; fi
+
+# expect_searchlight_error NAME FIELD ARGS...: as expect_error, for scatterlab searchlight.
+expect_searchlight_error() {
+  local name=$1 field=$2
+  shift 2
+  local out="$work/$name.h5"
+  if "$exe" searchlight --photons 1000 --batches 4 --out "$out" "$@" >"$work/stdout" 2>"$work/stderr"; then
+    fail "$name: exited 0"
+  elif ! grep -q -- "$field" "$work/stderr"; then
+    fail "$name: error does not name $field: $(cat "$work/stderr")"
+  elif [ "$(grep -c . "$work/stderr")" -ne 1 ]; then
+    fail "$name: more than one line of error: $(cat "$work/stderr")"
+  elif compgen -G "$work/$name.h5*" >/dev/null; then
+    fail "$name: left a file behind"
+  else
+    pass
+  fi
+}
+expect_searchlight_error eta_zero surface.eta --eta 0
+expect_searchlight_error eta_negative surface.eta --eta -1.3
+expect_searchlight_error grazing source.incidence_deg --incidence 90
+expect_searchlight_error albedo_above_one medium.albedo --albedo 1.01
+expect_searchlight_error g_at_minus_one medium.g --g -1
+expect_searchlight_error conservative_without_escape run.escape_radius --albedo 1
+expect_searchlight_error r_bins_zero grid.r.bins --r-bins 0
+expect_searchlight_error searchlight_missing_directory out --out "$work/no/such/dir/x.h5"
+
 # info on something that is not a scatterlab file.
 echo "not hdf5" >"$work/text.h5"
 if "$exe" info "$work/text.h5" >/dev/null 2>"$work/stderr"; then fail "info on text: exited 0"
