@@ -43,9 +43,9 @@ void run_walk(benchmark::State& state, const Phase& phase, const SearchlightSpec
   benchmark::DoNotOptimize(buffer.data());
   state.counters["photons/s"] =
       benchmark::Counter(static_cast<double>(photon), benchmark::Counter::kIsRate);
-  state.counters["ns/scatter"] = benchmark::Counter(
-      static_cast<double>(scatterings) * 1e-9,
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["ns/scatter"] =
+      benchmark::Counter(static_cast<double>(scatterings) * 1e-9,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["scatters/photon"] =
       static_cast<double>(scatterings) / static_cast<double>(photon);
 }
@@ -73,9 +73,9 @@ void HalfSpaceWholeRun(benchmark::State& state) {
   }
   state.counters["photons/s"] =
       benchmark::Counter(static_cast<double>(photons), benchmark::Counter::kIsRate);
-  state.counters["ns/scatter"] = benchmark::Counter(
-      static_cast<double>(scatterings) * 1e-9,
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["ns/scatter"] =
+      benchmark::Counter(static_cast<double>(scatterings) * 1e-9,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 const IsotropicPhase iso{};
@@ -83,21 +83,17 @@ const HenyeyGreenstein hg075{0.75};
 const HenyeyGreenstein hg09{0.9};
 
 // Isotropic, albedo 0.99: the searchlight default medium.
-BENCHMARK_CAPTURE(HalfSpace, iso_albedo0.99_eta1, iso,
-                  half_space(0.99, 0.0, 1.0, false));
-BENCHMARK_CAPTURE(HalfSpace, iso_albedo0.99_eta1.33, iso,
-                  half_space(0.99, 0.0, 1.33, false));
-BENCHMARK_CAPTURE(HalfSpace, iso_albedo0.99_eta1.33_fluence, iso,
+BENCHMARK_CAPTURE(HalfSpace, iso_albedo0 .99_eta1, iso, half_space(0.99, 0.0, 1.0, false));
+BENCHMARK_CAPTURE(HalfSpace, iso_albedo0 .99_eta1.33, iso, half_space(0.99, 0.0, 1.33, false));
+BENCHMARK_CAPTURE(HalfSpace, iso_albedo0 .99_eta1.33_fluence, iso,
                   half_space(0.99, 0.0, 1.33, true));
 // The semi-infinite medium of MCML's validation (van de Hulst's tables): albedo 0.9, g 0.75.
-BENCHMARK_CAPTURE(HalfSpace, hg_g0.75_albedo0.9_eta1, hg075,
-                  half_space(0.9, 0.75, 1.0, false));
-BENCHMARK_CAPTURE(HalfSpace, hg_g0.75_albedo0.9_eta1.33, hg075,
+BENCHMARK_CAPTURE(HalfSpace, hg_g0 .75_albedo0.9_eta1, hg075, half_space(0.9, 0.75, 1.0, false));
+BENCHMARK_CAPTURE(HalfSpace, hg_g0 .75_albedo0.9_eta1.33, hg075,
                   half_space(0.9, 0.75, 1.33, false));
 // Forward scattering and long walks: g 0.9, albedo 0.999 (a skin-like reduced albedo 0.99).
-BENCHMARK_CAPTURE(HalfSpace, hg_g0.9_albedo0.999_eta1, hg09,
-                  half_space(0.999, 0.9, 1.0, false));
-BENCHMARK_CAPTURE(HalfSpace, hg_g0.9_albedo0.999_eta1.33, hg09,
+BENCHMARK_CAPTURE(HalfSpace, hg_g0 .9_albedo0.999_eta1, hg09, half_space(0.999, 0.9, 1.0, false));
+BENCHMARK_CAPTURE(HalfSpace, hg_g0 .9_albedo0.999_eta1.33, hg09,
                   half_space(0.999, 0.9, 1.33, false));
 BENCHMARK(HalfSpaceWholeRun)->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -3,6 +3,7 @@
 // returns the action to run once the command line has been parsed.
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <functional>
 #include <string>
 
@@ -14,5 +15,9 @@ using Action = std::function<int()>;
 Action add_simulate_command(CLI::App& app, const std::string& command_line);
 Action add_searchlight_command(CLI::App& app, const std::string& command_line);
 Action add_info_command(CLI::App& app);
+
+// --photons as a double, so that 1e8 reads as it does in scene files; throws InputError
+// ("run.photons") unless it is a whole number that fits.
+std::uint64_t photon_count(double photons);
 
 }  // namespace scatterlab::cli

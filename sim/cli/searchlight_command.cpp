@@ -45,11 +45,12 @@ void print_summary(const SearchlightSpec& spec, const SearchlightOutput& out,
   const double events = static_cast<double>(out.scattering_events);
   fmt::print("scatterlab searchlight: half-space, albedo {}, g {}, eta {}, incidence {} deg\n",
              spec.medium.albedo, spec.medium.g, spec.eta, spec.incidence_deg);
-  fmt::print("  {} photons in {} batches on {} thread{}: {:.2f} s ({:.3g} photons/s, {:.3g} "
-             "scattering events, {:.1f} ns per event per thread)\n",
-             out.photons, spec.run.batches, out.threads, out.threads == 1 ? "" : "s",
-             out.wall_seconds, static_cast<double>(out.photons) / out.wall_seconds, events,
-             events > 0 ? out.wall_seconds * out.threads / events * 1e9 : 0.0);
+  fmt::print(
+      "  {} photons in {} batches on {} thread{}: {:.2f} s ({:.3g} photons/s, {:.3g} "
+      "scattering events, {:.1f} ns per event per thread)\n",
+      out.photons, spec.run.batches, out.threads, out.threads == 1 ? "" : "s", out.wall_seconds,
+      static_cast<double>(out.photons) / out.wall_seconds, events,
+      events > 0 ? out.wall_seconds * out.threads / events * 1e9 : 0.0);
   std::string energy = "  energy per W incident:";
   double total = 0.0;
   for (const char* name : {"specular_reflectance", "diffuse_reflectance", "absorbed", "escaped"}) {
@@ -66,9 +67,10 @@ void print_summary(const SearchlightSpec& spec, const SearchlightOutput& out,
   // The one case with an exact total: index-matched, isotropic (chandrasekhar_h.hpp).
   if (spec.eta == 1.0 && spec.medium.g == 0.0) {
     const double mu0 = std::cos(spec.incidence_deg * std::numbers::pi / 180.0);
-    fmt::print("  exact diffuse reflectance for this index-matched isotropic medium: {:.6f} "
-               "(1 - H(mu0) sqrt(1 - albedo), Chandrasekhar)\n",
-               half_space_diffuse_reflectance(spec.medium.albedo, mu0));
+    fmt::print(
+        "  exact diffuse reflectance for this index-matched isotropic medium: {:.6f} "
+        "(1 - H(mu0) sqrt(1 - albedo), Chandrasekhar)\n",
+        half_space_diffuse_reflectance(spec.medium.albedo, mu0));
   }
   fmt::print("  wrote {}\n", path);
 }
@@ -81,13 +83,7 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
   if (given("--g")) spec.medium.g = o.g;
   if (given("--eta")) spec.eta = o.eta;
   if (given("--incidence")) spec.incidence_deg = o.incidence;
-  if (given("--photons")) {
-    if (!(o.photons >= 0.0 && o.photons <= 0x1p63 && o.photons == std::floor(o.photons))) {
-      throw InputError("run.photons", fmt::format("got {}", o.photons),
-                       "a whole number >= 1 (1e7 is accepted)");
-    }
-    spec.run.photons = static_cast<std::uint64_t>(o.photons);
-  }
+  if (given("--photons")) spec.run.photons = photon_count(o.photons);
   if (given("--batches")) spec.run.batches = o.batches;
   if (given("--seed")) spec.run.seed = o.seed;
   if (given("--threads")) spec.run.threads = o.threads;
@@ -106,8 +102,8 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
   const SearchlightOutput out = run_searchlight(spec, [&bar](double done) { bar.update(done); });
   bar.finish();
 
-  const Provenance provenance{SCATTERLAB_VERSION, command_line,     iso8601_now(),
-                              out.wall_seconds,   out.photons,      out.scattering_events};
+  const Provenance provenance{SCATTERLAB_VERSION, command_line, iso8601_now(),
+                              out.wall_seconds,   out.photons,  out.scattering_events};
   spec.run.threads = out.threads;  // record what ran, not "all cores"
   write_searchlight_file(o.out, spec, out.tallies, provenance);
   print_summary(spec, out, o.out);

@@ -16,8 +16,8 @@ namespace {
 double one_minus_theta_cot_theta(double theta) {
   if (theta < 0.1) {
     const double t2 = theta * theta;
-    return t2 * (1.0 / 3.0 +
-                 t2 * (1.0 / 45.0 + t2 * (2.0 / 945.0 + t2 * (1.0 / 4725.0 + t2 * (2.0 / 93555.0)))));
+    return t2 * (1.0 / 3.0 + t2 * (1.0 / 45.0 + t2 * (2.0 / 945.0 +
+                                                      t2 * (1.0 / 4725.0 + t2 * (2.0 / 93555.0)))));
   }
   return 1.0 - theta * std::cos(theta) / std::sin(theta);
 }

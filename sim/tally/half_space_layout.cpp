@@ -8,7 +8,9 @@
 namespace scatterlab {
 namespace {
 
-std::size_t count(const UniformAxis& axis) { return static_cast<std::size_t>(axis.bins); }
+std::size_t count(const UniformAxis& axis) {
+  return static_cast<std::size_t>(axis.bins);
+}
 
 // Area of the ring r0 <= r < r1 of surface, in mfp^2.
 double ring_area(const UniformAxis& r, std::size_t ir) {
@@ -32,8 +34,7 @@ const char* order_suffix(std::size_t block) {
 const char* order_words(std::size_t block) {
   // Unscattered light only travels deeper: it never leaves a half-space, so the unscattered
   // surface tallies are zero by construction; they are written so that every order sums.
-  static const char* words[] = {"", " (unscattered light only)",
-                                " (light scattered exactly once)",
+  static const char* words[] = {"", " (unscattered light only)", " (light scattered exactly once)",
                                 " (light scattered twice or more)"};
   return words[block];
 }
@@ -68,21 +69,19 @@ std::vector<TallyResult> finalize_half_space_tallies(const SearchlightSpec& spec
   const SearchlightGrid& grid = spec.grid;
   std::vector<TallyResult> results;
 
-  // Copies `cells` raw counts from `offset`, scaling cell i by (power entering) / measure(i).
+  // Copies the raw counts from `offset`, scaling cell i by (power entering) / measure(i).
   auto add = [&](std::string name, std::vector<std::string> dims, std::vector<std::size_t> shape,
-                 std::string units, std::string description, std::size_t offset,
-                 auto&& measure) {
-    TallyResult t{std::move(name), std::move(dims), std::move(shape), std::move(units),
-                  std::move(description), {}, {}};
-    std::size_t cells = 1;
-    for (std::size_t extent : t.shape) cells *= extent;
-    t.mean.resize(cells);
-    t.stderr_of_mean.resize(cells);
-    for (std::size_t i = 0; i < cells; ++i) {
-      const double scale = entry.transmitted / measure(i);
-      t.mean[i] = raw_mean[offset + i] * scale;
-      t.stderr_of_mean[i] = raw_stderr[offset + i] * scale;
-    }
+                 std::string units, std::string description, std::size_t offset, auto&& measure) {
+    TallyResult t = measured_tally({std::move(name),
+                                    std::move(dims),
+                                    std::move(shape),
+                                    std::move(units),
+                                    std::move(description),
+                                    {},
+                                    {}},
+                                   raw_mean, raw_stderr, offset, measure);
+    for (double& v : t.mean) v *= entry.transmitted;
+    for (double& v : t.stderr_of_mean) v *= entry.transmitted;
     results.push_back(std::move(t));
   };
   auto unit = [](std::size_t) { return 1.0; };
@@ -92,33 +91,35 @@ std::vector<TallyResult> finalize_half_space_tallies(const SearchlightSpec& spec
     const std::string suffix = order_suffix(block);
     const std::string scope = order_words(block);
     add("reflectance" + suffix, {"r"}, {layout.r_bins}, "W mfp^-2 per W incident",
-        "diffuse reflectance R_d(r): power leaving the surface per unit area, ring average" +
-            scope,
+        "diffuse reflectance R_d(r): power leaving the surface per unit area, ring average" + scope,
         base + layout.reflectance, [&](std::size_t i) { return ring_area(grid.r, i); });
     add("exitant_radiance" + suffix, {"r", "theta_o"}, {layout.r_bins, layout.theta_bins},
         "W mfp^-2 sr^-1 per W incident",
         "radiance leaving the surface outside the medium, L(r, theta_o) with theta_o from the "
-        "outward normal: power / (ring area x projected solid angle) of the bin" + scope,
+        "outward normal: power / (ring area x projected solid angle) of the bin" +
+            scope,
         base + layout.radiance, [&](std::size_t i) {
           return ring_area(grid.r, i / layout.theta_bins) *
                  projected_solid_angle(grid.theta_o, i % layout.theta_bins);
         });
     if (layout.fluence != HalfSpaceLayout::absent) {
-      add("fluence" + suffix, {"r", "z"}, {layout.r_bins, layout.z_bins},
-          "W mfp^-2 per W incident",
+      add("fluence" + suffix, {"r", "z"}, {layout.r_bins, layout.z_bins}, "W mfp^-2 per W incident",
           "fluence phi(r, z) inside the medium, bin average, collision estimator" + scope,
-          base + layout.fluence, [&](std::size_t i) {
-            return ring_area(grid.r, i / layout.z_bins) * grid.z.width();
-          });
+          base + layout.fluence,
+          [&](std::size_t i) { return ring_area(grid.r, i / layout.z_bins) * grid.z.width(); });
     }
     add("diffuse_reflectance" + suffix, {}, {}, "W per W incident",
         "total power leaving the surface after scattering (all radii and angles)" + scope,
         base + layout.diffuse, unit);
   }
 
-  TallyResult specular{"specular_reflectance", {}, {}, "W per W incident",
+  TallyResult specular{"specular_reflectance",
+                       {},
+                       {},
+                       "W per W incident",
                        "Fresnel reflection of the beam at entry (exact: no standard error)",
-                       {entry.specular}, {0.0}};
+                       {entry.specular},
+                       {0.0}};
   results.push_back(std::move(specular));
   add("absorbed", {}, {}, "W per W incident", "power absorbed anywhere in the medium",
       layout.absorbed, unit);

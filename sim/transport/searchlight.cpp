@@ -17,7 +17,9 @@ namespace {
 
 constexpr int max_bins = 100'000;
 
-std::string got(double value) { return fmt::format("got {}", value); }
+std::string got(double value) {
+  return fmt::format("got {}", value);
+}
 
 void check_bins(const UniformAxis& axis, const std::string& name) {
   if (axis.bins < 1 || axis.bins > max_bins) {
@@ -49,23 +51,9 @@ void check_grid(const SearchlightGrid& grid) {
 }
 
 void check_run(const RunSettings& run, double albedo) {
-  if (run.photons < 1) {
-    throw InputError("run.photons", fmt::format("got {}", run.photons), "an integer >= 1");
-  }
-  if (run.batches < 2 || run.batches > run.photons) {
-    throw InputError("run.batches",
-                     fmt::format("got {} with run.photons = {}", run.batches, run.photons),
-                     "an integer in [2, run.photons] (a standard error needs at least 2 batches)");
-  }
-  if (run.threads < 0) {
-    throw InputError("run.threads", fmt::format("got {}", run.threads),
-                     "an integer >= 0 (0: all hardware threads)");
-  }
-  if (!(run.escape_radius > 0.0)) {
-    throw InputError("run.escape_radius", got(run.escape_radius), "a number > 0 (mfp), or inf");
-  }
-  // With albedo 1 every photon leaves in the end, but its depth is a recurrent 1-D walk whose
-  // return time has infinite mean: some photons would run for ever.
+  check_run_settings(run);
+  // With albedo 1 every photon leaves in the end (its depth is a recurrent 1-D walk), but the
+  // number of events before it does has infinite mean, so a run would have no bounded cost.
   if (albedo == 1.0 && !std::isfinite(run.escape_radius)) {
     throw InputError("run.escape_radius",
                      "is infinite, but with albedo 1 the number of events per photon has no "
@@ -104,7 +92,8 @@ SearchlightOutput run_with(const SearchlightSpec& spec, const Phase& phase,
                            const ProgressCallback& progress) {
   const bool fresnel = spec.eta != 1.0;
   const bool fluence = spec.tallies.fluence;
-  if (fresnel && fluence) return run_kernel<Phase, true, true>(spec, phase, entry_direction, entry, progress);
+  if (fresnel && fluence)
+    return run_kernel<Phase, true, true>(spec, phase, entry_direction, entry, progress);
   if (fresnel) return run_kernel<Phase, true, false>(spec, phase, entry_direction, entry, progress);
   if (fluence) return run_kernel<Phase, false, true>(spec, phase, entry_direction, entry, progress);
   return run_kernel<Phase, false, false>(spec, phase, entry_direction, entry, progress);

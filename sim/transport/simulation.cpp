@@ -141,21 +141,7 @@ void check_tallies(const TallyRequest& tallies, SourceKind source) {
 }
 
 void check_run(const RunSettings& run, const Medium& medium) {
-  if (run.photons < 1) {
-    throw InputError("run.photons", fmt::format("got {}", run.photons), "an integer >= 1");
-  }
-  if (run.batches < 2 || run.batches > run.photons) {
-    throw InputError("run.batches",
-                     fmt::format("got {} with run.photons = {}", run.batches, run.photons),
-                     "an integer in [2, run.photons] (a standard error needs at least 2 batches)");
-  }
-  if (run.threads < 0) {
-    throw InputError("run.threads", fmt::format("got {}", run.threads),
-                     "an integer >= 0 (0: all hardware threads)");
-  }
-  if (!(run.escape_radius > 0.0)) {
-    throw InputError("run.escape_radius", got(run.escape_radius), "a number > 0 (mfp), or inf");
-  }
+  check_run_settings(run);
   if (medium.albedo == 1.0 && !std::isfinite(run.escape_radius)) {
     throw InputError("run.escape_radius",
                      "is infinite, but an infinite medium with albedo 1 never absorbs, so photons "

@@ -12,12 +12,13 @@ failures=0 passed=0
 pass() { passed=$((passed + 1)); }
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
-# expect_error NAME FIELD ARGS...: non-zero exit, FIELD named on stderr, nothing written.
-expect_error() {
-  local name=$1 field=$2
-  shift 2
+# expect_command_error COMMAND NAME FIELD ARGS...: non-zero exit, FIELD named on stderr, nothing
+# written.
+expect_command_error() {
+  local command=$1 name=$2 field=$3
+  shift 3
   local out="$work/$name.h5"
-  if "$exe" simulate --photons 1000 --batches 4 --out "$out" "$@" >"$work/stdout" 2>"$work/stderr"; then
+  if "$exe" "$command" --photons 1000 --batches 4 --out "$out" "$@" >"$work/stdout" 2>"$work/stderr"; then
     fail "$name: exited 0"
   elif ! grep -q -- "$field" "$work/stderr"; then
     fail "$name: error does not name $field: $(cat "$work/stderr")"
@@ -29,6 +30,8 @@ expect_error() {
     pass
   fi
 }
+expect_error() { expect_command_error simulate "$@"; }
+expect_searchlight_error() { expect_command_error searchlight "$@"; }
 
 # A small run, then info on it.
 if "$exe" simulate --photons 20000 --batches 8 --out "$work/run.h5" >"$work/stdout" 2>"$work/stderr" &&
@@ -73,23 +76,6 @@ if "$exe" searchlight --eta 1 --albedo 0.9 --photons 20000 --batches 8 --no-flue
   --out "$work/matched.h5" | grep -q "exact diffuse reflectance"; then pass; else fail "index-matched summary"; fi
 if "$exe" searchlight --help | grep -q -- "--incidence"; then pass; else fail "searchlight help"; fi
 
-# expect_searchlight_error NAME FIELD ARGS...: as expect_error, for scatterlab searchlight.
-expect_searchlight_error() {
-  local name=$1 field=$2
-  shift 2
-  local out="$work/$name.h5"
-  if "$exe" searchlight --photons 1000 --batches 4 --out "$out" "$@" >"$work/stdout" 2>"$work/stderr"; then
-    fail "$name: exited 0"
-  elif ! grep -q -- "$field" "$work/stderr"; then
-    fail "$name: error does not name $field: $(cat "$work/stderr")"
-  elif [ "$(grep -c . "$work/stderr")" -ne 1 ]; then
-    fail "$name: more than one line of error: $(cat "$work/stderr")"
-  elif compgen -G "$work/$name.h5*" >/dev/null; then
-    fail "$name: left a file behind"
-  else
-    pass
-  fi
-}
 expect_searchlight_error eta_zero surface.eta --eta 0
 expect_searchlight_error eta_negative surface.eta --eta -1.3
 expect_searchlight_error grazing source.incidence_deg --incidence 90

@@ -25,7 +25,9 @@ const TallyResult& find(const SearchlightOutput& out, const std::string& name) {
   static const TallyResult none{"", {}, {}, "", "", {0.0}, {0.0}};
   return none;
 }
-double value(const SearchlightOutput& out, const std::string& name) { return find(out, name).mean.at(0); }
+double value(const SearchlightOutput& out, const std::string& name) {
+  return find(out, name).mean.at(0);
+}
 double error(const SearchlightOutput& out, const std::string& name) {
   return find(out, name).stderr_of_mean.at(0);
 }
@@ -62,7 +64,7 @@ double single_scatter_reflectance(double albedo, double eta, double incidence_de
   const FresnelDielectric entry = fresnel_dielectric_terms(cos_i, eta);
   const double mu_t = entry.cos_transmitted;
   const auto integrand = [eta, mu_t](double mu) {
-    return mu / (mu + mu_t) * (1.0 - fresnel_dielectric(mu, 1.0 / eta));
+    return mu / (mu + mu_t) * fresnel_dielectric_transmittance(mu, 1.0 / eta);
   };
   // The critical cosine, where 1 - F has a kink, starts the subdivision.
   const double critical = eta > 1.0 ? std::sqrt(1.0 - 1.0 / (eta * eta)) : 0.5;
@@ -94,8 +96,8 @@ TEST(Searchlight, OnceScatteredReflectanceMatchesItsClosedForm) {
   struct Case {
     double eta, incidence;
   };
-  for (const Case c : {Case{1.0, 0.0}, Case{1.33, 0.0}, Case{1.33, 50.0}, Case{2.5, 0.0},
-                       Case{0.75, 30.0}}) {
+  for (const Case c :
+       {Case{1.0, 0.0}, Case{1.33, 0.0}, Case{1.33, 50.0}, Case{2.5, 0.0}, Case{0.75, 30.0}}) {
     SearchlightSpec spec = scene(0.8, 0.0, c.eta, 400'000);
     spec.incidence_deg = c.incidence;
     const SearchlightOutput out = run_searchlight(spec);
@@ -104,8 +106,9 @@ TEST(Searchlight, OnceScatteredReflectanceMatchesItsClosedForm) {
                 4.0 * error(out, "diffuse_reflectance_single"))
         << "eta " << c.eta << ", incidence " << c.incidence;
     EXPECT_EQ(value(out, "diffuse_reflectance_unscattered"), 0.0);
-    const double entry = fresnel_dielectric(std::cos(c.incidence * std::numbers::pi / 180.0), c.eta);
-    EXPECT_DOUBLE_EQ(value(out, "specular_reflectance"), entry);
+    const double cos_i = std::cos(c.incidence * std::numbers::pi / 180.0);
+    EXPECT_DOUBLE_EQ(value(out, "specular_reflectance"),
+                     fresnel_dielectric_reflectance(cos_i, c.eta));
   }
 }
 
@@ -127,9 +130,9 @@ TEST(Searchlight, EnergyBalancesAndNothingIsNaNInExtremeScenes) {
     spec.incidence_deg = c.incidence;
     spec.tallies.fluence = true;
     const SearchlightOutput out = run_searchlight(spec);
-    const std::string label = "albedo " + std::to_string(c.albedo) + ", g " +
-                              std::to_string(c.g) + ", eta " + std::to_string(c.eta) +
-                              ", incidence " + std::to_string(c.incidence);
+    const std::string label = "albedo " + std::to_string(c.albedo) + ", g " + std::to_string(c.g) +
+                              ", eta " + std::to_string(c.eta) + ", incidence " +
+                              std::to_string(c.incidence);
     for (const TallyResult& t : out.tallies) {
       for (std::size_t i = 0; i < t.size(); ++i) {
         ASSERT_TRUE(std::isfinite(t.mean[i]) && std::isfinite(t.stderr_of_mean[i]))
@@ -189,7 +192,8 @@ TEST(Searchlight, OrdersSumToTheTotalAndSurfaceTalliesAgree) {
     for (std::size_t k = 0; k < radiance.shape[1]; ++k) {
       const double s0 = std::sin(theta.edge(static_cast<int>(k)));
       const double s1 = std::sin(theta.edge(static_cast<int>(k) + 1));
-      from_radiance += radiance.mean[i * radiance.shape[1] + k] * std::numbers::pi * (s1 * s1 - s0 * s0);
+      from_radiance +=
+          radiance.mean[i * radiance.shape[1] + k] * std::numbers::pi * (s1 * s1 - s0 * s0);
     }
     EXPECT_NEAR(from_radiance, reflectance.mean[i], 1e-12 * (1.0 + reflectance.mean[i]));
   }
@@ -219,7 +223,8 @@ TEST(Searchlight, AbsorptionFromTheFluenceMatchesTheAbsorbedPower) {
   const TallyResult& direct = find(out, "fluence_unscattered");
   double direct_collisions = 0.0, direct_bound = 0.0;
   for (std::size_t iz = 0; iz < direct.shape[1]; ++iz) {
-    const double volume = std::numbers::pi * spec.grid.r.width() * spec.grid.r.width() * spec.grid.z.width();
+    const double volume =
+        std::numbers::pi * spec.grid.r.width() * spec.grid.r.width() * spec.grid.z.width();
     direct_collisions += direct.mean[iz] * volume;
     direct_bound += direct.stderr_of_mean[iz] * volume;
   }

@@ -14,7 +14,7 @@ namespace {
 TEST(Fresnel, NormalIncidenceIsTheSquaredIndexContrast) {
   for (double eta : {1.0001, 1.33, 1.5, 2.5, 0.75, 1.0 / 1.33}) {
     const double expected = std::pow((eta - 1.0) / (eta + 1.0), 2);
-    EXPECT_NEAR(fresnel_dielectric(1.0, eta), expected, 1e-15) << "eta " << eta;
+    EXPECT_NEAR(fresnel_dielectric_reflectance(1.0, eta), expected, 1e-15) << "eta " << eta;
   }
 }
 
@@ -68,8 +68,8 @@ TEST(Fresnel, TotalInternalReflectionBeyondTheCriticalAngle) {
 }
 
 TEST(Fresnel, GrazingIncidenceReflectsEverything) {
-  for (double eta : {1.0001, 1.33, 2.5}) EXPECT_EQ(fresnel_dielectric(0.0, eta), 1.0);
-  EXPECT_GT(fresnel_dielectric(1e-6, 1.33), 0.9999);
+  for (double eta : {1.0001, 1.33, 2.5}) EXPECT_EQ(fresnel_dielectric_reflectance(0.0, eta), 1.0);
+  EXPECT_GT(fresnel_dielectric_reflectance(1e-6, 1.33), 0.9999);
 }
 
 TEST(Fresnel, ReciprocityBetweenBothSidesOfTheInterface) {
@@ -85,8 +85,11 @@ TEST(Fresnel, ReciprocityBetweenBothSidesOfTheInterface) {
 }
 
 TEST(Fresnel, OutOfRangeCosinesAreClampedNotNaN) {
-  EXPECT_EQ(fresnel_dielectric(1.0 + 1e-15, 1.33), fresnel_dielectric(1.0, 1.33));
-  EXPECT_EQ(fresnel_dielectric(-1e-17, 1.33), 1.0);
+  EXPECT_EQ(fresnel_dielectric_reflectance(1.0 + 1e-15, 1.33),
+            fresnel_dielectric_reflectance(1.0, 1.33));
+  EXPECT_EQ(fresnel_dielectric_transmittance(1.0, 1.33),
+            1.0 - fresnel_dielectric_reflectance(1.0, 1.33));
+  EXPECT_EQ(fresnel_dielectric_reflectance(-1e-17, 1.33), 1.0);
 }
 
 TEST(Refract, FollowsSnellsLawAndStaysUnit) {

@@ -52,8 +52,12 @@ inline FresnelDielectric fresnel_dielectric_terms(double cos_incident, double et
 
 // Unpolarised reflectance F = (|r_s|^2 + |r_p|^2) / 2; exactly 0 for eta = 1, 1 under total
 // internal reflection and at grazing incidence.
-inline double fresnel_dielectric(double cos_incident, double eta) {
+inline double fresnel_dielectric_reflectance(double cos_incident, double eta) {
   return fresnel_dielectric_terms(cos_incident, eta).reflectance();
+}
+
+inline double fresnel_dielectric_transmittance(double cos_incident, double eta) {
+  return 1.0 - fresnel_dielectric_reflectance(cos_incident, eta);
 }
 
 // Refracts the unit travel direction `incident` through a surface with unit normal `normal`

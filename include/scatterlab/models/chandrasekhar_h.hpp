@@ -10,7 +10,8 @@
 // Method: the closed integral form (Chandrasekhar 1960, §39, eq. (36); Fowler 1983; Kawabata &
 // Limaye 2011, eq. (6))
 //
-//   ln H(mu) = -(mu / pi) int_0^{pi/2} ln(1 - w theta cot theta) / (cos^2 theta + mu^2 sin^2 theta) dtheta,
+//   ln H(mu) = -(mu / pi) int_0^{pi/2} ln(1 - w theta cot theta) / (cos^2 theta + mu^2 sin^2 theta)
+//   dtheta,
 //
 // integrated by adaptive Gauss-Kronrod to 1e-13 relative. The integrand has only a logarithmic
 // singularity at theta = 0 when w = 1, where 1 - theta cot theta ~ theta^2 / 3 is taken from

@@ -16,10 +16,7 @@ namespace scatterlab {
 class HalfSpaceScorer {
  public:
   HalfSpaceScorer(const SearchlightSpec& spec, const HalfSpaceLayout& layout)
-      : r_(spec.grid.r),
-        z_(spec.grid.z),
-        layout_(layout),
-        exit_binning_(spec.grid.theta_o) {}
+      : r_(spec.grid.r), z_(spec.grid.z), layout_(layout), exit_binning_(spec.grid.theta_o) {}
 
   // A photon leaves the surface at (x, y, 0) after `order` scatterings, at cos_outside from the
   // outward normal on the outside (after refraction).

@@ -16,4 +16,8 @@ struct RunSettings {
   double escape_radius = std::numeric_limits<double>::infinity();
 };
 
+// Throws InputError ("run.photons", "run.batches", "run.threads", "run.escape_radius") for
+// settings no kernel can run; whether an infinite escape radius is allowed is the scene's call.
+void check_run_settings(const RunSettings& run);
+
 }  // namespace scatterlab

@@ -22,9 +22,10 @@ namespace scatterlab {
 // Bins of the half-space tallies. The defaults reach ~10 mfp, where R_d(r) of an albedo-0.99
 // medium has fallen by about four decades: enough for the log plots that compare models.
 struct SearchlightGrid {
-  UniformAxis r{0.0, 10.0, 200};                        // distance from the entry point
-  UniformAxis z{0.0, 10.0, 100};                        // depth below the surface
-  UniformAxis theta_o{0.0, 0.5 * std::numbers::pi, 18};  // exit angle from the outward normal, outside
+  UniformAxis r{0.0, 10.0, 200};  // distance from the entry point
+  UniformAxis z{0.0, 10.0, 100};  // depth below the surface
+  UniformAxis theta_o{0.0, 0.5 * std::numbers::pi,
+                      18};  // exit angle from the outward normal, outside
 };
 
 struct SearchlightTallies {
@@ -38,8 +39,8 @@ struct SearchlightSpec {
   // diffusion models are built for, behind the interface index 1.3 that Jensen et al. 2001 use
   // for all their measured materials.
   Medium medium{0.99, 1.0, 0.0, "mfp"};
-  double eta = 1.3;             // relative index n_medium / n_outside, > 0
-  double incidence_deg = 0.0;   // angle of the beam from the inward normal, in [0, 90)
+  double eta = 1.3;            // relative index n_medium / n_outside, > 0
+  double incidence_deg = 0.0;  // angle of the beam from the inward normal, in [0, 90)
   SearchlightGrid grid;
   SearchlightTallies tallies;
   RunSettings run{10'000'000, 64, 1, 0};
