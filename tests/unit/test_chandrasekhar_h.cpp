@@ -80,8 +80,8 @@ TEST(ChandrasekharH, ConservativeValueAtNormal) {
 }
 
 TEST(ChandrasekharH, AgreesWithTheIntegralEquationSolvedByIteration) {
-  for (double albedo : {0.2, 0.6, 0.9, 0.99, 0.9999}) {
-    const IteratedH iterated(albedo, 100);
+  for (double albedo : {0.2, 0.6, 0.9, 0.99, 0.999}) {
+    const IteratedH iterated(albedo, 64);
     for (double mu : {0.05, 0.25, 0.5, 0.75, 1.0}) {
       EXPECT_NEAR(chandrasekhar_h(albedo, mu), iterated.at(mu), 2e-6)
           << "albedo " << albedo << ", mu " << mu;
