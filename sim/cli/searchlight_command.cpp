@@ -10,6 +10,7 @@
 #include "progress_bar.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
+#include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/models/chandrasekhar_h.hpp"
 #include "scatterlab/transport/searchlight.hpp"
@@ -18,7 +19,7 @@ namespace scatterlab::cli {
 namespace {
 
 struct SearchlightOptions {
-  std::string out = "searchlight.h5";
+  std::string scene, out;
   double albedo = 0, g = 0, eta = 0, incidence = 0, escape_radius = 0;
   double photons = 0;  // a double, so that 1e7 reads as it does in scene files
   std::uint64_t seed = 0;
@@ -78,7 +79,9 @@ void print_summary(const SearchlightSpec& spec, const SearchlightOutput& out,
 int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
                             const std::string& command_line) {
   auto given = [&command](const char* flag) { return command.get_option(flag)->count() > 0; };
-  SearchlightSpec spec;
+  SearchlightScene scene;
+  if (given("--scene")) scene = load_searchlight_scene(o.scene);
+  SearchlightSpec& spec = scene.spec;
   if (given("--albedo")) spec.medium.albedo = o.albedo;
   if (given("--g")) spec.medium.g = o.g;
   if (given("--eta")) spec.eta = o.eta;
@@ -93,10 +96,11 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
   if (given("--z-max")) spec.grid.z.max = o.z_max;
   if (given("--z-bins")) spec.grid.z.bins = o.z_bins;
   if (given("--theta-bins")) spec.grid.theta_o.bins = o.theta_bins;
-  spec.tallies.fluence = !o.no_fluence;
+  if (given("--no-fluence")) spec.tallies.fluence = false;
   spec.validate();
 
-  { const AtomicOutput check(o.out); }  // a bad output path fails now, not after the run
+  const std::string path = given("--out") ? o.out : scene.output_path.value_or("searchlight.h5");
+  { const AtomicOutput check(path); }  // a bad output path fails now, not after the run
 
   ProgressBar bar("searchlight");
   const SearchlightOutput out = run_searchlight(spec, [&bar](double done) { bar.update(done); });
@@ -105,8 +109,8 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
   const Provenance provenance{SCATTERLAB_VERSION, command_line, iso8601_now(),
                               out.wall_seconds,   out.photons,  out.scattering_events};
   spec.run.threads = out.threads;  // record what ran, not "all cores"
-  write_searchlight_file(o.out, spec, out.tallies, provenance);
-  print_summary(spec, out, o.out);
+  write_searchlight_file(path, spec, out.tallies, provenance);
+  print_summary(spec, out, path);
   return 0;
 }
 
@@ -121,6 +125,8 @@ Action add_searchlight_command(CLI::App& app, const std::string& command_line) {
       "to HDF5. Without flags: albedo 0.99, g 0, eta 1.3, normal incidence.");
   auto o = std::make_shared<SearchlightOptions>();
   command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  command->add_option("--scene", o->scene, "TOML scene file (see data/scenes/searchlight.toml)")
+      ->check(CLI::ExistingFile);
   command->add_option("--out", o->out, "Output HDF5 file [searchlight.h5]");
   command->add_option("--albedo", o->albedo, "Single-scattering albedo in [0, 1] [0.99]");
   command->add_option("--g", o->g, "Henyey-Greenstein mean cosine, |g| < 1 [0]");

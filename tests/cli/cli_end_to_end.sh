@@ -76,6 +76,11 @@ if "$exe" searchlight --eta 1 --albedo 0.9 --photons 20000 --batches 8 --no-flue
   --out "$work/matched.h5" | grep -q "exact diffuse reflectance"; then pass; else fail "index-matched summary"; fi
 if "$exe" searchlight --help | grep -q -- "--incidence"; then pass; else fail "searchlight help"; fi
 
+if "$exe" searchlight --scene "$source_dir/data/scenes/searchlight.toml" --photons 20000 --batches 8 \
+  --out "$work/scene.h5" >/dev/null 2>&1 && "$exe" info "$work/scene.h5" | grep -q "eta *1.3"
+then pass; else fail "searchlight scene"; fi
+printf '[surface]\nindx = 1.3\n' >"$work/half-typo.toml"
+expect_searchlight_error searchlight_unknown_key surface.indx --scene "$work/half-typo.toml"
 expect_searchlight_error eta_zero surface.eta --eta 0
 expect_searchlight_error eta_negative surface.eta --eta -1.3
 expect_searchlight_error grazing source.incidence_deg --incidence 90

@@ -28,6 +28,7 @@
 #include <string>
 #include <string_view>
 
+#include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/transport/simulation.hpp"
 
 namespace scatterlab {
@@ -42,5 +43,21 @@ Scene parse_scene(std::string_view toml_text, const std::string& origin);
 
 // Reads and parses a file; an unreadable file is an InputError for "scene".
 Scene load_scene(const std::filesystem::path& path);
+
+// The searchlight's scene (scatterlab searchlight --scene; data/scenes/searchlight.toml), as
+// strict as the above, with these tables:
+//   [medium]   albedo, g                                   (in mfp: sigma_t = 1)
+//   [surface]  eta = n_medium / n_outside
+//   [source]   incidence_deg
+//   [grid]     r = { max, bins }, z = { max, bins }, theta_o = { bins }
+//   [tallies]  fluence = bool
+//   [run]      as above;  [output] path
+struct SearchlightScene {
+  SearchlightSpec spec;                    // validated
+  std::optional<std::string> output_path;  // [output] path, as written
+};
+
+SearchlightScene parse_searchlight_scene(std::string_view toml_text, const std::string& origin);
+SearchlightScene load_searchlight_scene(const std::filesystem::path& path);
 
 }  // namespace scatterlab
