@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev libhdf5-dev libceres-dev libfmt-dev libgtest-dev libgmock-dev
   libcli11-dev libtomlplusplus-dev librandom123-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
+  libplplot-dev plplot-driver-cairo
   clang-format
 )
 

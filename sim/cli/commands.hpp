@@ -15,6 +15,8 @@ using Action = std::function<int()>;
 Action add_simulate_command(CLI::App& app, const std::string& command_line);
 Action add_searchlight_command(CLI::App& app, const std::string& command_line);
 Action add_info_command(CLI::App& app);
+Action add_fit_command(CLI::App& app);
+Action add_validate_command(CLI::App& app);
 
 // --photons as a double, so that 1e8 reads as it does in scene files; throws InputError
 // ("run.photons") unless it is a whole number that fits.

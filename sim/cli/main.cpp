@@ -20,6 +20,8 @@ int main(int argc, char** argv) {
   const auto simulate = scatterlab::cli::add_simulate_command(app, command_line);
   const auto searchlight = scatterlab::cli::add_searchlight_command(app, command_line);
   const auto info = scatterlab::cli::add_info_command(app);
+  const auto fit = scatterlab::cli::add_fit_command(app);
+  const auto validate = scatterlab::cli::add_validate_command(app);
 
   try {
     app.parse(argc, argv);
@@ -30,6 +32,8 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("simulate")) return simulate();
     if (app.got_subcommand("searchlight")) return searchlight();
     if (app.got_subcommand("info")) return info();
+    if (app.got_subcommand("fit")) return fit();
+    if (app.got_subcommand("validate")) return validate();
   } catch (const scatterlab::InputError& e) {
     fmt::print(stderr, "scatterlab: error: {}\n", e.what());
     return 2;

@@ -421,16 +421,18 @@ Group Group::open_group(std::string_view path) const {
       file(), full);
 }
 
-Dataset Group::write_dataset(std::string_view name, std::span<const double> values,
-                             const std::vector<std::size_t>& shape) {
-  const std::string key(name);
-  const std::string full = child_path(name);
-  const std::string where = file() + ":" + full;
+namespace {
+
+// One writer for every element type: `file_type` is what the file stores, `memory_type` what
+// `values` points at.
+Handle write_array(hid_t group, const std::string& key, const std::string& where,
+                   hid_t file_type, hid_t memory_type, const void* values, std::size_t count,
+                   const std::vector<std::size_t>& shape) {
   std::size_t expected = 1;
   for (const std::size_t extent : shape) expected *= extent;
-  if (expected != values.size()) {
+  if (expected != count) {
     throw std::invalid_argument("HDF5: dataset shape holds " + std::to_string(expected) +
-                                " values but " + std::to_string(values.size()) + " were given (" +
+                                " values but " + std::to_string(count) + " were given (" +
                                 where + ")");
   }
   const std::vector<hsize_t> dims(shape.begin(), shape.end());
@@ -440,17 +442,34 @@ Dataset Group::write_dataset(std::string_view name, std::span<const double> valu
           : Handle(check_id(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
                             "create the dataspace", where),
                    H5Sclose);
-  const Handle plist = dataset_creation_plist(shape, values.size(), where);
-  Handle dataset(check_id(H5Dcreate2(id(), key.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
+  const Handle plist = dataset_creation_plist(shape, count, where);
+  Handle dataset(check_id(H5Dcreate2(group, key.c_str(), file_type, space.get(), H5P_DEFAULT,
                                      plist.get(), H5P_DEFAULT),
                           "create dataset", where),
                  H5Dclose);
-  if (!values.empty()) {
-    check_status(
-        H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
-        "write dataset", where);
+  if (count > 0) {
+    check_status(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values),
+                 "write dataset", where);
   }
-  return Dataset(std::move(dataset), file(), full);
+  return dataset;
+}
+
+}  // namespace
+
+Dataset Group::write_dataset(std::string_view name, std::span<const double> values,
+                             const std::vector<std::size_t>& shape) {
+  const std::string full = child_path(name);
+  return Dataset(write_array(id(), std::string(name), file() + ":" + full, H5T_IEEE_F64LE,
+                             H5T_NATIVE_DOUBLE, values.data(), values.size(), shape),
+                 file(), full);
+}
+
+Dataset Group::write_dataset(std::string_view name, std::span<const std::int32_t> values,
+                             const std::vector<std::size_t>& shape) {
+  const std::string full = child_path(name);
+  return Dataset(write_array(id(), std::string(name), file() + ":" + full, H5T_STD_I32LE,
+                             H5T_NATIVE_INT32, values.data(), values.size(), shape),
+                 file(), full);
 }
 
 Dataset Group::write_dataset(std::string_view name, std::span<const double> values) {
@@ -477,6 +496,12 @@ bool Group::has_member(std::string_view path) const {
     }
   }
   return !prefix.empty();
+}
+
+void Group::remove_member(std::string_view name) {
+  const std::string key(name);
+  check_status(H5Ldelete(id(), key.c_str(), H5P_DEFAULT), "remove member",
+               file() + ":" + child_path(name));
 }
 
 std::vector<std::string> Group::member_names() const {
@@ -524,6 +549,17 @@ void File::close() {
     check_status(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush file", name);
   }
   if (!file_.reset()) fail("close file", name);
+}
+
+File File::open_read_write(const std::filesystem::path& path) {
+  silence_error_printing();
+  const std::string name = path.string();
+  Handle file(check_id(H5Fopen(name.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), "open file for writing",
+                       name),
+              H5Fclose);
+  Handle root(check_id(H5Gopen2(file.get(), "/", H5P_DEFAULT), "open the root group", name),
+              H5Gclose);
+  return File(path, std::move(file), Group(std::move(root), name, "/"));
 }
 
 bool is_hdf5_file(const std::filesystem::path& path) {

@@ -45,6 +45,22 @@ if "$exe" simulate --scene "$source_dir/data/scenes/point-source.toml" --photons
 then pass; else fail "point-source scene"; fi
 if "$exe" simulate --help | grep -q -- "--albedo"; then pass; else fail "help"; fi
 
+# fit on the small run: fits in the file, a CSV, a summary; a re-run replaces them.
+if "$exe" fit "$work/run.h5" --threads 2 >"$work/fit" 2>&1 && grep -q "dexp beats sg" "$work/fit" &&
+  grep -q "adexp beats sg and dexp" "$work/fit" && grep -q "fits/s" "$work/fit" &&
+  [ -f "$work/run-fits.csv" ] && [ "$(wc -l <"$work/run-fits.csv")" -eq 601 ]; then pass; else
+  fail "fit: $(cat "$work/fit")"
+fi
+if "$exe" fit "$work/run.h5" --models sg,dexp --csv "$work/two.csv" >"$work/fit" 2>&1 &&
+  head -1 "$work/two.csv" | grep -q "^r_index,z_index,r,z,sg_status" && ! grep -qi nan "$work/two.csv" &&
+  ! compgen -G "$work/run.h5.tmp*" >/dev/null; then pass; else fail "fit re-run: $(cat "$work/fit")"; fi
+if "$exe" fit "$work/run.h5" --models sg,glow >/dev/null 2>"$work/stderr"; then fail "fit glow: exited 0"
+elif grep -q "models" "$work/stderr" && [ "$(grep -c . "$work/stderr")" -eq 1 ]; then pass
+else fail "fit glow: $(cat "$work/stderr")"; fi
+if "$exe" simulate --photons 2000 --batches 4 --tallies fluence --out "$work/noradiance.h5" >/dev/null 2>&1 &&
+  ! "$exe" fit "$work/noradiance.h5" 2>"$work/stderr" >/dev/null && grep -q "radiance" "$work/stderr"
+then pass; else fail "fit without radiance: $(cat "$work/stderr")"; fi
+
 expect_error albedo_above_one medium.albedo --albedo 1.5
 expect_error g_at_one medium.g --g 1
 expect_error g_below_minus_one medium.g --g -1.2
@@ -94,6 +110,27 @@ expect_searchlight_error searchlight_missing_directory out --out "$work/no/such/
 echo "not hdf5" >"$work/text.h5"
 if "$exe" info "$work/text.h5" >/dev/null 2>"$work/stderr"; then fail "info on text: exited 0"
 elif grep -q "not a scatterlab HDF5 file" "$work/stderr"; then pass; else fail "info on text: $(cat "$work/stderr")"; fi
+
+# validate deon --quick: the error table, both CSV files and every PNG (valid signature).
+if "$exe" validate deon --quick --threads 2 --out "$work/deon" >"$work/stdout" 2>"$work/stderr" &&
+  grep -q "Grosjean" "$work/stdout" && [ -s "$work/deon/deon_point_source.csv" ] &&
+  [ "$(grep -c "^0.5,grosjean" "$work/deon/deon_errors.csv")" -eq 1 ]; then pass; else
+  fail "validate deon: $(cat "$work/stdout" "$work/stderr")"
+fi
+pngs=0
+for albedo in 0.01 0.1 0.3 0.5 0.7 0.9 0.99; do
+  for scale in linear log; do
+    f="$work/deon/deon_albedo_${albedo}_${scale}.png"
+    [ "$(head -c 4 "$f" 2>/dev/null | tail -c 3)" = "PNG" ] && pngs=$((pngs + 1))
+  done
+done
+if [ "$pngs" -eq 14 ]; then pass; else fail "validate deon: $pngs of 14 PNG files"; fi
+if compgen -G "$work/deon/*.tmp-*" >/dev/null; then fail "validate deon left temporary files"; else pass; fi
+if "$exe" validate deon --photons 2.5 --out "$work/deon2" >/dev/null 2>"$work/stderr"; then
+  fail "validate deon --photons 2.5: exited 0"
+elif grep -q "photons" "$work/stderr" && [ ! -e "$work/deon2" ]; then pass; else
+  fail "validate deon --photons 2.5: $(cat "$work/stderr")"
+fi
 
 echo "cli: $passed passed, $failures failed"
 [ "$failures" -eq 0 ]

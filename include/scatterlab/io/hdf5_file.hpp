@@ -118,10 +118,15 @@ class Group : public Object {
   Dataset write_dataset(std::string_view name, std::span<const double> values,
                         const std::vector<std::size_t>& shape);
   Dataset write_dataset(std::string_view name, std::span<const double> values);  // 1-D
+  // The same for integer codes (stored as little-endian int32; h5py returns numpy.int32).
+  Dataset write_dataset(std::string_view name, std::span<const std::int32_t> values,
+                        const std::vector<std::size_t>& shape);
   Dataset open_dataset(std::string_view path) const;
   Array read_dataset(std::string_view path) const { return open_dataset(path).read(); }
 
   bool has_member(std::string_view path) const;
+  // Unlinks the direct member `name` (a group with everything under it, or a dataset).
+  void remove_member(std::string_view name);
   std::vector<std::string> member_names() const;  // in creation order where recorded
 
  private:
@@ -134,6 +139,9 @@ class File {
   // Creates (truncating) a file for writing.
   static File create(const std::filesystem::path& path);
   static File open_read_only(const std::filesystem::path& path);
+  // Opens an existing file to add or replace groups; write to a copy and rename it into place
+  // (AtomicOutput) so that a failure leaves the original untouched.
+  static File open_read_write(const std::filesystem::path& path);
 
   Group& root() { return root_; }
   const Group& root() const { return root_; }

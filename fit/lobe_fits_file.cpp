@@ -1,0 +1,416 @@
+#include "scatterlab/fit/lobe_fits_file.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <optional>
+#include <stdexcept>
+
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/io/atomic_output.hpp"
+#include "scatterlab/io/hdf5_file.hpp"
+#include "scatterlab/io/simulation_file.hpp"
+
+namespace scatterlab::fit {
+
+namespace {
+
+[[noreturn]] void unusable_file(const std::filesystem::path& path, const std::string& reason) {
+  throw InputError("FILE", path.string() + ": " + reason,
+                   "a file written by scatterlab simulate with the radiance tally");
+}
+
+std::size_t product(const std::vector<std::size_t>& shape) {
+  std::size_t values = 1;
+  for (const std::size_t extent : shape) values *= extent;
+  return values;
+}
+
+// E = integral of L w d omega over the bins (DESIGN.md, "Normalisation"), for files without
+// the flux tally.
+std::vector<double> flux_from_radiance(const RadianceLobes& lobes, const LobeGrid& grid) {
+  std::vector<double> flux;
+  for (std::size_t r = 0; r < lobes.r_bins(); ++r) {
+    for (std::size_t z = 0; z < lobes.z_bins(); ++z) {
+      const LobeData data = lobes.lobe(r, z);
+      Eigen::Vector3d e = Eigen::Vector3d::Zero();
+      for (std::size_t bin = 0; bin < grid.size(); ++bin) {
+        if (std::isfinite(data.mean[bin])) {
+          e += grid.solid_angle(bin) * data.mean[bin] * grid.centre(bin);
+        }
+      }
+      if (grid.phi_folded()) e.y() = 0.0;  // the mirror image cancels E_phi
+      flux.insert(flux.end(), {e.x(), e.y(), e.z()});
+    }
+  }
+  return flux;
+}
+
+std::optional<Eigen::Vector3d> flux_axis(const LobeData& data) {
+  const double norm = data.flux.norm();
+  if (!(norm > 0.0) || !std::isfinite(norm)) return std::nullopt;
+  return Eigen::Vector3d(data.flux / norm);
+}
+
+// The start with the lowest cost among the candidates (lobe_fits_file.hpp, fit_lobes).
+LobeParameters best_start(LobeModel model, const LobeGrid& grid, const LobeObservations& o,
+                          const std::vector<LobeParameters>& candidates) {
+  std::size_t best = 0;
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const double cost = fit_cost(model, grid, o, candidates[i]);
+    if (cost < best_cost) best = i, best_cost = cost;
+  }
+  return candidates[best];
+}
+
+const LobeFit* find_fit(const std::vector<std::optional<LobeFit>>& fits, LobeModel model) {
+  const auto& fit = fits[static_cast<std::size_t>(model)];
+  return fit && usable(fit->status) ? &*fit : nullptr;
+}
+
+// All models of one spatial bin, in the order sg, sg_free, dexp, adexp so that each can start
+// from the simpler one. `previous` holds the neighbour's fits (the previous z in the column).
+void fit_bin(const LobeGrid& grid, const LobeData& data, const std::vector<bool>& wanted,
+             const FitOptions& options, std::vector<std::optional<LobeFit>>& previous,
+             std::vector<std::optional<LobeFit>>& current, std::size_t& attempted) {
+  const LobeObservations o = observe(grid, data, options);
+  for (const LobeModel model : kAllLobeModels) {
+    const auto index = static_cast<std::size_t>(model);
+    if (!wanted[index]) continue;
+    LobeFit skipped;
+    if (o.status != FitStatus::converged) {
+      skipped.status = o.status;
+      skipped.message = o.message;
+      current[index] = skipped;
+      continue;
+    }
+    const std::optional<Eigen::Vector3d> e_axis = flux_axis(data);
+    if (model == LobeModel::sg && !e_axis) {
+      skipped.status = FitStatus::no_axis;
+      skipped.message = "vector irradiance E is zero: no axis for the SG";
+      current[index] = skipped;
+      continue;
+    }
+    std::vector<LobeParameters> candidates;
+    const LobeParameters estimate = double_exponential_estimate(grid, o);
+    if (model == LobeModel::sg || model == LobeModel::sg_free) {
+      candidates.push_back(spherical_gaussian_estimate(grid, o, e_axis.value_or(estimate.axis)));
+    } else {
+      candidates.push_back(estimate);
+    }
+    if (model == LobeModel::sg_free) {
+      if (const LobeFit* sg = find_fit(current, LobeModel::sg)) candidates.push_back(sg->parameters);
+    }
+    if (model == LobeModel::adexp) {
+      if (const LobeFit* dexp = find_fit(current, LobeModel::dexp)) {
+        LobeParameters start = dexp->parameters;
+        start.shape[3] = 0.0;
+        candidates.push_back(start);
+      }
+    }
+    if (const LobeFit* neighbour = find_fit(previous, model)) {
+      LobeParameters start = neighbour->parameters;
+      if (model == LobeModel::sg) start.axis = *e_axis;  // p stays E / |E| of this bin
+      candidates.push_back(start);
+    }
+    ++attempted;
+    current[index] = fit_lobe(model, grid, data, o, best_start(model, grid, o, candidates), options);
+  }
+}
+
+std::string join(const std::vector<std::string>& parts) {
+  std::string text;
+  for (const std::string& part : parts) text += (text.empty() ? "" : ",") + part;
+  return text;
+}
+
+double percentile(std::vector<double> values, double fraction) {
+  if (values.empty()) return -1.0;
+  std::sort(values.begin(), values.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(fraction * static_cast<double>(values.size())));
+  return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
+}
+
+const ModelFits* find_model(const LobeFitRun& run, LobeModel model) {
+  for (const ModelFits& fits : run.models) {
+    if (fits.model == model) return &fits;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+LobeData RadianceLobes::lobe(std::size_t r, std::size_t z) const {
+  const std::size_t bin = r * z_bins() + z;
+  LobeData data;
+  data.mean = std::span<const double>(mean).subspan(bin * directions(), directions());
+  data.stderr_of_mean =
+      std::span<const double>(stderr_of_mean).subspan(bin * directions(), directions());
+  data.flux = Eigen::Vector3d(flux[3 * bin], flux[3 * bin + 1], flux[3 * bin + 2]);
+  return data;
+}
+
+RadianceLobes read_radiance_lobes(const std::filesystem::path& path) {
+  read_file_summary(path);  // InputError("FILE", ...) unless a readable scatterlab file
+  RadianceLobes lobes;
+  lobes.path = path;
+  try {
+    const hdf5::File file = hdf5::File::open_read_only(path);
+    const hdf5::Group& root = file.root();
+    if (!root.has_member("tallies/radiance/mean") || !root.has_member("tallies/radiance/stderr")) {
+      unusable_file(path, "no radiance tally (/tallies/radiance); run simulate with it");
+    }
+    const hdf5::Group grid = root.open_group("grid");
+    lobes.phi_folded = grid.has_attribute("phi_folded") && grid.read_int64_attribute("phi_folded");
+    lobes.r_edges = grid.read_dataset("r").values;
+    lobes.z_edges = grid.read_dataset("z").values;
+    lobes.theta_edges = grid.read_dataset("theta").values;
+    lobes.phi_edges = grid.read_dataset("phi").values;
+    hdf5::Array mean = root.read_dataset("tallies/radiance/mean");
+    hdf5::Array error = root.read_dataset("tallies/radiance/stderr");
+    const std::vector<std::size_t> expected = {lobes.r_edges.size() - 1, lobes.z_edges.size() - 1,
+                                               lobes.theta_edges.size() - 1,
+                                               lobes.phi_edges.size() - 1};
+    if (mean.shape != expected || error.shape != expected) {
+      unusable_file(path, "radiance mean and stderr must have the shape of the grid [r, z, theta, phi]");
+    }
+    lobes.mean = std::move(mean.values);
+    lobes.stderr_of_mean = std::move(error.values);
+    if (root.has_member("tallies/flux/mean")) {
+      const hdf5::Array flux = root.read_dataset("tallies/flux/mean");
+      if (flux.shape != std::vector<std::size_t>{expected[0], expected[1], 2}) {
+        unusable_file(path, "flux mean must have shape [r, z, 2]");
+      }
+      for (std::size_t i = 0; i < product(flux.shape); i += 2) {
+        lobes.flux.insert(lobes.flux.end(), {flux.values[i], 0.0, flux.values[i + 1]});
+      }
+      lobes.flux_from_tally = true;
+    }
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::runtime_error& failure) {
+    unusable_file(path, failure.what());
+  }
+  if (!lobes.flux_from_tally) {
+    lobes.flux.assign(3 * lobes.r_bins() * lobes.z_bins(), 0.0);  // lobe() reads it below
+    lobes.flux = flux_from_radiance(lobes, LobeGrid(lobes.theta_edges, lobes.phi_edges,
+                                                    lobes.phi_folded, 1));
+  }
+  return lobes;
+}
+
+LobeFitRun fit_lobes(const RadianceLobes& lobes, const LobeGrid& grid,
+                     const std::vector<LobeModel>& models, const FitOptions& options,
+                     int threads) {
+  if (grid.size() != lobes.directions()) {
+    throw std::invalid_argument("fit_lobes: the angular grid does not match the radiance tally");
+  }
+  std::vector<bool> wanted(kAllLobeModels.size(), false);
+  for (const LobeModel model : models) wanted[static_cast<std::size_t>(model)] = true;
+  const std::size_t nr = lobes.r_bins(), nz = lobes.z_bins();
+  // fits[model][r * nz + z]
+  std::vector<std::vector<LobeFit>> fits(kAllLobeModels.size(), std::vector<LobeFit>(nr * nz));
+
+  LobeFitRun run;
+  run.threads = threads > 0 ? threads : omp_get_max_threads();
+  std::size_t attempted = 0;
+  const auto start = std::chrono::steady_clock::now();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(run.threads) reduction(+ : attempted)
+  for (std::size_t r = 0; r < nr; ++r) {
+    std::vector<std::optional<LobeFit>> previous(kAllLobeModels.size());
+    std::vector<std::optional<LobeFit>> current(kAllLobeModels.size());
+    for (std::size_t z = 0; z < nz; ++z) {
+      std::fill(current.begin(), current.end(), std::nullopt);
+      fit_bin(grid, lobes.lobe(r, z), wanted, options, previous, current, attempted);
+      for (std::size_t m = 0; m < current.size(); ++m) {
+        if (current[m]) fits[m][r * nz + z] = *current[m];
+      }
+      std::swap(previous, current);
+    }
+  }
+  run.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.attempted_fits = attempted;
+  for (const LobeModel model : models) {
+    run.models.push_back({model, std::move(fits[static_cast<std::size_t>(model)])});
+  }
+  return run;
+}
+
+void write_fits(const RadianceLobes& lobes, const LobeGrid& grid, const LobeFitRun& run,
+                const FitOptions& options) {
+  AtomicOutput output(lobes.path);
+  std::filesystem::copy_file(lobes.path, output.temporary_path());
+  {
+    hdf5::File file = hdf5::File::open_read_write(output.temporary_path());
+    if (!file.root().has_member("fits")) file.root().create_group("fits");
+    hdf5::Group fits = file.root().open_group("fits");
+    const std::size_t nr = lobes.r_bins(), nz = lobes.z_bins();
+    for (const ModelFits& model : run.models) {
+      const std::string name = to_string(model.model);
+      if (fits.has_member(name)) fits.remove_member(name);
+      hdf5::Group group = fits.create_group(name);
+      group.write_string_attribute("model", describe(model.model));
+      group.write_string_attribute(
+          "fit_space", "log L, residual sqrt(Omega/Omega_mean) (log <model>_bin - log L) / "
+                       "sqrt((stderr/L)^2 + floor^2); model averaged over each angular bin");
+      group.write_double_attribute("relative_stderr_floor", options.relative_stderr_floor);
+      group.write_double_attribute("max_relative_stderr", options.max_relative_stderr);
+      group.write_int64_attribute("min_directions", static_cast<std::int64_t>(options.min_directions));
+      group.write_int64_attribute("quadrature_order", grid.quadrature_order());
+      group.write_string_attribute("axis_frame", "p = (p_r, p_phi, p_z) in (e_r, e_phi, e_z)");
+
+      const std::vector<std::string> names = parameter_names(model.model);
+      std::vector<double> params, error, plane, noise;
+      std::vector<std::int32_t> status;
+      for (const LobeFit& fit : model.fits) {
+        const bool ok = usable(fit.status);
+        const std::vector<double> values = reported_parameters(model.model, fit.parameters);
+        for (const double value : values) params.push_back(ok && std::isfinite(value) ? value : 0.0);
+        error.push_back(ok ? fit.error_sphere : -1.0);
+        plane.push_back(ok ? fit.error_plane : -1.0);
+        noise.push_back(ok ? fit.noise : -1.0);
+        status.push_back(static_cast<std::int32_t>(fit.status));
+      }
+      group.write_dataset("params", params, {nr, nz, names.size()})
+          .write_string_attribute("names", join(names));
+      group.write_dataset("error", error, {nr, nz})
+          .write_string_attribute("description",
+                                  "relative L1 error over the sphere, sum Omega |model - L| / "
+                                  "sum Omega L over the directions the tally resolves; -1 where "
+                                  "not fitted");
+      group.write_dataset("error_plane", plane, {nr, nz})
+          .write_string_attribute("description",
+                                  "the same over the bins on the phi = 0 / phi = pi plane");
+      group.write_dataset("noise", noise, {nr, nz})
+          .write_string_attribute("description",
+                                  "sqrt(2/pi) sum Omega stderr / sum Omega L: the error an exact "
+                                  "model would show; -1 where not fitted");
+      group.write_dataset("status", status, {nr, nz})
+          .write_string_attribute("legend", fit_status_legend());
+    }
+    file.close();
+  }
+  output.commit();
+}
+
+void write_fits_csv(const std::filesystem::path& path, const RadianceLobes& lobes,
+                    const LobeFitRun& run) {
+  AtomicOutput output(path);
+  {
+    std::ofstream csv(output.temporary_path());
+    std::vector<std::string> header = {"r_index", "z_index", "r", "z"};
+    for (const ModelFits& model : run.models) {
+      const std::string name = to_string(model.model);
+      for (const char* column : {"status", "error", "error_plane", "noise"}) header.push_back(name + "_" + column);
+      for (const std::string& parameter : parameter_names(model.model)) {
+        header.push_back(name + "_" + parameter);
+      }
+    }
+    csv << join(header) << '\n';
+    for (std::size_t r = 0; r < lobes.r_bins(); ++r) {
+      for (std::size_t z = 0; z < lobes.z_bins(); ++z) {
+        std::vector<std::string> row = {
+            std::to_string(r), std::to_string(z),
+            fmt::format("{:.6g}", 0.5 * (lobes.r_edges[r] + lobes.r_edges[r + 1])),
+            fmt::format("{:.6g}", 0.5 * (lobes.z_edges[z] + lobes.z_edges[z + 1]))};
+        for (const ModelFits& model : run.models) {
+          const LobeFit& fit = model.fits[r * lobes.z_bins() + z];
+          const bool ok = usable(fit.status);
+          row.push_back(to_string(fit.status));
+          row.push_back(fmt::format("{:.6g}", ok ? fit.error_sphere : -1.0));
+          row.push_back(fmt::format("{:.6g}", ok ? fit.error_plane : -1.0));
+          row.push_back(fmt::format("{:.6g}", ok ? fit.noise : -1.0));
+          for (const double value : reported_parameters(model.model, fit.parameters)) {
+            row.push_back(fmt::format("{:.8g}", ok && std::isfinite(value) ? value : 0.0));
+          }
+        }
+        csv << join(row) << '\n';
+      }
+    }
+    csv.close();
+    if (!csv) throw std::runtime_error("cannot write " + output.temporary_path().string());
+  }
+  output.commit();
+}
+
+LobeFitSummary summarize(const LobeFitRun& run) {
+  LobeFitSummary summary;
+  for (const ModelFits& model : run.models) {
+    ModelFitSummary s{model.model};
+    std::vector<double> errors, planes, noises;
+    for (const LobeFit& fit : model.fits) {
+      if (usable(fit.status)) {
+        ++s.fitted;
+        errors.push_back(fit.error_sphere);
+        if (fit.error_plane >= 0.0) planes.push_back(fit.error_plane);
+        noises.push_back(fit.noise);
+      } else if (fit.status == FitStatus::failed) {
+        ++s.failed;
+      } else {
+        ++s.skipped;
+      }
+    }
+    s.median_error = percentile(errors, 0.5);
+    s.p90_error = percentile(errors, 0.9);
+    s.median_plane = percentile(planes, 0.5);
+    s.p90_plane = percentile(planes, 0.9);
+    s.median_noise = percentile(noises, 0.5);
+    summary.models.push_back(s);
+  }
+  const ModelFits* sg = find_model(run, LobeModel::sg);
+  const ModelFits* dexp = find_model(run, LobeModel::dexp);
+  const ModelFits* adexp = find_model(run, LobeModel::adexp);
+  if (sg && dexp) {
+    std::size_t both = 0, wins = 0, all = 0, adexp_wins = 0;
+    for (std::size_t i = 0; i < sg->fits.size(); ++i) {
+      const LobeFit &a = sg->fits[i], &b = dexp->fits[i];
+      if (!usable(a.status) || !usable(b.status)) continue;
+      ++both;
+      wins += b.error_sphere < a.error_sphere;
+      if (adexp && usable(adexp->fits[i].status)) {
+        ++all;
+        adexp_wins += adexp->fits[i].error_sphere < std::min(a.error_sphere, b.error_sphere);
+      }
+    }
+    if (both > 0) summary.dexp_beats_sg = static_cast<double>(wins) / static_cast<double>(both);
+    if (adexp && all > 0) {
+      summary.adexp_beats_sg_and_dexp = static_cast<double>(adexp_wins) / static_cast<double>(all);
+    }
+  }
+  summary.fits_per_second =
+      run.wall_seconds > 0.0 ? static_cast<double>(run.attempted_fits) / run.wall_seconds : 0.0;
+  return summary;
+}
+
+std::string describe(const LobeFitSummary& summary, const LobeFitRun& run) {
+  std::string text =
+      "  model     fitted skipped failed   error: median    p90   plane: median    p90   "
+      "noise: median\n";
+  for (const ModelFitSummary& s : summary.models) {
+    text += fmt::format(
+        "  {:<8} {:>7} {:>7} {:>6}   {:>13.4f} {:>6.4f}   {:>13.4f} {:>6.4f}   {:>13.4f}\n",
+        to_string(s.model), s.fitted, s.skipped, s.failed, s.median_error, s.p90_error,
+        s.median_plane, s.p90_plane, s.median_noise);
+  }
+  text += "  (relative L1 errors over the sphere and the phi = 0 plane, over the directions the "
+          "tally resolves;\n   noise: what an exact model would show)\n";
+  if (summary.dexp_beats_sg >= 0.0) {
+    text += fmt::format("  dexp beats sg in {:.1f} % of bins\n", 100.0 * summary.dexp_beats_sg);
+  }
+  if (summary.adexp_beats_sg_and_dexp >= 0.0) {
+    text += fmt::format("  adexp beats sg and dexp in {:.1f} % of bins\n",
+                        100.0 * summary.adexp_beats_sg_and_dexp);
+  }
+  text += fmt::format("  {} fits in {:.2f} s on {} thread{}: {:.0f} fits/s\n", run.attempted_fits,
+                      run.wall_seconds, run.threads, run.threads == 1 ? "" : "s",
+                      summary.fits_per_second);
+  return text;
+}
+
+}  // namespace scatterlab::fit

@@ -1,0 +1,102 @@
+#include "scatterlab/fit/lobe_grid.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "scatterlab/core/constants.hpp"
+
+namespace scatterlab::fit {
+
+namespace {
+
+struct GaussLegendre {
+  std::vector<double> nodes;    // on [-1, 1]
+  std::vector<double> weights;  // sum to 2
+};
+
+// n-point Gauss-Legendre rule by Newton's method on P_n from the Chebyshev guess
+// (Press et al., Numerical Recipes, 3rd ed., §4.6.1, routine gauleg).
+GaussLegendre gauss_legendre(int n) {
+  GaussLegendre rule{std::vector<double>(static_cast<std::size_t>(n)),
+                     std::vector<double>(static_cast<std::size_t>(n))};
+  for (int i = 0; i < n; ++i) {
+    double x = std::cos(pi * (i + 0.75) / (n + 0.5));
+    double derivative = 1.0;
+    for (int iteration = 0; iteration < 100; ++iteration) {
+      double p0 = 1.0, p1 = 0.0;
+      for (int k = 1; k <= n; ++k) {  // P_k by the three-term recurrence
+        const double p2 = p1;
+        p1 = p0;
+        p0 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p2) / k;
+      }
+      derivative = n * (x * p0 - p1) / (x * x - 1.0);
+      const double step = p0 / derivative;
+      x -= step;
+      if (std::abs(step) < 1e-15) break;
+    }
+    rule.nodes[static_cast<std::size_t>(i)] = x;
+    rule.weights[static_cast<std::size_t>(i)] = 2.0 / ((1.0 - x * x) * derivative * derivative);
+  }
+  return rule;
+}
+
+Eigen::Vector3d direction(double cos_theta, double phi) {
+  const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+  return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
+}
+
+void check_edges(std::span<const double> edges, double upper, const char* name) {
+  if (edges.size() < 2) throw std::invalid_argument(std::string(name) + ": fewer than 2 edges");
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const bool ordered = i == 0 || edges[i] > edges[i - 1];
+    if (!ordered || !(edges[i] >= -1e-12 && edges[i] <= upper + 1e-12)) {
+      throw std::invalid_argument(std::string(name) + ": edges must increase within [0, " +
+                                  std::to_string(upper) + "]");
+    }
+  }
+}
+
+}  // namespace
+
+LobeGrid::LobeGrid(std::span<const double> theta_edges, std::span<const double> phi_edges,
+                   bool phi_folded, int quadrature_order)
+    : theta_bins_(theta_edges.size() - 1),
+      phi_bins_(phi_edges.size() - 1),
+      phi_folded_(phi_folded),
+      quadrature_order_(quadrature_order) {
+  check_edges(theta_edges, pi, "theta");
+  check_edges(phi_edges, phi_folded ? pi : 2.0 * pi, "phi");
+  if (quadrature_order < 1 || quadrature_order > 8) {
+    throw std::invalid_argument("quadrature order must be in [1, 8]");
+  }
+  const GaussLegendre rule = gauss_legendre(quadrature_order);
+  const std::size_t n = rule.nodes.size();
+  const std::size_t mirrors = phi_folded ? 2 : 1;
+  nodes_per_bin_ = n * n * mirrors;
+  const double plane_tolerance = 1e-9;
+  for (std::size_t t = 0; t < theta_bins_; ++t) {
+    // cos theta decreases with theta: integrate over [cos t1, cos t0].
+    const double mu_low = std::cos(theta_edges[t + 1]), mu_high = std::cos(theta_edges[t]);
+    for (std::size_t f = 0; f < phi_bins_; ++f) {
+      const double phi_low = phi_edges[f], phi_high = phi_edges[f + 1];
+      solid_angles_.push_back((mu_high - mu_low) * (phi_high - phi_low));
+      centres_.push_back(direction(std::cos(0.5 * (theta_edges[t] + theta_edges[t + 1])),
+                                   0.5 * (phi_low + phi_high)));
+      in_plane_.push_back(phi_low < plane_tolerance || std::abs(phi_high - pi) < plane_tolerance ||
+                          std::abs(phi_low - pi) < plane_tolerance ||
+                          std::abs(phi_high - 2.0 * pi) < plane_tolerance);
+      for (std::size_t i = 0; i < n; ++i) {
+        const double mu = 0.5 * (mu_low + mu_high) + 0.5 * (mu_high - mu_low) * rule.nodes[i];
+        for (std::size_t j = 0; j < n; ++j) {
+          const double phi = 0.5 * (phi_low + phi_high) + 0.5 * (phi_high - phi_low) * rule.nodes[j];
+          const double weight = 0.25 * rule.weights[i] * rule.weights[j] / static_cast<double>(mirrors);
+          nodes_.push_back({direction(mu, phi), weight});
+          if (phi_folded) nodes_.push_back({direction(mu, -phi), weight});
+        }
+      }
+    }
+  }
+}
+
+}  // namespace scatterlab::fit

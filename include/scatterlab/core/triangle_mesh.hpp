@@ -1,0 +1,45 @@
+#pragma once
+// A closed or open triangle mesh bounding a medium: positions, optional per-vertex shading
+// normals (interpolated across each triangle, Phong style) and vertex indices. Pure geometry, in
+// core so that any module (a mesh random-walk kernel, the refractive solver, a renderer, an OBJ
+// reader) can share it without depending on one another.
+//
+// Conventions (Walter et al. 2009, §3.1): triangles are counter-clockwise seen from outside, so
+// the geometric normal (p1 - p0) x (p2 - p0) points out of the medium; shading normals point out
+// of the medium too.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "scatterlab/core/frame.hpp"
+
+namespace scatterlab {
+
+struct TriangleMesh {
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;  // empty (flat facets), or one unit normal per position
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+
+  bool has_shading_normals() const { return !normals.empty(); }
+  std::size_t triangle_count() const { return triangles.size(); }
+
+  const Vec3& vertex(std::size_t triangle, int corner) const {
+    return positions[triangles[triangle][static_cast<std::size_t>(corner)]];
+  }
+  // Shading normal at a corner: the stored vertex normal, or the geometric normal when flat.
+  Vec3 corner_normal(std::size_t triangle, int corner) const;
+  // Unit outward geometric normal (zero vector for a degenerate triangle).
+  Vec3 geometric_normal(std::size_t triangle) const;
+  double area(std::size_t triangle) const;
+
+  // Throws InputError naming the field: indices out of range, non-finite positions, normals
+  // neither empty nor one per position, or normals that are not unit length.
+  void validate() const;
+};
+
+// Area-weighted average of the facet normals around each vertex, normalised: smooth shading
+// normals for a mesh that has none.
+std::vector<Vec3> area_weighted_vertex_normals(const TriangleMesh& mesh);
+
+}  // namespace scatterlab

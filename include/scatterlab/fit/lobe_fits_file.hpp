@@ -1,0 +1,91 @@
+#pragma once
+// Fitting every lobe of a simulation file, and writing the fits back into it.
+//
+// Read:   /grid/{r,z,theta,phi} (attr phi_folded), /tallies/radiance/{mean,stderr}
+//         [r, z, theta, phi], and /tallies/flux/mean [r, z, 2] = (E_r, E_z) for the SG axis
+//         (computed from the radiance when the file has no flux tally).
+// Write:  /fits/<model>/params [r, z, k] (attr names, comma-separated), error [r, z] and
+//         error_plane [r, z] (relative L1 errors, lobe_fit.hpp; -1 where not fitted), noise
+//         [r, z] (the error an exact model would show),
+//         status [r, z] int32 (attr legend); attrs on /fits/<model> say how it was fitted.
+//         The file is copied, the copy gets the fits, and it is renamed over the original, so a
+//         failure leaves the original as it was; a re-run replaces /fits/<model>.
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "scatterlab/fit/lobe_fit.hpp"
+#include "scatterlab/fit/lobe_grid.hpp"
+#include "scatterlab/fit/lobe_model.hpp"
+
+namespace scatterlab::fit {
+
+struct RadianceLobes {
+  std::filesystem::path path;
+  std::vector<double> r_edges, z_edges, theta_edges, phi_edges;
+  bool phi_folded = false;
+  std::vector<double> mean, stderr_of_mean;  // [r, z, theta, phi]
+  std::vector<double> flux;                  // [r, z, 3] = (E_r, E_phi, E_z)
+  bool flux_from_tally = false;
+
+  std::size_t r_bins() const { return r_edges.size() - 1; }
+  std::size_t z_bins() const { return z_edges.size() - 1; }
+  std::size_t directions() const { return (theta_edges.size() - 1) * (phi_edges.size() - 1); }
+  LobeData lobe(std::size_t r, std::size_t z) const;
+};
+
+// Throws InputError("FILE", ...) for a file that is missing, not a scatterlab file, or has no
+// radiance tally, or whose radiance does not match its grid.
+RadianceLobes read_radiance_lobes(const std::filesystem::path& path);
+
+struct ModelFits {
+  LobeModel model;
+  std::vector<LobeFit> fits;  // index r * z_bins + z
+};
+
+struct LobeFitRun {
+  std::vector<ModelFits> models;  // in the order asked for
+  double wall_seconds = 0.0;
+  int threads = 1;
+  std::size_t attempted_fits = 0;  // Ceres solves (skipped bins not counted)
+};
+
+// Fits every spatial bin with every model. Columns of constant r run in parallel (OpenMP,
+// `threads` <= 0: all); along z within a column each fit may start from its neighbour's
+// solution, so the result is the same for any number of threads. Each fit starts from the
+// lowest-cost of: the data-only estimate, the same bin's simpler model (sg for sg_free, dexp
+// for adexp) and the previous z bin's solution.
+LobeFitRun fit_lobes(const RadianceLobes& lobes, const LobeGrid& grid,
+                     const std::vector<LobeModel>& models, const FitOptions& options = {},
+                     int threads = 0);
+
+// Adds /fits/<model> for every model of `run` to lobes.path (see the top of this file).
+void write_fits(const RadianceLobes& lobes, const LobeGrid& grid, const LobeFitRun& run,
+                const FitOptions& options);
+
+// One row per spatial bin: r_index, z_index, r, z (bin centres, mfp), then per model
+// <model>_status, <model>_error, <model>_error_plane, <model>_noise and <model>_<parameter>. Written to a
+// temporary name and renamed into place.
+void write_fits_csv(const std::filesystem::path& path, const RadianceLobes& lobes,
+                    const LobeFitRun& run);
+
+struct ModelFitSummary {
+  LobeModel model;
+  std::size_t fitted = 0, skipped = 0, failed = 0;
+  double median_error = -1, p90_error = -1, median_plane = -1, p90_plane = -1, median_noise = -1;
+};
+
+struct LobeFitSummary {
+  std::vector<ModelFitSummary> models;
+  // Over bins where both (all three) were fitted; -1 when a model was not run.
+  double dexp_beats_sg = -1.0;
+  double adexp_beats_sg_and_dexp = -1.0;
+  double fits_per_second = 0.0;
+};
+
+LobeFitSummary summarize(const LobeFitRun& run);
+std::string describe(const LobeFitSummary& summary, const LobeFitRun& run);
+
+}  // namespace scatterlab::fit

@@ -1,0 +1,61 @@
+#pragma once
+// The angular grid of a radiance lobe, as the fits see it: per (theta, phi) bin its centre
+// direction, its solid angle, and quadrature nodes that average a model over the bin.
+//
+// Directions are in the local frame of the spatial bin, (e_r, e_phi, e_z) with
+// omega = (sin t cos f, sin t sin f, cos t) (DESIGN.md, "Frames"). The tally stores bin
+// averages, so a model is compared with its own average over each bin, not its value at the
+// centre: on the paper's 10-degree bins a lobe with lambda ~ 1e3 (width ~2 degrees) lives inside
+// one bin, and its centre value says nothing about its bin average. The average is an n x n
+// Gauss-Legendre rule in (cos theta, phi), exact for the measure d omega = d(cos t) d phi. On a
+// folded grid (phi in [0, pi]) each bin also holds the mirror image phi -> -phi, so every node
+// has a mirrored twin of half the weight.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <span>
+#include <vector>
+
+namespace scatterlab::fit {
+
+struct LobeNode {
+  Eigen::Vector3d direction;
+  double weight = 0.0;  // weights of one bin's nodes sum to 1
+};
+
+class LobeGrid {
+ public:
+  // `theta_edges` in [0, pi], `phi_edges` in [0, pi] (folded) or [0, 2 pi], increasing.
+  // Throws std::invalid_argument for edges that are not increasing or out of range, or a
+  // quadrature order outside [1, 8].
+  LobeGrid(std::span<const double> theta_edges, std::span<const double> phi_edges,
+           bool phi_folded, int quadrature_order = 3);
+
+  std::size_t theta_bins() const { return theta_bins_; }
+  std::size_t phi_bins() const { return phi_bins_; }
+  std::size_t size() const { return theta_bins_ * phi_bins_; }  // bin = theta * phi_bins + phi
+  bool phi_folded() const { return phi_folded_; }
+  int quadrature_order() const { return quadrature_order_; }
+
+  const Eigen::Vector3d& centre(std::size_t bin) const { return centres_[bin]; }
+  double solid_angle(std::size_t bin) const { return solid_angles_[bin]; }
+  // Nodes of one bin: nodes_per_bin() consecutive entries.
+  std::span<const LobeNode> nodes(std::size_t bin) const {
+    return {nodes_.data() + bin * nodes_per_bin_, nodes_per_bin_};
+  }
+  std::size_t nodes_per_bin() const { return nodes_per_bin_; }
+  // Bins that touch the phi = 0 half-plane or its continuation phi = pi: the cut through the
+  // lobe's plane of symmetry that Vavassori's Figs. 4.5, 4.8 and 4.10 show.
+  bool in_symmetry_plane(std::size_t bin) const { return in_plane_[bin]; }
+
+ private:
+  std::size_t theta_bins_ = 0, phi_bins_ = 0, nodes_per_bin_ = 0;
+  bool phi_folded_ = false;
+  int quadrature_order_ = 0;
+  std::vector<Eigen::Vector3d> centres_;
+  std::vector<double> solid_angles_;
+  std::vector<LobeNode> nodes_;
+  std::vector<bool> in_plane_;
+};
+
+}  // namespace scatterlab::fit

@@ -1,0 +1,196 @@
+#pragma once
+// The lobe models, written once for doubles and Ceres Jets, and their descriptions.
+//
+// Every model is evaluated as log L(omega) from an axis p (a unit 3-vector in the local frame
+// (e_r, e_phi, e_z)) and a few shape parameters; the fits work in log L (see lobe_fit.hpp).
+//
+//   sg      spherical Gaussian, axis fixed to the vector irradiance E (Vavassori §4.2.1):
+//           G(v) = mu exp(lambda (v.p - 1)); shape (lambda, log mu)
+//   sg_free the same with p free on the sphere (a Ceres SphereManifold)
+//   dexp    double exponential (Vavassori §4.2.2): L = alpha exp(beta e^{gamma sqrt(1 - p.w)});
+//           p free. Fitted as log L = a + b (e^{gamma s} - 1) / gamma, s = sqrt(1 - p.w), with
+//           a = log alpha + beta (log L at the peak) and b = beta gamma (its slope in s there):
+//           the same lobes, but where log L is straight in s the paper's (alpha, beta) run off
+//           to (0, infinity) with beta gamma fixed, while (a, b, gamma) stay finite with
+//           gamma -> 0. shape (a, b, gamma)
+//   adexp   anisotropic double exponential (this project, beyond §4.2): 1 - p.w = |w - p|^2 / 2
+//           is split along the two tangents of p, one in the lobe's plane of symmetry (phi = 0)
+//           and one across it, and the two are scaled by e^{eta} and e^{-eta}: a lobe flattened
+//           across the plane (Figs. 4.6, 4.10) has eta < 0. eta = 0 is dexp. shape
+//           (a, b, gamma, eta), p free.
+//
+// sqrt(1 - p.w) has an unbounded derivative at w = p when written that way. Written as a norm,
+// |w - p| / sqrt 2 (p and w unit), its gradient has length at most 1/sqrt 2 everywhere; only the
+// point w = p itself has no gradient, and there the subgradient 0 is returned so that residuals
+// and Jacobians stay finite.
+
+#include <Eigen/Core>
+#include <array>
+#include <cmath>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace scatterlab::fit {
+
+enum class LobeModel { sg, sg_free, dexp, adexp };
+
+inline constexpr std::array<LobeModel, 4> kAllLobeModels = {LobeModel::sg, LobeModel::sg_free,
+                                                            LobeModel::dexp, LobeModel::adexp};
+
+// "sg", "sg_free", "dexp", "adexp".
+std::string to_string(LobeModel model);
+// Throws InputError("models", ...) for an unknown name.
+LobeModel parse_lobe_model(const std::string& name);
+// Comma-separated list, e.g. "sg,dexp"; throws InputError("models", ...).
+std::vector<LobeModel> parse_lobe_models(const std::string& list);
+// One line: the formula and where it comes from.
+std::string describe(LobeModel model);
+
+// The parameters a Ceres problem moves: the axis and up to four shape parameters.
+struct LobeParameters {
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  std::array<double, 4> shape{};
+};
+
+// (a, b, gamma, eta) of the double exponentials from Vavassori's (log alpha, beta, gamma).
+std::array<double, 4> double_exponential_shape(double log_alpha, double beta, double gamma,
+                                               double eta = 0.0);
+
+// What users see, in order: the model's parameters as the papers write them (for the double
+// exponentials also a = log_peak and b = slope), then p.
+std::vector<std::string> parameter_names(LobeModel model);
+std::vector<double> reported_parameters(LobeModel model, const LobeParameters& parameters);
+
+namespace detail {
+
+// sqrt(x) for x >= 0 with the subgradient 0 at x = 0, so that a Jet never divides by zero.
+template <typename T>
+T sqrt_zero_safe(const T& x) {
+  using std::sqrt;
+  if (x > T(0)) return sqrt(x);
+  return T(0) * x;
+}
+
+template <typename T>
+T dot(const T* axis, const Eigen::Vector3d& w) {
+  return axis[0] * w.x() + axis[1] * w.y() + axis[2] * w.z();
+}
+
+// sqrt(1 - p.w) = |w - p| / sqrt 2 for unit p and w (see the header comment).
+template <typename T>
+T half_chord(const T* axis, const Eigen::Vector3d& w) {
+  const T dx = T(w.x()) - axis[0], dy = T(w.y()) - axis[1], dz = T(w.z()) - axis[2];
+  return sqrt_zero_safe(T(0.5) * (dx * dx + dy * dy + dz * dz));
+}
+
+// (e^{gamma s} - 1) / gamma, continuous through gamma = 0 (where it is s).
+template <typename T>
+T exp_ramp(const T& gamma, const T& s) {
+  using std::abs;
+  using std::expm1;
+  if (abs(gamma) > T(1e-6)) return expm1(gamma * s) / gamma;
+  return s * (T(1) + gamma * s * (T(0.5) + gamma * s / T(6)));
+}
+
+}  // namespace detail
+
+// Each model is an Evaluator built once per parameter set (what depends on p and the shape
+// alone is computed there, not per direction) with log_value(w); the static log_value is the
+// one-off form.
+
+// Vavassori §4.2.1, the SG: log G = log mu + lambda (v.p - 1). shape = (lambda, log mu).
+struct SphericalGaussian {
+  static constexpr int kShape = 2;
+  template <typename T>
+  class Evaluator {
+   public:
+    Evaluator(const T* axis, const T* shape) : axis_(axis), shape_(shape) {}
+    T log_value(const Eigen::Vector3d& w) const {
+      return shape_[1] + shape_[0] * (detail::dot(axis_, w) - T(1));
+    }
+
+   private:
+    const T* axis_;
+    const T* shape_;
+  };
+  template <typename T>
+  static T log_value(const T* axis, const T* shape, const Eigen::Vector3d& w) {
+    return Evaluator<T>(axis, shape).log_value(w);
+  }
+};
+
+// Vavassori §4.2.2: log L = log alpha + beta exp(gamma sqrt(1 - p.w)), written as
+// a + b (e^{gamma s} - 1) / gamma (see the top of this file). shape = (a, b, gamma).
+struct DoubleExponential {
+  static constexpr int kShape = 3;
+  template <typename T>
+  class Evaluator {
+   public:
+    Evaluator(const T* axis, const T* shape) : axis_(axis), shape_(shape) {}
+    T log_value(const Eigen::Vector3d& w) const {
+      using std::exp;
+      return shape_[0] + shape_[1] * detail::exp_ramp(shape_[2], detail::half_chord(axis_, w));
+    }
+
+   private:
+    const T* axis_;
+    const T* shape_;
+  };
+  template <typename T>
+  static T log_value(const T* axis, const T* shape, const Eigen::Vector3d& w) {
+    return Evaluator<T>(axis, shape).log_value(w);
+  }
+};
+
+// The anisotropic double exponential: sqrt(1 - p.w) replaced by
+//   s_eta = sqrt((e^{eta} (w.t1)^2 + e^{-eta} (w.t2)^2 + (1 - w.p)^2) / 2),
+// with t2 the unit tangent of p across the plane of symmetry (along e_phi, or along e_r when p
+// lies on the e_phi axis) and t1 = t2 x p in the plane. For eta = 0 the sum is |w - p|^2, so
+// s_0 = sqrt(1 - p.w). shape = (a, b, gamma, eta) as for DoubleExponential.
+struct AnisotropicDoubleExponential {
+  static constexpr int kShape = 4;
+  template <typename T>
+  class Evaluator {
+   public:
+    Evaluator(const T* axis, const T* shape) : axis_(axis), shape_(shape) {
+      using std::exp;
+      using std::sqrt;
+      // t2 = (e - (e.p) p) / |...| for e = e_phi, or e_r when p is (nearly) along e_phi.
+      const int k = axis[1] * axis[1] > T(1.0 - 1e-9) ? 0 : 1;
+      const T norm = sqrt(T(1) - axis[k] * axis[k]);
+      for (int i = 0; i < 3; ++i) t2_[i] = -axis[k] * axis[i];
+      t2_[k] += T(1);
+      for (T& c : t2_) c /= norm;
+      t1_[0] = t2_[1] * axis[2] - t2_[2] * axis[1];
+      t1_[1] = t2_[2] * axis[0] - t2_[0] * axis[2];
+      t1_[2] = t2_[0] * axis[1] - t2_[1] * axis[0];
+      along_scale_ = T(0.5) * exp(shape[3]);
+      across_scale_ = T(0.5) * exp(-shape[3]);
+    }
+    T log_value(const Eigen::Vector3d& w) const {
+      using std::exp;
+      const T along_plane = detail::dot(t1_, w), across_plane = detail::dot(t2_, w);
+      const T radial = T(1) - detail::dot(axis_, w);
+      const T s = detail::sqrt_zero_safe(along_scale_ * along_plane * along_plane +
+                                         across_scale_ * across_plane * across_plane +
+                                         T(0.5) * radial * radial);
+      return shape_[0] + shape_[1] * detail::exp_ramp(shape_[2], s);
+    }
+
+   private:
+    const T* axis_;
+    const T* shape_;
+    T t1_[3], t2_[3], along_scale_, across_scale_;
+  };
+  template <typename T>
+  static T log_value(const T* axis, const T* shape, const Eigen::Vector3d& w) {
+    return Evaluator<T>(axis, shape).log_value(w);
+  }
+};
+
+// log of the model at one direction, for doubles (tests, errors, estimates).
+double log_model_value(LobeModel model, const LobeParameters& parameters,
+                       const Eigen::Vector3d& direction);
+
+}  // namespace scatterlab::fit

@@ -1,0 +1,75 @@
+#include "scatterlab/core/triangle_mesh.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "scatterlab/core/error.hpp"
+
+namespace scatterlab {
+
+Vec3 TriangleMesh::corner_normal(std::size_t triangle, int corner) const {
+  if (normals.empty()) return geometric_normal(triangle);
+  return normals[triangles[triangle][static_cast<std::size_t>(corner)]];
+}
+
+Vec3 TriangleMesh::geometric_normal(std::size_t triangle) const {
+  const Vec3 n = (vertex(triangle, 1) - vertex(triangle, 0))
+                     .cross(vertex(triangle, 2) - vertex(triangle, 0));
+  const double length = n.norm();
+  return length > 0.0 ? Vec3(n / length) : Vec3::Zero();
+}
+
+double TriangleMesh::area(std::size_t triangle) const {
+  return 0.5 * (vertex(triangle, 1) - vertex(triangle, 0))
+                   .cross(vertex(triangle, 2) - vertex(triangle, 0))
+                   .norm();
+}
+
+void TriangleMesh::validate() const {
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    if (!positions[i].allFinite()) {
+      throw InputError("mesh.positions", fmt::format("vertex {} is not finite", i),
+                       "finite coordinates");
+    }
+  }
+  if (!normals.empty() && normals.size() != positions.size()) {
+    throw InputError("mesh.normals",
+                     fmt::format("{} normals for {} positions", normals.size(), positions.size()),
+                     "no normals, or one per position");
+  }
+  for (std::size_t i = 0; i < normals.size(); ++i) {
+    if (!normals[i].allFinite() || std::abs(normals[i].norm() - 1.0) > 1e-6) {
+      throw InputError("mesh.normals", fmt::format("normal {} is not of unit length", i),
+                       "unit vectors");
+    }
+  }
+  if (triangles.empty()) throw InputError("mesh.triangles", "none given", "at least one");
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    for (const std::uint32_t index : triangles[t]) {
+      if (index >= positions.size()) {
+        throw InputError("mesh.triangles",
+                         fmt::format("triangle {} uses vertex {} of {}", t, index,
+                                     positions.size()),
+                         "indices below the number of positions");
+      }
+    }
+  }
+}
+
+std::vector<Vec3> area_weighted_vertex_normals(const TriangleMesh& mesh) {
+  std::vector<Vec3> sums(mesh.positions.size(), Vec3::Zero());
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    // The unnormalised cross product is twice the area times the unit normal.
+    const Vec3 weighted = (mesh.vertex(t, 1) - mesh.vertex(t, 0))
+                              .cross(mesh.vertex(t, 2) - mesh.vertex(t, 0));
+    for (const std::uint32_t index : mesh.triangles[t]) sums[index] += weighted;
+  }
+  for (Vec3& n : sums) {
+    const double length = n.norm();
+    n = length > 0.0 ? Vec3(n / length) : Vec3::UnitZ();
+  }
+  return sums;
+}
+
+}  // namespace scatterlab

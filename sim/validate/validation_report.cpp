@@ -1,0 +1,243 @@
+#include "scatterlab/validate/validation_report.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <stdexcept>
+
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/io/atomic_output.hpp"
+#include "scatterlab/io/plot.hpp"
+
+namespace scatterlab {
+namespace {
+
+// Writes text through a temporary file renamed into place.
+void write_text(const std::filesystem::path& path, const std::function<void(std::ostream&)>& body) {
+  AtomicOutput output(path);
+  {
+    std::ofstream file(output.temporary_path());
+    if (!file) throw std::runtime_error("cannot write " + output.temporary_path().string());
+    body(file);
+    file.flush();
+    if (!file) throw std::runtime_error("failed writing " + output.temporary_path().string());
+  }
+  output.commit();
+}
+
+void make_directory(const std::filesystem::path& directory) {
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error || !std::filesystem::is_directory(directory)) {
+    throw InputError("out", "cannot create directory " + directory.string() + ": " + error.message(),
+                     "a writable directory path");
+  }
+}
+
+std::vector<double> centres(const std::vector<double>& lo, const std::vector<double>& hi) {
+  std::vector<double> c(lo.size());
+  for (std::size_t i = 0; i < lo.size(); ++i) c[i] = 0.5 * (lo[i] + hi[i]);
+  return c;
+}
+
+// rho_c^2 times each value (d'Eon & Irving's r^2 phi(r) curves).
+std::vector<double> times_rho2(const std::vector<double>& rho, const std::vector<double>& v) {
+  std::vector<double> out(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) out[i] = rho[i] * rho[i] * v[i];
+  return out;
+}
+
+std::string nan_or(double v) { return std::isnan(v) ? "nan" : fmt::format("{:.6g}", v); }
+
+}  // namespace
+
+std::vector<std::filesystem::path> write_point_source_report(
+    const std::vector<PointSourceComparison>& comparisons, const std::filesystem::path& directory) {
+  make_directory(directory);
+  std::vector<std::filesystem::path> written;
+  const auto shells = directory / "deon_point_source.csv";
+  write_text(shells, [&](std::ostream& out) {
+    out << "# Isotropic point source, infinite medium, g = 0: shell-averaged fluence in mfp^-2 per "
+           "unit source power (Monte Carlo mean and standard error, exact transport, classical "
+           "diffusion, Grosjean)\n";
+    out << "albedo,rho_lo_mfp,rho_hi_mfp,monte_carlo,monte_carlo_stderr,exact,diffusion,grosjean\n";
+    for (const PointSourceComparison& c : comparisons) {
+      for (std::size_t i = 0; i < c.exact.size(); ++i) {
+        out << fmt::format("{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", c.albedo, c.rho_lo[i],
+                           c.rho_hi[i], c.monte_carlo[i], c.monte_carlo_stderr[i], c.exact[i],
+                           c.diffusion[i], c.grosjean[i]);
+      }
+    }
+  });
+  written.push_back(shells);
+  const auto errors = directory / "deon_errors.csv";
+  write_text(errors, [&](std::ostream& out) {
+    out << "# Mean relative error |model - exact| / exact of the shell averages, near (rho < 1 mfp) "
+           "and far (1 <= rho < rho_max); Monte Carlo over shells expecting >= 100 collisions\n";
+    out << "albedo,model,near_relative_error,far_relative_error,max_abs_z,within_3_sigma,"
+           "compared_shells\n";
+    for (const PointSourceComparison& c : comparisons) {
+      out << fmt::format("{},monte_carlo,{:.6g},{:.6g},{:.3f},{:.4f},{}\n", c.albedo,
+                         c.monte_carlo_error.near, c.monte_carlo_error.far, c.max_abs_z,
+                         c.within_3_sigma, c.compared_shells);
+      out << fmt::format("{},diffusion,{:.6g},{:.6g},,,\n", c.albedo, c.diffusion_error.near,
+                         c.diffusion_error.far);
+      out << fmt::format("{},grosjean,{:.6g},{:.6g},,,\n", c.albedo, c.grosjean_error.near,
+                         c.grosjean_error.far);
+    }
+  });
+  written.push_back(errors);
+
+  for (const PointSourceComparison& c : comparisons) {
+    const auto rho = centres(c.rho_lo, c.rho_hi);
+    for (const AxisScale scale : {AxisScale::linear, AxisScale::log}) {
+      LinePlot plot;
+      plot.title = fmt::format("Isotropic point source, albedo {}, g = 0", c.albedo);
+      plot.x_label = "r (mfp)";
+      plot.y_label = "r#u2#d #gf(r)";
+      plot.y_scale = scale;
+      std::vector<double> mc_error = times_rho2(rho, c.monte_carlo_stderr);
+      plot.series = {
+          {"Monte Carlo", rho, times_rho2(rho, c.monte_carlo), mc_error, true},
+          {"exact", rho, times_rho2(rho, c.exact), {}, false},
+          {"diffusion", rho, times_rho2(rho, c.diffusion), {}, false},
+          {"Grosjean", rho, times_rho2(rho, c.grosjean), {}, false},
+      };
+      const auto path =
+          directory / fmt::format("deon_albedo_{}_{}.png", c.albedo, to_string(scale));
+      write_png(plot, path);
+      written.push_back(path);
+    }
+  }
+  return written;
+}
+
+std::string point_source_error_table(const std::vector<PointSourceComparison>& comparisons) {
+  std::string table = fmt::format(
+      "{:>7} | {:>21} | {:>21} | {:>21} | {:>22}\n", "albedo", "diffusion near / far",
+      "Grosjean near / far", "Monte Carlo near/far", "MC vs exact: max|z|, <3σ");
+  for (const PointSourceComparison& c : comparisons) {
+    table += fmt::format("{:>7} | {:>9.2f}% / {:>7.2f}% | {:>9.2f}% / {:>7.2f}% | {:>9.3f}% / {:>6.3f}% | {:>8.2f}, {:>5.1f}% of {}\n",
+                         c.albedo, 100 * c.diffusion_error.near, 100 * c.diffusion_error.far,
+                         100 * c.grosjean_error.near, 100 * c.grosjean_error.far,
+                         100 * c.monte_carlo_error.near, 100 * c.monte_carlo_error.far,
+                         c.max_abs_z, 100 * c.within_3_sigma, c.compared_shells);
+  }
+  return table;
+}
+
+std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceComparison& c,
+                                                           const std::filesystem::path& directory,
+                                                           const std::string& stem) {
+  make_directory(directory);
+  std::vector<std::filesystem::path> written;
+  const std::size_t nr = c.r_edges.size() - 1;
+  const std::size_t nz = c.z_edges.empty() ? 0 : c.z_edges.size() - 1;
+  const auto medium_line = fmt::format(
+      "sigma_a {}, sigma_s {}, g {}, eta {}, entry transmittance {}", c.medium.sigma_a,
+      c.medium.sigma_s, c.medium.g, c.medium.eta, c.entry_transmittance);
+
+  const auto reflectance_csv = directory / (stem + "_reflectance.csv");
+  write_text(reflectance_csv, [&](std::ostream& out) {
+    out << "# Searchlight problem, " << medium_line
+        << ": R_d annulus averages per unit area per unit incident power\n# totals:";
+    for (const ModelCurve& m : c.reflectance) {
+      out << fmt::format(" {} R_dr = {:.6g} (error near {}, far {});", m.model, m.total,
+                         nan_or(m.near_error), nan_or(m.far_error));
+    }
+    out << "\nr_lo,r_hi,monte_carlo,monte_carlo_stderr";
+    for (const ModelCurve& m : c.reflectance) out << "," << m.model;
+    out << "\n";
+    for (std::size_t i = 0; i < nr; ++i) {
+      out << c.r_edges[i] << "," << c.r_edges[i + 1] << ","
+          << (c.reflectance_mc ? fmt::format("{:.9g},{:.9g}", c.reflectance_mc->mean[i],
+                                             c.reflectance_mc->stderr_of_mean[i])
+                               : std::string(","));
+      for (const ModelCurve& m : c.reflectance) out << fmt::format(",{:.9g}", m.values[i]);
+      out << "\n";
+    }
+  });
+  written.push_back(reflectance_csv);
+
+  std::vector<double> r(nr);
+  for (std::size_t i = 0; i < nr; ++i) r[i] = 0.5 * (c.r_edges[i] + c.r_edges[i + 1]);
+  const auto times_r = [&](const std::vector<double>& v) {
+    std::vector<double> out(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i) out[i] = r[i] * v[i];
+    return out;
+  };
+  // Bitterli §3.6.3: linear, log and sqrt y axes, and r R_d to damp the peak at the source.
+  struct Mode {
+    const char* name;
+    AxisScale scale;
+    bool times_r;
+  };
+  for (const Mode mode : {Mode{"linear", AxisScale::linear, false}, Mode{"log", AxisScale::log, false},
+                          Mode{"sqrt", AxisScale::sqrt, false}, Mode{"rR", AxisScale::linear, true}}) {
+    LinePlot plot;
+    plot.title = "Searchlight R#dd#u(r): " + medium_line;
+    plot.x_label = "r";
+    plot.y_label = mode.times_r ? "r R#dd#u(r)" : "R#dd#u(r)";
+    plot.y_scale = mode.scale;
+    if (c.reflectance_mc) {
+      plot.series.push_back({"Monte Carlo",
+                             r,
+                             mode.times_r ? times_r(c.reflectance_mc->mean) : c.reflectance_mc->mean,
+                             mode.times_r ? times_r(c.reflectance_mc->stderr_of_mean)
+                                          : c.reflectance_mc->stderr_of_mean,
+                             true});
+    }
+    for (const ModelCurve& m : c.reflectance) {
+      plot.series.push_back({m.model, r, mode.times_r ? times_r(m.values) : m.values, {}, false});
+    }
+    const auto path = directory / (stem + "_reflectance_" + mode.name + ".png");
+    write_png(plot, path);
+    written.push_back(path);
+  }
+
+  if (nz > 0) {
+    const auto fluence_csv = directory / (stem + "_fluence.csv");
+    write_text(fluence_csv, [&](std::ostream& out) {
+      out << "# Searchlight problem, " << medium_line
+          << ": fluence cell averages per unit incident power\nr_lo,r_hi,z_lo,z_hi,monte_carlo,"
+             "monte_carlo_stderr";
+      for (const ModelCurve& m : c.fluence) out << "," << m.model;
+      out << "\n";
+      for (std::size_t k = 0; k < nr * nz; ++k) {
+        const std::size_t i = k / nz, j = k % nz;
+        out << c.r_edges[i] << "," << c.r_edges[i + 1] << "," << c.z_edges[j] << ","
+            << c.z_edges[j + 1] << ","
+            << (c.fluence_mc ? fmt::format("{:.9g},{:.9g}", c.fluence_mc->mean[k],
+                                           c.fluence_mc->stderr_of_mean[k])
+                             : std::string(","));
+        for (const ModelCurve& m : c.fluence) out << fmt::format(",{:.9g}", m.values[k]);
+        out << "\n";
+      }
+    });
+    written.push_back(fluence_csv);
+    // phi along z in the innermost r bin, log scale.
+    std::vector<double> z(nz);
+    for (std::size_t j = 0; j < nz; ++j) z[j] = 0.5 * (c.z_edges[j] + c.z_edges[j + 1]);
+    const auto first_row = [&](const std::vector<double>& v) {
+      return std::vector<double>(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(nz));
+    };
+    LinePlot plot;
+    plot.title = fmt::format("Fluence for r in [{}, {}): {}", c.r_edges[0], c.r_edges[1], medium_line);
+    plot.x_label = "z";
+    plot.y_label = "#gf(r, z)";
+    plot.y_scale = AxisScale::log;
+    if (c.fluence_mc) {
+      plot.series.push_back({"Monte Carlo", z, first_row(c.fluence_mc->mean),
+                             first_row(c.fluence_mc->stderr_of_mean), true});
+    }
+    for (const ModelCurve& m : c.fluence) plot.series.push_back({m.model, z, first_row(m.values), {}, false});
+    const auto path = directory / (stem + "_fluence_axis.png");
+    write_png(plot, path);
+    written.push_back(path);
+  }
+  return written;
+}
+
+}  // namespace scatterlab
