@@ -12,6 +12,7 @@
 #include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/core/quadrature.hpp"
 #include "scatterlab/models/chandrasekhar_h.hpp"
+#include "scatterlab/refract/half_space_single_scatter.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 
 namespace scatterlab {
@@ -110,6 +111,27 @@ TEST(Searchlight, OnceScatteredReflectanceMatchesItsClosedForm) {
     EXPECT_DOUBLE_EQ(value(out, "specular_reflectance"),
                      fresnel_dielectric_reflectance(cos_i, c.eta));
   }
+}
+
+TEST(Searchlight, OnceScatteredProfileMatchesTheExactSingleScatterSolution) {
+  // R_1(r) per ring from the refractive single-scatter solution (refract/) for an anisotropic
+  // medium behind a Fresnel interface: every ring within 4 sigma, and the total.
+  SearchlightSpec spec = scene(0.9, 0.5, 1.33, 400'000);
+  spec.grid.r = {0.0, 1.5, 15};  // once-scattered light leaves within a few tenths of a mfp
+  const SearchlightOutput out = run_searchlight(spec);
+  const std::vector<double> edges = spec.grid.r.edges();
+  const SingleScatterReflectance exact =
+      half_space_single_scatter_reflectance(spec.medium, spec.eta, edges);
+  const TallyResult& single = find(out, "reflectance_single");
+  for (std::size_t i = 0; i < single.size(); ++i) {
+    EXPECT_NEAR(single.mean[i], exact.mean[i], 4.0 * single.stderr_of_mean[i] + exact.error[i])
+        << "ring " << i;
+  }
+  for (std::size_t i = 0; i < 4; ++i) {  // the check has teeth where most of R_1 is
+    EXPECT_LT(single.stderr_of_mean[i], 0.05 * exact.mean[i]) << "ring " << i;
+  }
+  EXPECT_NEAR(value(out, "diffuse_reflectance_single"), exact.total,
+              4.0 * error(out, "diffuse_reflectance_single"));
 }
 
 TEST(Searchlight, EnergyBalancesAndNothingIsNaNInExtremeScenes) {
