@@ -3,6 +3,7 @@
 // returns the action to run once the command line has been parsed.
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <functional>
 #include <string>
 
@@ -15,10 +16,15 @@ using Action = std::function<int()>;
 // `command_line` is the whole command as typed, recorded in output files. Commands that run
 // photons spread them over the ranks of `world`; only its root writes files and prints.
 Action add_simulate_command(CLI::App& app, const std::string& command_line, World& world);
+Action add_searchlight_command(CLI::App& app, const std::string& command_line, World& world);
 Action add_info_command(CLI::App& app);
 Action add_fit_command(CLI::App& app);
 Action add_validate_command(CLI::App& app);
 Action add_merge_command(CLI::App& app, const std::string& command_line);
 Action add_report_command(CLI::App& app, const std::string& command_line);
+
+// --photons as a double, so that 1e8 reads as it does in scene files; throws InputError
+// ("run.photons") unless it is a whole number that fits.
+std::uint64_t photon_count(double photons);
 
 }  // namespace scatterlab::cli

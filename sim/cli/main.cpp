@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", SCATTERLAB_VERSION);
   app.require_subcommand(1);
   const auto simulate = scatterlab::cli::add_simulate_command(app, command_line, *world);
+  const auto searchlight = scatterlab::cli::add_searchlight_command(app, command_line, *world);
   const auto info = scatterlab::cli::add_info_command(app);
   const auto fit = scatterlab::cli::add_fit_command(app);
   const auto validate = scatterlab::cli::add_validate_command(app);
@@ -43,6 +44,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("simulate")) return simulate();
+    if (app.got_subcommand("searchlight")) return searchlight();
     if (app.got_subcommand("info")) return info();
     if (app.got_subcommand("fit")) return fit();
     if (app.got_subcommand("validate")) return validate();

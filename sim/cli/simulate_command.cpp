@@ -113,13 +113,7 @@ void apply_flags(CLI::App& command, const SimulateOptions& o, SimulationSpec& sp
   }
   if (given("--tallies")) apply_tally_list(o.tallies, spec.tallies);
   if (given("--split-orders")) spec.tallies.split_by_order = o.split_orders;
-  if (given("--photons")) {
-    if (!(o.photons >= 0.0 && o.photons <= 0x1p63 && o.photons == std::floor(o.photons))) {
-      throw InputError("run.photons", fmt::format("got {}", o.photons),
-                       "a whole number >= 1 (1e8 is accepted)");
-    }
-    spec.run.photons = static_cast<std::uint64_t>(o.photons);
-  }
+  if (given("--photons")) spec.run.photons = photon_count(o.photons);
   if (given("--batches")) spec.run.batches = o.batches;
   if (given("--seed")) spec.run.seed = o.seed;
   if (given("--threads")) spec.run.threads = o.threads;
@@ -252,6 +246,14 @@ int run_simulate(CLI::App& command, const SimulateOptions& o, const LongRunOptio
 }
 
 }  // namespace
+
+std::uint64_t photon_count(double photons) {
+  if (!(photons >= 0.0 && photons <= 0x1p63 && photons == std::floor(photons))) {
+    throw InputError("run.photons", fmt::format("got {}", photons),
+                     "a whole number >= 1 (1e8 is accepted)");
+  }
+  return static_cast<std::uint64_t>(photons);
+}
 
 Action add_simulate_command(CLI::App& app, const std::string& command_line, World& world) {
   auto* command = app.add_subcommand(

@@ -10,6 +10,8 @@
 
 #include "commands.hpp"
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/transport/searchlight.hpp"
+#include "scatterlab/validate/half_space_comparison.hpp"
 #include "scatterlab/validate/point_source_comparison.hpp"
 #include "scatterlab/validate/validation_report.hpp"
 
@@ -23,13 +25,6 @@ struct ValidateOptions {
   int threads = 0;
   std::uint64_t seed = 1;
 };
-
-std::uint64_t photon_count(double photons) {
-  if (!(photons >= 1000.0) || photons > 1e12 || std::floor(photons) != photons) {
-    throw InputError("photons", fmt::format("got {}", photons), "a whole number in [1000, 1e12]");
-  }
-  return static_cast<std::uint64_t>(photons);
-}
 
 int run_deon(const ValidateOptions& options) {
   const auto start = std::chrono::steady_clock::now();
@@ -60,6 +55,86 @@ int run_deon(const ValidateOptions& options) {
   return 0;
 }
 
+struct SearchlightValidateOptions {
+  std::string out = "validate-searchlight";
+  double photons = 1e7;
+  double albedo = 0.99, g = 0.0, eta = 1.3;
+  bool quick = false;
+  int threads = 0;
+  std::uint64_t seed = 1;
+};
+
+MonteCarloCurve curve(const std::vector<TallyResult>& tallies, const std::string& name) {
+  for (const TallyResult& t : tallies) {
+    if (t.name == name) return {t.mean, t.stderr_of_mean};
+  }
+  throw std::logic_error("searchlight run has no tally " + name);
+}
+
+std::vector<double> edges(const UniformAxis& axis) {
+  std::vector<double> e;
+  for (int i = 0; i <= axis.bins; ++i) e.push_back(axis.edge(i));
+  return e;
+}
+
+// The half-space comparison: the searchlight Monte Carlo against the diffusion models
+// (R_d(r) and phi(r, z), Bitterli's pencil plots) and its once-scattered part against the exact
+// refractive single-scatter solution.
+int run_searchlight_validation(const SearchlightValidateOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  SearchlightSpec spec;
+  spec.medium.albedo = o.albedo;
+  spec.medium.g = o.g;
+  spec.eta = o.eta;
+  spec.run.photons = o.quick ? 100'000 : photon_count(o.photons);
+  // R_d(r) on 100 rings to 10 mfp; phi(r, z) on 100 x 20 cells to 10 mfp deep: the models'
+  // cell averages are 2-D adaptive integrals (~1 ms each).
+  spec.grid.r.bins = 100;
+  spec.grid.z.bins = 20;
+  spec.run.batches = 32;
+  spec.run.threads = o.threads;
+  spec.run.seed = o.seed;
+  spec.validate();
+  const SearchlightOutput out = run_searchlight(spec);
+  const MonteCarloCurve reflectance = curve(out.tallies, "reflectance");
+  const MonteCarloCurve specular = curve(out.tallies, "specular_reflectance");
+  const std::vector<double> r = edges(spec.grid.r), z = edges(spec.grid.z);
+
+  const HalfSpaceComparison comparison = compare_half_space(
+      HalfSpaceMedium::from_albedo(o.albedo, o.g, o.eta), 1.0 - specular.mean[0], r, z,
+      reflectance, curve(out.tallies, "fluence"));
+  auto files = write_half_space_report(comparison, o.out, "searchlight");
+
+  const SingleScatterReflectance exact =
+      half_space_single_scatter_reflectance(spec.medium, spec.eta, r, 1e-8);
+  const MonteCarloCurve single = curve(out.tallies, "reflectance_single");
+  const MonteCarloCurve single_total = curve(out.tallies, "diffuse_reflectance_single");
+  const SingleScatterAgreement agreement = compare_single_scatter(
+      single, exact, single_total.mean[0], single_total.stderr_of_mean[0]);
+  const auto more = write_single_scatter_report(r, single, exact, o.out, "searchlight");
+  files.insert(files.end(), more.begin(), more.end());
+
+  const MonteCarloCurve total = curve(out.tallies, "diffuse_reflectance");
+  fmt::print("scatterlab validate searchlight: albedo {}, g {}, eta {}, {} photons\n", o.albedo,
+             o.g, o.eta, spec.run.photons);
+  fmt::print("  {:<15} {:>10} {:>12} {:>12}\n", "model", "R_dr", "error near", "error far");
+  fmt::print("  {:<15} {:>10.6f} {:>12} {:>12}   (± {:.1e})\n", "Monte Carlo", total.mean[0], "",
+             "", total.stderr_of_mean[0]);
+  for (const ModelCurve& m : comparison.reflectance) {
+    fmt::print("  {:<15} {:>10.6f} {:>11.2f}% {:>11.2f}%\n", m.model, m.total,
+               100.0 * m.near_error, 100.0 * m.far_error);
+  }
+  fmt::print(
+      "  once scattered: exact total {:.6f}, Monte Carlo {:.6f} ± {:.1e} ({:+.2f} sigma); {} "
+      "rings, max |z| {:.2f}, mean z^2 {:.2f}\n",
+      exact.total, single_total.mean[0], single_total.stderr_of_mean[0], agreement.total_z,
+      agreement.rings, agreement.max_abs_z, agreement.mean_squared_z);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  fmt::print("  {:.2f} s; wrote {} files to {}\n", seconds, files.size(), o.out);
+  return 0;
+}
+
 }  // namespace
 
 Action add_validate_command(CLI::App& app) {
@@ -78,8 +153,25 @@ Action add_validate_command(CLI::App& app) {
   deon->add_option("--threads", options->threads, "Threads (0: all hardware threads)")
       ->capture_default_str();
   deon->add_option("--seed", options->seed, "Random seed")->capture_default_str();
-  return [options, deon] {
+  auto half_space = std::make_shared<SearchlightValidateOptions>();
+  CLI::App* searchlight = validate->add_subcommand(
+      "searchlight",
+      "Half-space: the searchlight Monte Carlo against the dipole, better dipole and Grosjean "
+      "(R_d(r), phi(r, z); linear, log, sqrt and r R plots) and its once-scattered part against "
+      "the exact refractive single-scatter solution");
+  searchlight->add_option("--out", half_space->out, "Directory for the CSV and PNG files")
+      ->capture_default_str();
+  searchlight->add_option("--photons", half_space->photons, "Photons")->capture_default_str();
+  searchlight->add_option("--albedo", half_space->albedo, "Albedo")->capture_default_str();
+  searchlight->add_option("--g", half_space->g, "Henyey-Greenstein g")->capture_default_str();
+  searchlight->add_option("--eta", half_space->eta, "Relative index")->capture_default_str();
+  searchlight->add_flag("--quick", half_space->quick, "1e5 photons, for tests");
+  searchlight->add_option("--threads", half_space->threads, "Threads (0: all)")
+      ->capture_default_str();
+  searchlight->add_option("--seed", half_space->seed, "Random seed")->capture_default_str();
+  return [options, deon, half_space, searchlight] {
     if (deon->parsed()) return run_deon(*options);
+    if (searchlight->parsed()) return run_searchlight_validation(*half_space);
     return 1;
   };
 }

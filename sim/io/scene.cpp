@@ -101,19 +101,57 @@ class SceneReader {
     spec.set_source(spec.source);  // the source's default tallies, unless [tallies] says else
     if (const auto* tallies = subtable(root, "tallies", "")) read_tallies(*tallies, spec.tallies);
     if (const auto* run = subtable(root, "run", "")) read_run(*run, spec.run);
-    if (const auto* output = subtable(root, "output", "")) {
-      check_keys(*output, "output", {"path"});
-      scene.output_path = string(*output, "path", "output", "a non-empty file name");
-      if (scene.output_path && scene.output_path->empty()) {
-        throw InputError("output.path", "is empty" + at(*output->get("path")),
-                         "a non-empty file name");
-      }
+    scene.output_path = read_output(root);
+    spec.validate();
+    return scene;
+  }
+
+  // The searchlight's scene (scene.hpp): the same tables where they mean the same, plus
+  // [surface] eta and [source] incidence_deg.
+  SearchlightScene read_searchlight(const toml::table& root) {
+    check_keys(root, "", {"medium", "surface", "source", "grid", "tallies", "run", "output"});
+    SearchlightScene scene;
+    SearchlightSpec& spec = scene.spec;
+    if (const auto* medium = subtable(root, "medium", "")) read_medium(*medium, spec.medium);
+    if (const auto* surface = subtable(root, "surface", "")) {
+      check_keys(*surface, "surface", {"eta"});
+      const auto eta = number(*surface, "eta", "surface", "a finite number > 0");
+      if (eta) spec.eta = *eta;
     }
+    if (const auto* source = subtable(root, "source", "")) {
+      check_keys(*source, "source", {"incidence_deg"});
+      const auto angle = number(*source, "incidence_deg", "source", "an angle in [0, 90) degrees");
+      if (angle) spec.incidence_deg = *angle;
+    }
+    if (const auto* grid = subtable(root, "grid", "")) {
+      check_keys(*grid, "grid", {"r", "z", "theta_o"});
+      read_axis(*grid, "r", {"max", "bins"}, spec.grid.r);
+      read_axis(*grid, "z", {"max", "bins"}, spec.grid.z);
+      read_axis(*grid, "theta_o", {"bins"}, spec.grid.theta_o);
+    }
+    if (const auto* tallies = subtable(root, "tallies", "")) {
+      check_keys(*tallies, "tallies", {"fluence"});
+      if (const auto on = boolean(*tallies, "fluence", "tallies")) spec.tallies.fluence = *on;
+    }
+    if (const auto* run = subtable(root, "run", "")) read_run(*run, spec.run);
+    scene.output_path = read_output(root);
     spec.validate();
     return scene;
   }
 
  private:
+  std::optional<std::string> read_output(const toml::table& root) const {
+    const auto* output = subtable(root, "output", "");
+    if (output == nullptr) return std::nullopt;
+    check_keys(*output, "output", {"path"});
+    auto path = string(*output, "path", "output", "a non-empty file name");
+    if (path && path->empty()) {
+      throw InputError("output.path", "is empty" + at(*output->get("path")),
+                       "a non-empty file name");
+    }
+    return path;
+  }
+
   std::string at(const toml::source_region& region) const {
     return fmt::format(" ({}:{}:{})", origin_, region.begin.line, region.begin.column);
   }
@@ -463,6 +501,14 @@ std::vector<SweepPoint> parse_sweep(std::string_view toml_text, const std::strin
 
 std::vector<SweepPoint> load_sweep(const std::filesystem::path& path) {
   return parse_sweep(read_text(path), path.string());
+}
+
+SearchlightScene parse_searchlight_scene(std::string_view toml_text, const std::string& origin) {
+  return SceneReader(origin).read_searchlight(parse_toml(toml_text, origin));
+}
+
+SearchlightScene load_searchlight_scene(const std::filesystem::path& path) {
+  return parse_searchlight_scene(read_text(path), path.string());
 }
 
 }  // namespace scatterlab

@@ -66,8 +66,9 @@ std::string join(const std::vector<std::string>& parts, const char* separator) {
   return joined;
 }
 
-void write_provenance(hdf5::Group& root, const Provenance& provenance,
-                      const SimulationSpec& spec) {
+// `batches`: how many the run asked for; `spec_fingerprint`: its identity.
+void write_provenance(hdf5::Group& root, const Provenance& provenance, std::uint64_t batches,
+                      const std::string& spec_fingerprint) {
   root.write_string_attribute("format", "scatterlab");
   root.write_int64_attribute("format_version", kSimulationFormatVersion);
   root.write_string_attribute("scatterlab_version", provenance.version);
@@ -77,17 +78,14 @@ void write_provenance(hdf5::Group& root, const Provenance& provenance,
   root.write_int64_attribute("photons_run", as_int64(provenance.photons_run, "photons_run"));
   root.write_int64_attribute("scattering_events",
                              as_int64(provenance.scattering_events, "scattering_events"));
-  const std::uint64_t batches_done = provenance.batches_done.value_or(spec.run.batches);
+  const std::uint64_t batches_done = provenance.batches_done.value_or(batches);
   root.write_int64_attribute("batches_done", as_int64(batches_done, "batches_done"));
-  root.write_bool_attribute("partial", batches_done < spec.run.batches);
+  root.write_bool_attribute("partial", batches_done < batches);
   root.write_int64_attribute("ranks", provenance.ranks);
-  root.write_string_attribute("spec_fingerprint", fingerprint(spec));
+  root.write_string_attribute("spec_fingerprint", spec_fingerprint);
 }
 
-void write_parameters(hdf5::Group& root, const SimulationSpec& spec) {
-  hdf5::Group parameters = root.create_group("parameters");
-  const Medium& medium = spec.medium;
-  parameters.write_string_attribute("source", to_string(spec.source));
+void write_medium(hdf5::Group& parameters, const Medium& medium) {
   parameters.write_double_attribute("albedo", medium.albedo);
   parameters.write_double_attribute("g", medium.g);
   parameters.write_double_attribute("sigma_t", medium.sigma_t);
@@ -96,15 +94,42 @@ void write_parameters(hdf5::Group& root, const SimulationSpec& spec) {
   parameters.write_string_attribute("length_unit", medium.length_unit);
   // g = 0 samples isotropically (DESIGN.md, "Leave out what a scene does not need").
   parameters.write_string_attribute("phase", medium.g == 0.0 ? "isotropic" : "henyey-greenstein");
-  parameters.write_int64_attribute("photons", as_int64(spec.run.photons, "photons"));
-  parameters.write_int64_attribute("batches", spec.run.batches);
+}
+
+void write_run(hdf5::Group& parameters, const RunSettings& run) {
+  parameters.write_int64_attribute("photons", as_int64(run.photons, "photons"));
+  parameters.write_int64_attribute("batches", run.batches);
   // Any 64-bit seed is valid, so it is the one unsigned attribute.
-  parameters.write_uint64_attribute("seed", spec.run.seed);
+  parameters.write_uint64_attribute("seed", run.seed);
+}
+
+void write_parameters(hdf5::Group& root, const SimulationSpec& spec) {
+  hdf5::Group parameters = root.create_group("parameters");
+  parameters.write_string_attribute("source", to_string(spec.source));
+  write_medium(parameters, spec.medium);
+  write_run(parameters, spec.run);
   parameters.write_string_attribute("estimator", to_string(spec.tallies.estimator));
   if (std::isfinite(spec.run.escape_radius)) {
     parameters.write_double_attribute("escape_radius", spec.run.escape_radius);
   }
   parameters.write_bool_attribute("split_by_order", spec.tallies.split_by_order);
+  parameters.write_int64_attribute("threads", spec.run.threads);
+}
+
+// The half-space run (DESIGN.md: /parameters eta): geometry, interface and beam first.
+void write_searchlight_parameters(hdf5::Group& root, const SearchlightSpec& spec) {
+  hdf5::Group parameters = root.create_group("parameters");
+  parameters.write_string_attribute("geometry", "half_space");
+  parameters.write_string_attribute("source", "beam");
+  parameters.write_double_attribute("eta", spec.eta);
+  parameters.write_double_attribute("incidence_deg", spec.incidence_deg);
+  write_medium(parameters, spec.medium);
+  write_run(parameters, spec.run);
+  parameters.write_string_attribute("estimator", "collision");
+  if (std::isfinite(spec.run.escape_radius)) {
+    parameters.write_double_attribute("escape_radius", spec.run.escape_radius);
+  }
+  parameters.write_bool_attribute("split_by_order", true);
   parameters.write_int64_attribute("threads", spec.run.threads);
 }
 
@@ -124,6 +149,14 @@ void write_grid(hdf5::Group& root, const SimulationSpec& spec) {
   if (spec.tallies.fluence_spherical) write_axis(grid, "rho", spec.grid.rho, "mfp");
 }
 
+// r from the entry point and z depth in mfp; theta_o from the outward normal, outside.
+void write_searchlight_grid(hdf5::Group& root, const SearchlightSpec& spec) {
+  hdf5::Group grid = root.create_group("grid");
+  write_axis(grid, "r", spec.grid.r, "mfp");
+  if (spec.tallies.fluence) write_axis(grid, "z", spec.grid.z, "mfp");
+  write_axis(grid, "theta_o", spec.grid.theta_o, "rad");
+}
+
 void write_tallies(hdf5::Group& root, const std::vector<TallyResult>& tallies) {
   hdf5::Group group = root.create_group("tallies");
   for (const TallyResult& tally : tallies) {
@@ -135,6 +168,23 @@ void write_tallies(hdf5::Group& root, const std::vector<TallyResult>& tallies) {
         .write_string_attribute("units", tally.units);
     node.write_dataset("stderr", tally.stderr_of_mean, tally.shape)
         .write_string_attribute("units", tally.units);
+  }
+}
+
+void write_models(hdf5::Group& root, const std::vector<ModelResult>& models) {
+  if (models.empty()) return;
+  hdf5::Group group = root.create_group("models");
+  for (const ModelResult& m : models) {
+    hdf5::Group node = group.has_member(m.model) ? group.open_group(m.model)
+                                                : group.create_group(m.model);
+    auto write = [&](const std::string& name, const std::vector<double>& values) {
+      hdf5::Dataset dataset = node.write_dataset(name, values, m.shape);
+      dataset.write_string_attribute("units", m.units);
+      dataset.write_string_attribute("description", m.description);
+      dataset.write_string_attribute("dims", join(m.dims, ","));
+    };
+    write(m.name, m.values);
+    if (!m.error.empty()) write(m.name + "_error", m.error);
   }
 }
 
@@ -280,7 +330,7 @@ std::string tally_text(const TallySummary& tally) {
 [[noreturn]] void not_a_simulation_file(const std::filesystem::path& path,
                                         const std::string& reason) {
   throw InputError("FILE", path.string() + " is not a scatterlab HDF5 file (" + reason + ")",
-                   "a file written by scatterlab simulate");
+                   "a file written by scatterlab simulate or searchlight");
 }
 
 }  // namespace
@@ -300,10 +350,27 @@ void write_simulation_file(const std::filesystem::path& path, const SimulationSp
   check_tallies(tallies);
   {
     hdf5::File file = hdf5::File::create(output.temporary_path());
-    write_provenance(file.root(), provenance, spec);
+    write_provenance(file.root(), provenance, spec.run.batches, fingerprint(spec));
     write_parameters(file.root(), spec);
     write_grid(file.root(), spec);
     write_tallies(file.root(), tallies);
+    file.close();
+  }
+  output.commit();
+}
+
+void write_searchlight_file(const std::filesystem::path& path, const SearchlightSpec& spec,
+                            const std::vector<TallyResult>& tallies, const Provenance& provenance,
+                            const std::vector<ModelResult>& models) {
+  AtomicOutput output(path);
+  check_tallies(tallies);
+  {
+    hdf5::File file = hdf5::File::create(output.temporary_path());
+    write_provenance(file.root(), provenance, spec.run.batches, fingerprint(spec));
+    write_searchlight_parameters(file.root(), spec);
+    write_searchlight_grid(file.root(), spec);
+    write_tallies(file.root(), tallies);
+    write_models(file.root(), models);
     file.close();
   }
   output.commit();
@@ -364,7 +431,7 @@ std::string describe(const FileSummary& summary) {
 
   text += summary.phi_folded ? "\ngrid (phi folded onto [0, pi])\n" : "\ngrid\n";
   for (const AxisSummary& axis : summary.grid) {
-    text += fmt::format("  {:<6} {:>4} bins in [{:.6g}, {:.6g}] {}\n", axis.name, axis.bins,
+    text += fmt::format("  {:<7} {:>4} bins in [{:.6g}, {:.6g}] {}\n", axis.name, axis.bins,
                         axis.min, axis.max, axis.units);
   }
 

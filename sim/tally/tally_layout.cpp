@@ -74,22 +74,13 @@ std::vector<TallyResult> finalize_tallies(const SimulationSpec& spec, const Tall
       spec.tallies.estimator == Estimator::collision ? "collision estimator" : "track-length estimator";
   std::vector<TallyResult> results;
 
-  // Copies `cells` raw values from `offset`, dividing cell i by measure(i).
+  // Copies the raw values from `offset`, dividing cell i by measure(i).
   auto add = [&](std::string name, std::vector<std::string> dims, std::vector<std::size_t> shape,
                  std::string units, std::string description, std::size_t offset,
                  auto&& measure) {
-    TallyResult t{std::move(name), std::move(dims), std::move(shape), std::move(units),
-                  std::move(description), {}, {}};
-    std::size_t cells = 1;
-    for (std::size_t extent : t.shape) cells *= extent;
-    t.mean.resize(cells);
-    t.stderr_of_mean.resize(cells);
-    for (std::size_t i = 0; i < cells; ++i) {
-      const double m = measure(i);
-      t.mean[i] = raw_mean[offset + i] / m;
-      t.stderr_of_mean[i] = raw_stderr[offset + i] / m;
-    }
-    results.push_back(std::move(t));
+    results.push_back(measured_tally({std::move(name), std::move(dims), std::move(shape),
+                                      std::move(units), std::move(description), {}, {}},
+                                     raw_mean, raw_stderr, offset, measure));
   };
 
   const std::size_t blocks = layout.split_by_order ? 4 : 1;

@@ -141,21 +141,7 @@ void check_tallies(const TallyRequest& tallies, SourceKind source) {
 }
 
 void check_run(const RunSettings& run, const Medium& medium) {
-  if (run.photons < 1) {
-    throw InputError("run.photons", fmt::format("got {}", run.photons), "an integer >= 1");
-  }
-  if (run.batches < 2 || run.batches > run.photons) {
-    throw InputError("run.batches",
-                     fmt::format("got {} with run.photons = {}", run.batches, run.photons),
-                     "an integer in [2, run.photons] (a standard error needs at least 2 batches)");
-  }
-  if (run.threads < 0) {
-    throw InputError("run.threads", fmt::format("got {}", run.threads),
-                     "an integer >= 0 (0: all hardware threads)");
-  }
-  if (!(run.escape_radius > 0.0)) {
-    throw InputError("run.escape_radius", got(run.escape_radius), "a number > 0 (mfp), or inf");
-  }
+  check_run_settings(run);
   if (medium.albedo == 1.0 && !std::isfinite(run.escape_radius)) {
     throw InputError("run.escape_radius",
                      "is infinite, but an infinite medium with albedo 1 never absorbs, so photons "
@@ -189,13 +175,7 @@ std::string fingerprint(const SimulationSpec& spec) {
       axis(spec.grid.z), axis(spec.grid.theta), axis(spec.grid.phi), axis(spec.grid.rho),
       spec.grid.fold_phi, t.radiance, t.fluence, t.flux, t.fluence_spherical, t.split_by_order,
       to_string(t.estimator), run.photons, run.batches, run.seed, run.escape_radius);
-  // FNV-1a, 64 bit (Fowler, Noll, Vo): a fingerprint, not a defence against forgery.
-  std::uint64_t hash = 0xcbf29ce484222325ull;
-  for (const char c : canonical) {
-    hash ^= static_cast<unsigned char>(c);
-    hash *= 0x100000001b3ull;
-  }
-  return fmt::format("{:016x}", hash);
+  return fingerprint_of(canonical);
 }
 
 std::string to_string(SourceKind source) {

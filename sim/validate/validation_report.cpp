@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 
 #include "scatterlab/core/error.hpp"
@@ -238,6 +240,56 @@ std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceCompar
     written.push_back(path);
   }
   return written;
+}
+
+SingleScatterAgreement compare_single_scatter(const MonteCarloCurve& monte_carlo,
+                                              const SingleScatterReflectance& exact,
+                                              double monte_carlo_total,
+                                              double monte_carlo_total_stderr) {
+  SingleScatterAgreement agreement;
+  double sum_z2 = 0.0;
+  for (std::size_t i = 0; i < exact.mean.size(); ++i) {
+    const double sigma = monte_carlo.stderr_of_mean[i];
+    if (!(monte_carlo.mean[i] > 3.0 * sigma)) continue;
+    const double z = (monte_carlo.mean[i] - exact.mean[i]) / sigma;
+    agreement.max_abs_z = std::max(agreement.max_abs_z, std::abs(z));
+    sum_z2 += z * z;
+    ++agreement.rings;
+  }
+  agreement.mean_squared_z =
+      agreement.rings > 0 ? sum_z2 / static_cast<double>(agreement.rings) : 0.0;
+  agreement.total_z = (monte_carlo_total - exact.total) / monte_carlo_total_stderr;
+  return agreement;
+}
+
+std::vector<std::filesystem::path> write_single_scatter_report(
+    const std::vector<double>& r_edges, const MonteCarloCurve& mc,
+    const SingleScatterReflectance& exact, const std::filesystem::path& directory,
+    const std::string& stem) {
+  make_directory(directory);
+  const std::size_t nr = r_edges.size() - 1;
+  const auto csv = directory / fmt::format("{}_single_scatter.csv", stem);
+  write_text(csv, [&](std::ostream& out) {
+    out << "# once-scattered R_1(r), annulus averages per unit area per unit incident power\n"
+           "r_lo,r_hi,monte_carlo,monte_carlo_stderr,exact,exact_error,z\n";
+    for (std::size_t i = 0; i < nr; ++i) {
+      const double z = mc.stderr_of_mean[i] > 0.0
+                           ? (mc.mean[i] - exact.mean[i]) / mc.stderr_of_mean[i]
+                           : std::numeric_limits<double>::quiet_NaN();
+      out << fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.3g},{}\n", r_edges[i], r_edges[i + 1],
+                         mc.mean[i], mc.stderr_of_mean[i], exact.mean[i], exact.error[i],
+                         nan_or(z));
+    }
+  });
+  std::vector<double> r(nr);
+  for (std::size_t i = 0; i < nr; ++i) r[i] = 0.5 * (r_edges[i] + r_edges[i + 1]);
+  LinePlot plot{"Once-scattered reflectance: Monte Carlo against the exact solver",
+                "r (mfp)", "R#d1#u(r)", AxisScale::log, false, {}};
+  plot.series.push_back({"Monte Carlo, once scattered", r, mc.mean, mc.stderr_of_mean, true});
+  plot.series.push_back({"exact (refractive single scatter)", r, exact.mean, {}, false});
+  const auto png = directory / fmt::format("{}_single_scatter_log.png", stem);
+  write_png(plot, png);
+  return {csv, png};
 }
 
 }  // namespace scatterlab

@@ -12,12 +12,13 @@ failures=0 passed=0
 pass() { passed=$((passed + 1)); }
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
-# expect_error NAME FIELD ARGS...: non-zero exit, FIELD named on stderr, nothing written.
-expect_error() {
-  local name=$1 field=$2
-  shift 2
+# expect_command_error COMMAND NAME FIELD ARGS...: non-zero exit, FIELD named on stderr, nothing
+# written.
+expect_command_error() {
+  local command=$1 name=$2 field=$3
+  shift 3
   local out="$work/$name.h5"
-  if "$exe" simulate --photons 1000 --batches 4 --out "$out" "$@" >"$work/stdout" 2>"$work/stderr"; then
+  if "$exe" "$command" --photons 1000 --batches 4 --out "$out" "$@" >"$work/stdout" 2>"$work/stderr"; then
     fail "$name: exited 0"
   elif ! grep -q -- "$field" "$work/stderr"; then
     fail "$name: error does not name $field: $(cat "$work/stderr")"
@@ -29,6 +30,8 @@ expect_error() {
     pass
   fi
 }
+expect_error() { expect_command_error simulate "$@"; }
+expect_searchlight_error() { expect_command_error searchlight "$@"; }
 
 # A small run, then info on it.
 if "$exe" simulate --photons 20000 --batches 8 --out "$work/run.h5" >"$work/stdout" 2>"$work/stderr" &&
@@ -76,6 +79,32 @@ printf '[medium]\nsigma_a = -0.1\nsigma_s = 1\n' >"$work/negative.toml"
 expect_error negative_coefficient medium.sigma_a --scene "$work/negative.toml"
 printf '[medium\nalbedo = 0.3\n' >"$work/syntax.toml"
 expect_error syntax_error "syntax.toml:" --scene "$work/syntax.toml"
+
+# searchlight: a small half-space run, info on it, and bad input.
+if "$exe" searchlight --photons 20000 --batches 8 --eta 1.33 --out "$work/half.h5" >"$work/stdout" 2>"$work/stderr" &&
+  grep -q "wrote $work/half.h5" "$work/stdout" && grep -q "specular_reflectance" "$work/stdout"; then pass; else
+  fail "searchlight run: $(cat "$work/stdout" "$work/stderr")"
+fi
+if "$exe" info "$work/half.h5" >"$work/info" && grep -q "eta *1.33" "$work/info" &&
+  grep -q "geometry *half_space" "$work/info" && grep -q "reflectance_single" "$work/info" &&
+  grep -q "theta_o" "$work/info"; then pass; else fail "info on searchlight: $(cat "$work/info")"; fi
+if "$exe" searchlight --eta 1 --albedo 0.9 --photons 20000 --batches 8 --no-fluence \
+  --out "$work/matched.h5" | grep -q "exact diffuse reflectance"; then pass; else fail "index-matched summary"; fi
+if "$exe" searchlight --help | grep -q -- "--incidence"; then pass; else fail "searchlight help"; fi
+
+if "$exe" searchlight --scene "$source_dir/data/scenes/searchlight.toml" --photons 20000 --batches 8 \
+  --out "$work/scene.h5" >/dev/null 2>&1 && "$exe" info "$work/scene.h5" | grep -q "eta *1.3"
+then pass; else fail "searchlight scene"; fi
+printf '[surface]\nindx = 1.3\n' >"$work/half-typo.toml"
+expect_searchlight_error searchlight_unknown_key surface.indx --scene "$work/half-typo.toml"
+expect_searchlight_error eta_zero surface.eta --eta 0
+expect_searchlight_error eta_negative surface.eta --eta -1.3
+expect_searchlight_error grazing source.incidence_deg --incidence 90
+expect_searchlight_error albedo_above_one medium.albedo --albedo 1.01
+expect_searchlight_error g_at_minus_one medium.g --g -1
+expect_searchlight_error conservative_without_escape run.escape_radius --albedo 1
+expect_searchlight_error r_bins_zero grid.r.bins --r-bins 0
+expect_searchlight_error searchlight_missing_directory out --out "$work/no/such/dir/x.h5"
 
 # info on something that is not a scatterlab file.
 echo "not hdf5" >"$work/text.h5"

@@ -385,5 +385,63 @@ TEST(Scene, SyntaxErrorInAFileNamesTheFile) {
   std::filesystem::remove(path);
 }
 
+// ---------------------------------------------------------------------------------------------
+// The searchlight's scene.
+
+std::string searchlight_field_of(std::string_view text) {
+  try {
+    parse_searchlight_scene(text, "half.toml");
+  } catch (const InputError& error) {
+    return error.field();
+  }
+  ADD_FAILURE() << "no InputError for:\n" << text;
+  return "<none>";
+}
+
+TEST(SearchlightScene, ShippedFileSpellsOutTheDefaults) {
+  const SearchlightScene scene = load_searchlight_scene(scenes_dir / "searchlight.toml");
+  const SearchlightSpec defaults;
+  EXPECT_EQ(scene.spec.medium.albedo, defaults.medium.albedo);
+  EXPECT_EQ(scene.spec.medium.g, defaults.medium.g);
+  EXPECT_EQ(scene.spec.eta, defaults.eta);
+  EXPECT_EQ(scene.spec.incidence_deg, defaults.incidence_deg);
+  EXPECT_EQ(scene.spec.grid.r, defaults.grid.r);
+  EXPECT_EQ(scene.spec.grid.z, defaults.grid.z);
+  EXPECT_EQ(scene.spec.grid.theta_o, defaults.grid.theta_o);
+  EXPECT_EQ(scene.spec.tallies.fluence, defaults.tallies.fluence);
+  EXPECT_EQ(scene.spec.run.photons, defaults.run.photons);
+  EXPECT_EQ(scene.spec.run.batches, defaults.run.batches);
+  EXPECT_EQ(scene.spec.run.escape_radius, defaults.run.escape_radius);
+  EXPECT_EQ(scene.output_path, "searchlight.h5");
+}
+
+TEST(SearchlightScene, ReadsEveryTable) {
+  const SearchlightScene scene = parse_searchlight_scene(
+      "[medium]\nalbedo = 0.8\ng = -0.3\n[surface]\neta = 2.5\n[source]\nincidence_deg = 40\n"
+      "[grid]\nr = { max = 4, bins = 8 }\nz = { max = 2, bins = 4 }\ntheta_o = { bins = 9 }\n"
+      "[tallies]\nfluence = false\n[run]\nphotons = 1e4\nbatches = 8\n",
+      "half.toml");
+  EXPECT_EQ(scene.spec.medium.albedo, 0.8);
+  EXPECT_EQ(scene.spec.medium.g, -0.3);
+  EXPECT_EQ(scene.spec.eta, 2.5);
+  EXPECT_EQ(scene.spec.incidence_deg, 40.0);
+  EXPECT_EQ(scene.spec.grid.r, (UniformAxis{0.0, 4.0, 8}));
+  EXPECT_EQ(scene.spec.grid.z, (UniformAxis{0.0, 2.0, 4}));
+  EXPECT_EQ(scene.spec.grid.theta_o.bins, 9);
+  EXPECT_FALSE(scene.spec.tallies.fluence);
+  EXPECT_EQ(scene.spec.run.photons, 10000u);
+}
+
+TEST(SearchlightScene, BadInputNamesTheField) {
+  EXPECT_EQ(searchlight_field_of("[surface]\neta = 0\n"), "surface.eta");
+  EXPECT_EQ(searchlight_field_of("[surface]\nindex = 1.3\n"), "surface.index");
+  EXPECT_EQ(searchlight_field_of("[source]\nincidence_deg = 95\n"), "source.incidence_deg");
+  EXPECT_EQ(searchlight_field_of("[source]\ntype = \"point\"\n"), "source.type");
+  EXPECT_EQ(searchlight_field_of("[grid]\nz = { min = -1 }\n"), "grid.z.min");
+  EXPECT_EQ(searchlight_field_of("[grid]\nphi = { bins = 4 }\n"), "grid.phi");
+  EXPECT_EQ(searchlight_field_of("[medium]\nalbedo = 1\n"), "run.escape_radius");
+  EXPECT_EQ(searchlight_field_of("[medium]\nalbedo = \"high\"\n"), "medium.albedo");
+}
+
 }  // namespace
 }  // namespace scatterlab

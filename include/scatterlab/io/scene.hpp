@@ -29,6 +29,7 @@
 #include <string_view>
 #include <vector>
 
+#include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/transport/simulation.hpp"
 
 namespace scatterlab {
@@ -60,5 +61,21 @@ struct SweepPoint {
 
 std::vector<SweepPoint> parse_sweep(std::string_view toml_text, const std::string& origin);
 std::vector<SweepPoint> load_sweep(const std::filesystem::path& path);
+
+// The searchlight's scene (scatterlab searchlight --scene; data/scenes/searchlight.toml), as
+// strict as the above, with these tables:
+//   [medium]   albedo, g                                   (in mfp: sigma_t = 1)
+//   [surface]  eta = n_medium / n_outside
+//   [source]   incidence_deg
+//   [grid]     r = { max, bins }, z = { max, bins }, theta_o = { bins }
+//   [tallies]  fluence = bool
+//   [run]      as above;  [output] path
+struct SearchlightScene {
+  SearchlightSpec spec;                    // validated
+  std::optional<std::string> output_path;  // [output] path, as written
+};
+
+SearchlightScene parse_searchlight_scene(std::string_view toml_text, const std::string& origin);
+SearchlightScene load_searchlight_scene(const std::filesystem::path& path);
 
 }  // namespace scatterlab

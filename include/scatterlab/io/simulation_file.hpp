@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "scatterlab/tally/tally_result.hpp"
+#include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/transport/simulation.hpp"
 
 namespace scatterlab {
@@ -50,6 +51,27 @@ std::string iso8601_now();
 // Tallies are written in the order given. Does not validate `spec` (the caller did).
 void write_simulation_file(const std::filesystem::path& path, const SimulationSpec& spec,
                            const std::vector<TallyResult>& tallies, const Provenance& provenance);
+
+// A model's curve on the run's grid, written as /models/<model>/<name> (attrs units, description,
+// dims) and, when the model carries a numerical error estimate, /models/<model>/<name>_error.
+struct ModelResult {
+  std::string model;                // e.g. "dipole", "single_scatter"
+  std::string name;                 // the tally it compares with, e.g. "reflectance"
+  std::vector<std::string> dims;    // empty for a scalar
+  std::vector<std::size_t> shape;   // empty for a scalar
+  std::string units;
+  std::string description;
+  std::vector<double> values;
+  std::vector<double> error;        // empty, or one absolute error estimate per value
+};
+
+// The same file for the half-space (scatterlab searchlight): /parameters adds geometry =
+// "half_space", eta and incidence_deg; /grid holds r, z (with the fluence) and theta_o, the exit
+// angle outside the medium; the tallies are those of finalize_half_space_tallies.
+// Model curves, if any, go under /models.
+void write_searchlight_file(const std::filesystem::path& path, const SearchlightSpec& spec,
+                            const std::vector<TallyResult>& tallies, const Provenance& provenance,
+                            const std::vector<ModelResult>& models = {});
 
 // What `scatterlab info FILE` reports, read back from a file.
 struct AxisSummary {

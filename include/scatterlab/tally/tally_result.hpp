@@ -20,4 +20,23 @@ struct TallyResult {
   std::size_t size() const { return mean.size(); }
 };
 
+// Fills `tally` (name, dims, shape, units and description set) from the raw per-photon batch
+// mean and standard error at [offset, offset + cells), dividing cell i by measure(i): its
+// volume, area or solid angle, as the tally's units ask.
+template <class Measure>
+TallyResult measured_tally(TallyResult tally, const std::vector<double>& raw_mean,
+                           const std::vector<double>& raw_stderr, std::size_t offset,
+                           Measure&& measure) {
+  std::size_t cells = 1;
+  for (std::size_t extent : tally.shape) cells *= extent;
+  tally.mean.resize(cells);
+  tally.stderr_of_mean.resize(cells);
+  for (std::size_t i = 0; i < cells; ++i) {
+    const double m = measure(i);
+    tally.mean[i] = raw_mean[offset + i] / m;
+    tally.stderr_of_mean[i] = raw_stderr[offset + i] / m;
+  }
+  return tally;
+}
+
 }  // namespace scatterlab

@@ -3,6 +3,8 @@
 
 #include <cstdint>
 #include <limits>
+#include <string>
+#include <string_view>
 
 namespace scatterlab {
 
@@ -15,5 +17,14 @@ struct RunSettings {
   // default; required when albedo = 1, where nothing is ever absorbed.
   double escape_radius = std::numeric_limits<double>::infinity();
 };
+
+// Throws InputError ("run.photons", "run.batches", "run.threads", "run.escape_radius") for
+// settings no kernel can run; whether an infinite escape radius is allowed is the scene's call.
+void check_run_settings(const RunSettings& run);
+
+// A run's identity for checkpoints, resumes and skipped sweep points: a 64-bit FNV-1a hash
+// (Fowler, Noll, Vo) of a canonical text of everything that shapes its tallies, as 16 hex
+// digits. Each spec writes its own canonical text (doubles in hexadecimal, {:a}, so it is exact).
+std::string fingerprint_of(std::string_view canonical);
 
 }  // namespace scatterlab

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "scatterlab/refract/half_space_single_scatter.hpp"
 #include "scatterlab/validate/half_space_comparison.hpp"
 #include "scatterlab/validate/point_source_comparison.hpp"
 
@@ -26,5 +27,26 @@ std::string point_source_error_table(const std::vector<PointSourceComparison>& c
 std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceComparison& comparison,
                                                            const std::filesystem::path& directory,
                                                            const std::string& stem);
+
+// The once-scattered R_1(r) of Monte Carlo (reflectance_single) against the exact refractive
+// single-scatter solution, ring by ring, in Monte Carlo standard errors.
+struct SingleScatterAgreement {
+  std::size_t rings = 0;        // rings compared: Monte Carlo resolved (mean > 3 stderr)
+  double max_abs_z = 0.0;       // largest |MC - exact| / stderr
+  double mean_squared_z = 0.0;  // ~1 when the two agree
+  double total_z = 0.0;         // of the totals, (MC - exact) / stderr
+};
+
+SingleScatterAgreement compare_single_scatter(const MonteCarloCurve& monte_carlo,
+                                              const SingleScatterReflectance& exact,
+                                              double monte_carlo_total,
+                                              double monte_carlo_total_stderr);
+
+// <stem>_single_scatter.csv (r, MC, stderr, exact, its quadrature error, z) and
+// <stem>_single_scatter_log.png. Returns the paths.
+std::vector<std::filesystem::path> write_single_scatter_report(
+    const std::vector<double>& r_edges, const MonteCarloCurve& monte_carlo,
+    const SingleScatterReflectance& exact, const std::filesystem::path& directory,
+    const std::string& stem);
 
 }  // namespace scatterlab

@@ -1,0 +1,101 @@
+// Cost of the half-space random walk (searchlight): photons/s and ns per scattering event per
+// core with the surface tallies on (R_d(r), exitant radiance, totals, split by order), with the
+// Fresnel interface off (eta = 1) and on (eta = 1.33), with and without the fluence phi(r, z).
+// The infinite-medium kernel's figures for the same media are the Walk/fluence_* rows of
+// bench_random_walk.cpp; the iso_albedo0.99 rows here run the same medium for comparison.
+//
+//   ./build/bench/scatterlab_bench --benchmark_filter=HalfSpace --benchmark_counters_tabular=true
+#include <benchmark/benchmark.h>
+
+#include <vector>
+
+#include "scatterlab/core/fresnel.hpp"
+#include "scatterlab/core/phase_function.hpp"
+#include "scatterlab/tally/half_space_layout.hpp"
+#include "scatterlab/tally/half_space_scorer.hpp"
+#include "scatterlab/transport/half_space_walk.hpp"
+#include "scatterlab/transport/searchlight.hpp"
+
+namespace scatterlab {
+namespace {
+
+SearchlightSpec half_space(double albedo, double g, double eta, bool fluence) {
+  SearchlightSpec spec;
+  spec.medium.albedo = albedo;
+  spec.medium.g = g;
+  spec.eta = eta;
+  spec.tallies.fluence = fluence;
+  return spec;
+}
+
+template <class Phase, bool fresnel, bool fluence>
+void run_walk(benchmark::State& state, const Phase& phase, const SearchlightSpec& spec) {
+  const HalfSpaceLayout layout(spec);
+  const HalfSpaceScorer scorer(spec, layout);
+  const HalfSpaceWalk<Phase, fresnel, fluence> walk(spec, phase, scorer, Vec3::UnitZ());
+  auto scratch = walk.make_scratch();
+  std::vector<double> buffer(layout.size, 0.0);
+  std::uint64_t photon = 0, scatterings = 0;
+  for (auto _ : state) {
+    scatterings += walk.run(photon, photon + 1000, buffer.data(), scratch);
+    photon += 1000;
+  }
+  benchmark::DoNotOptimize(buffer.data());
+  state.counters["photons/s"] =
+      benchmark::Counter(static_cast<double>(photon), benchmark::Counter::kIsRate);
+  state.counters["ns/scatter"] =
+      benchmark::Counter(static_cast<double>(scatterings) * 1e-9,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["scatters/photon"] =
+      static_cast<double>(scatterings) / static_cast<double>(photon);
+}
+
+// Picks the kernel the scene needs, as run_searchlight does, outside the timed loop.
+template <class Phase>
+void HalfSpace(benchmark::State& state, Phase phase, SearchlightSpec spec) {
+  const bool fresnel = spec.eta != 1.0;
+  if (fresnel && spec.tallies.fluence) return run_walk<Phase, true, true>(state, phase, spec);
+  if (fresnel) return run_walk<Phase, true, false>(state, phase, spec);
+  if (spec.tallies.fluence) return run_walk<Phase, false, true>(state, phase, spec);
+  run_walk<Phase, false, false>(state, phase, spec);
+}
+
+// The whole run through the batch runner on one thread, as `scatterlab searchlight` does it.
+void HalfSpaceWholeRun(benchmark::State& state) {
+  SearchlightSpec spec = half_space(0.99, 0.0, 1.33, false);
+  spec.run.photons = 1'000'000;
+  spec.run.threads = 1;
+  std::uint64_t photons = 0, scatterings = 0;
+  for (auto _ : state) {
+    const SearchlightOutput out = run_searchlight(spec);
+    photons += out.photons;
+    scatterings += out.scattering_events;
+  }
+  state.counters["photons/s"] =
+      benchmark::Counter(static_cast<double>(photons), benchmark::Counter::kIsRate);
+  state.counters["ns/scatter"] =
+      benchmark::Counter(static_cast<double>(scatterings) * 1e-9,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+const IsotropicPhase iso{};
+const HenyeyGreenstein hg075{0.75};
+const HenyeyGreenstein hg09{0.9};
+
+// Isotropic, albedo 0.99: the searchlight default medium.
+BENCHMARK_CAPTURE(HalfSpace, iso_albedo0 .99_eta1, iso, half_space(0.99, 0.0, 1.0, false));
+BENCHMARK_CAPTURE(HalfSpace, iso_albedo0 .99_eta1.33, iso, half_space(0.99, 0.0, 1.33, false));
+BENCHMARK_CAPTURE(HalfSpace, iso_albedo0 .99_eta1.33_fluence, iso,
+                  half_space(0.99, 0.0, 1.33, true));
+// The semi-infinite medium of MCML's validation (van de Hulst's tables): albedo 0.9, g 0.75.
+BENCHMARK_CAPTURE(HalfSpace, hg_g0 .75_albedo0.9_eta1, hg075, half_space(0.9, 0.75, 1.0, false));
+BENCHMARK_CAPTURE(HalfSpace, hg_g0 .75_albedo0.9_eta1.33, hg075,
+                  half_space(0.9, 0.75, 1.33, false));
+// Forward scattering and long walks: g 0.9, albedo 0.999 (a skin-like reduced albedo 0.99).
+BENCHMARK_CAPTURE(HalfSpace, hg_g0 .9_albedo0.999_eta1, hg09, half_space(0.999, 0.9, 1.0, false));
+BENCHMARK_CAPTURE(HalfSpace, hg_g0 .9_albedo0.999_eta1.33, hg09,
+                  half_space(0.999, 0.9, 1.33, false));
+BENCHMARK(HalfSpaceWholeRun)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+}  // namespace scatterlab

@@ -1,0 +1,188 @@
+// scatterlab searchlight: a pencil beam on a semi-infinite medium behind a refractive interface
+// (Bitterli 2014, §2.3 and Alg. 1), from flags, written to one HDF5 file.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+#include "commands.hpp"
+#include "long_run.hpp"
+#include "progress_bar.hpp"
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/io/atomic_output.hpp"
+#include "scatterlab/io/scene.hpp"
+#include "scatterlab/io/simulation_file.hpp"
+#include "scatterlab/models/chandrasekhar_h.hpp"
+#include "scatterlab/transport/searchlight.hpp"
+#include "scatterlab/validate/searchlight_models.hpp"
+
+namespace scatterlab::cli {
+namespace {
+
+struct SearchlightOptions {
+  std::string scene, out;
+  double albedo = 0, g = 0, eta = 0, incidence = 0, escape_radius = 0;
+  double photons = 0;  // a double, so that 1e7 reads as it does in scene files
+  std::uint64_t seed = 0;
+  std::uint32_t batches = 0;
+  int threads = 0;
+  double r_max = 0, z_max = 0;
+  int r_bins = 0, z_bins = 0, theta_bins = 0;
+  bool no_fluence = false;
+  bool model_fluence = false;
+};
+
+double scalar(const std::vector<TallyResult>& tallies, const std::string& name, double* error) {
+  for (const TallyResult& t : tallies) {
+    if (t.name == name) {
+      *error = t.stderr_of_mean[0];
+      return t.mean[0];
+    }
+  }
+  *error = 0.0;
+  return 0.0;
+}
+
+void print_summary(const SearchlightSpec& spec, const SearchlightOutput& out,
+                   const std::vector<ModelResult>& models, const std::string& path) {
+  const double events = static_cast<double>(out.scattering_events);
+  fmt::print("scatterlab searchlight: half-space, albedo {}, g {}, eta {}, incidence {} deg\n",
+             spec.medium.albedo, spec.medium.g, spec.eta, spec.incidence_deg);
+  fmt::print(
+      "  {} photons in {} batches on {} thread{}: {:.2f} s ({:.3g} photons/s, {:.3g} "
+      "scattering events, {:.1f} ns per event per thread)\n",
+      out.photons, spec.run.batches, out.threads, out.threads == 1 ? "" : "s", out.wall_seconds,
+      static_cast<double>(out.photons) / out.wall_seconds, events,
+      events > 0 ? out.wall_seconds * out.threads / events * 1e9 : 0.0);
+  std::string energy = "  energy per W incident:";
+  double total = 0.0;
+  for (const char* name : {"specular_reflectance", "diffuse_reflectance", "absorbed", "escaped"}) {
+    double error = 0.0;
+    const double value = scalar(out.tallies, name, &error);
+    if (std::string(name) == "escaped" && !std::isfinite(spec.run.escape_radius)) continue;
+    energy += fmt::format(" {} {:.6f} ± {:.1e},", name, value, error);
+    total += value;
+  }
+  fmt::print("{} total {:.6f}\n", energy, total);
+  double error = 0.0;
+  const double single = scalar(out.tallies, "diffuse_reflectance_single", &error);
+  fmt::print("  once-scattered part of the diffuse reflectance: {:.6f} ± {:.1e}\n", single, error);
+  // The one case with an exact total: index-matched, isotropic (chandrasekhar_h.hpp).
+  if (spec.eta == 1.0 && spec.medium.g == 0.0) {
+    const double mu0 = std::cos(spec.incidence_deg * std::numbers::pi / 180.0);
+    fmt::print(
+        "  exact diffuse reflectance for this index-matched isotropic medium: {:.6f} "
+        "(1 - H(mu0) sqrt(1 - albedo), Chandrasekhar)\n",
+        half_space_diffuse_reflectance(spec.medium.albedo, mu0));
+  }
+  // Each model's total next to the Monte Carlo total it predicts.
+  for (const ModelResult& m : models) {
+    if (!m.shape.empty()) continue;
+    double mc_error = 0.0;
+    const double mc = scalar(out.tallies, m.name, &mc_error);
+    fmt::print("  {:<15} {:<27} {:.6f}   Monte Carlo {:.6f} ± {:.1e}", m.model, m.name,
+               m.values[0], mc, mc_error);
+    if (mc_error > 0.0) fmt::print(" ({:+.1f} sigma)", (mc - m.values[0]) / mc_error);
+    fmt::print("\n");
+  }
+  fmt::print("  wrote {}\n", path);
+}
+
+int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
+                            const LongRunOptions& long_run_options,
+                            const std::string& command_line, World& world) {
+  auto given = [&command](const char* flag) { return command.get_option(flag)->count() > 0; };
+  SearchlightScene scene;
+  if (given("--scene")) scene = load_searchlight_scene(o.scene);
+  SearchlightSpec& spec = scene.spec;
+  if (given("--albedo")) spec.medium.albedo = o.albedo;
+  if (given("--g")) spec.medium.g = o.g;
+  if (given("--eta")) spec.eta = o.eta;
+  if (given("--incidence")) spec.incidence_deg = o.incidence;
+  if (given("--photons")) spec.run.photons = photon_count(o.photons);
+  if (given("--batches")) spec.run.batches = o.batches;
+  if (given("--seed")) spec.run.seed = o.seed;
+  if (given("--threads")) spec.run.threads = o.threads;
+  if (given("--escape-radius")) spec.run.escape_radius = o.escape_radius;
+  if (given("--r-max")) spec.grid.r.max = o.r_max;
+  if (given("--r-bins")) spec.grid.r.bins = o.r_bins;
+  if (given("--z-max")) spec.grid.z.max = o.z_max;
+  if (given("--z-bins")) spec.grid.z.bins = o.z_bins;
+  if (given("--theta-bins")) spec.grid.theta_o.bins = o.theta_bins;
+  if (given("--no-fluence")) spec.tallies.fluence = false;
+  spec.validate();
+
+  const std::string path = given("--out") ? o.out : scene.output_path.value_or("searchlight.h5");
+  { const AtomicOutput check(path); }  // a bad output path fails now, not after the run
+
+  // Ranks, checkpoints, --resume and interruption, as for simulate (long_run.hpp).
+  const bool root = world.is_root();
+  LongRun long_run(long_run_options, path, fingerprint(spec), world.communicator());
+  if (root && long_run.resumed_batches() > 0) {
+    fmt::print("scatterlab searchlight: resuming after batch {} of {} from {}\n",
+               long_run.resumed_batches(), spec.run.batches, long_run.checkpoint_path().string());
+  }
+  ProgressBar bar("searchlight");
+  ProgressCallback progress;
+  if (root) progress = [&bar](double done) { bar.update(done); };
+  const SearchlightOutput out = run_searchlight(spec, progress, long_run.control());
+  bar.finish();
+
+  if (root) {
+    const Provenance provenance{SCATTERLAB_VERSION, command_line,     iso8601_now(),
+                                out.wall_seconds,   out.photons,      out.scattering_events,
+                                out.batches_done,   out.ranks};
+    spec.run.threads = out.threads;  // record what ran, not "all cores"
+    double specular_error = 0.0;
+    const std::vector<ModelResult> models = searchlight_model_curves(
+        spec, scalar(out.tallies, "specular_reflectance", &specular_error), o.model_fluence);
+    write_searchlight_file(path, spec, out.tallies, provenance, models);
+    print_summary(spec, out, models, path);
+  }
+  return long_run.finish(out.batches_done, spec.run.batches, path);
+}
+
+}  // namespace
+
+Action add_searchlight_command(CLI::App& app, const std::string& command_line, World& world) {
+  auto* command = app.add_subcommand(
+      "searchlight",
+      "Pencil beam on a semi-infinite medium z > 0 behind a smooth interface of relative index "
+      "eta (Bitterli 2014, §2.3): diffuse reflectance R_d(r), exitant radiance L(r, theta_o), "
+      "fluence phi(r, z) and the totals, each split by scattering order, with standard errors, "
+      "to HDF5. Without flags: albedo 0.99, g 0, eta 1.3, normal incidence.");
+  auto o = std::make_shared<SearchlightOptions>();
+  command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  command->add_option("--scene", o->scene, "TOML scene file (see data/scenes/searchlight.toml)")
+      ->check(CLI::ExistingFile);
+  command->add_option("--out", o->out, "Output HDF5 file [searchlight.h5]");
+  command->add_option("--albedo", o->albedo, "Single-scattering albedo in [0, 1] [0.99]");
+  command->add_option("--g", o->g, "Henyey-Greenstein mean cosine, |g| < 1 [0]");
+  command->add_option("--eta", o->eta,
+                      "Relative index n_medium / n_outside, > 0; 1 for no interface [1.3]");
+  command->add_option("--incidence", o->incidence,
+                      "Beam angle from the surface normal, degrees in [0, 90) [0]");
+  command->add_option("--photons", o->photons, "Number of photons [1e7]");
+  command->add_option("--batches", o->batches, "Batches for the standard error, >= 2 [64]");
+  command->add_option("--seed", o->seed, "Random seed [1]");
+  command->add_option("--threads", o->threads, "Threads; 0 uses all cores [0]");
+  command->add_option("--escape-radius", o->escape_radius,
+                      "Stop photons beyond this distance (mfp); needed for albedo 1 [inf]");
+  command->add_option("--r-max", o->r_max, "Radial grid extent, mfp [10]");
+  command->add_option("--r-bins", o->r_bins, "Radial bins [200]");
+  command->add_option("--z-max", o->z_max, "Depth grid extent of the fluence, mfp [10]");
+  command->add_option("--z-bins", o->z_bins, "Depth bins of the fluence [100]");
+  command->add_option("--theta-bins", o->theta_bins, "Exit-angle bins over [0, pi/2] [18]");
+  command->add_flag("--model-fluence", o->model_fluence,
+                    "Also write each diffusion model's phi(r, z) under /models (about 1 ms per "
+                    "cell and model: a minute on the default grid)");
+  command->add_flag("--no-fluence", o->no_fluence,
+                    "Skip the fluence phi(r, z) (its bin lookup costs time at every event)");
+  const auto long_run = add_long_run_options(*command);
+  return [command, o, long_run, command_line, &world] {
+    return run_searchlight_command(*command, *o, *long_run, command_line, world);
+  };
+}
+
+}  // namespace scatterlab::cli
