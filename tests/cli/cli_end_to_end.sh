@@ -82,7 +82,9 @@ expect_error syntax_error "syntax.toml:" --scene "$work/syntax.toml"
 
 # searchlight: a small half-space run, info on it, and bad input.
 if "$exe" searchlight --photons 20000 --batches 8 --eta 1.33 --out "$work/half.h5" >"$work/stdout" 2>"$work/stderr" &&
-  grep -q "wrote $work/half.h5" "$work/stdout" && grep -q "specular_reflectance" "$work/stdout"; then pass; else
+  grep -q "wrote $work/half.h5" "$work/stdout" && grep -q "specular_reflectance" "$work/stdout" &&
+  grep -q "^  single_scatter  *diffuse_reflectance_single" "$work/stdout" &&
+  grep -q "^  better_dipole  *diffuse_reflectance" "$work/stdout"; then pass; else
   fail "searchlight run: $(cat "$work/stdout" "$work/stderr")"
 fi
 if "$exe" info "$work/half.h5" >"$work/info" && grep -q "eta *1.33" "$work/info" &&
@@ -105,6 +107,15 @@ expect_searchlight_error g_at_minus_one medium.g --g -1
 expect_searchlight_error conservative_without_escape run.escape_radius --albedo 1
 expect_searchlight_error r_bins_zero grid.r.bins --r-bins 0
 expect_searchlight_error searchlight_missing_directory out --out "$work/no/such/dir/x.h5"
+
+# validate searchlight --quick: models against Monte Carlo, once-scattered against the exact
+# solver; every CSV and PNG written.
+if "$exe" validate searchlight --quick --threads 2 --out "$work/half" >"$work/stdout" 2>"$work/stderr" &&
+  grep -q "once scattered: exact total" "$work/stdout" &&
+  [ -s "$work/half/searchlight_single_scatter.csv" ] && [ -s "$work/half/searchlight_fluence.csv" ] &&
+  [ "$(ls "$work"/half/*.png | wc -l)" -eq 6 ]; then pass; else
+  fail "validate searchlight: $(cat "$work/stdout" "$work/stderr"; ls "$work/half")"
+fi
 
 # info on something that is not a scatterlab file.
 echo "not hdf5" >"$work/text.h5"
