@@ -20,5 +20,6 @@ Action add_fit_command(CLI::App& app);
 Action add_validate_command(CLI::App& app);
 Action add_merge_command(CLI::App& app, const std::string& command_line);
 Action add_report_command(CLI::App& app, const std::string& command_line);
+Action add_render_command(CLI::App& app);
 
 }  // namespace scatterlab::cli
