@@ -43,6 +43,12 @@ expect_error bad-method method "$scene" --method jensen
 expect_error light-inside light.position inside.toml
 expect_error no-mesh mesh nomesh.toml
 expect_error missing-scene scene "$work/none.toml"
-expect_error bad-dir out "$scene" --out "$work/no/such/dir/x.exr"
+if "$exe" render "$scene" --width 4 --height 4 --out "$work/no/such/dir/x.exr" >stdout 2>stderr; then
+  fail "bad-dir: exited 0"
+elif ! grep -q "^scatterlab: error: out:" stderr || [ "$(grep -c . stderr)" -ne 1 ]; then
+  fail "bad-dir: $(cat stderr)"
+else
+  pass
+fi
 
 report render_runs

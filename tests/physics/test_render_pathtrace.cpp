@@ -32,7 +32,7 @@ TEST(RenderPathtrace, ConvergesToTheRefractiveSolution) {
   deterministic.method = RenderMethod::holzschuch;
   const RenderResult reference = render_single_scatter(scene, deterministic);
 
-  scene.samples = 60000;
+  scene.samples = 150000;
   RenderSettings pathtrace;
   pathtrace.method = RenderMethod::pathtrace;
   pathtrace.seed = 7;
