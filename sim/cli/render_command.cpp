@@ -32,9 +32,10 @@ Action add_render_command(CLI::App& app) {
   auto options = std::make_shared<RenderOptions>();
   render->add_option("SCENE", options->scene, "Render scene (TOML; see data/scenes/tile.toml)")
       ->required();
-  render->add_option("--method", options->method,
-                     "straight (Jensen 2001), walter (sample points), holzschuch (support "
-                     "intervals) or pathtrace (Monte Carlo reference, needs light.radius > 0)")
+  render
+      ->add_option("--method", options->method,
+                   "straight (Jensen 2001), walter (sample points), holzschuch (support "
+                   "intervals) or pathtrace (Monte Carlo reference, needs light.radius > 0)")
       ->capture_default_str();
   render->add_option("--width", options->width, "Image width in pixels (default: the scene's)");
   render->add_option("--height", options->height, "Image height (default: the scene's)");
@@ -65,7 +66,8 @@ Action add_render_command(CLI::App& app) {
     if (o.height > 0) scene.height = o.height;
     if (o.samples > 0) scene.samples = o.samples;
     if (o.light_samples > 0) scene.light_samples = o.light_samples;
-    if (o.threads < 0) throw InputError("threads", fmt::format("got {}", o.threads), "an integer >= 0");
+    if (o.threads < 0)
+      throw InputError("threads", fmt::format("got {}", o.threads), "an integer >= 0");
     if (!(o.gamma > 0.0)) throw InputError("gamma", fmt::format("got {}", o.gamma), "a number > 0");
     settings.threads = o.threads;
     settings.seed = o.seed;
@@ -88,12 +90,12 @@ Action add_render_command(CLI::App& app) {
       total += v;
       peak = std::max(peak, v);
     }
-    fmt::print("{}: {}x{}, {} samples/ray, {:.3f} s, {} eye rays, {} queries, {} paths, "
-               "mean radiance {:.6g}, peak {:.6g}\nwrote {} and {}\n",
-               o.method, scene.width, scene.height, scene.samples, result.seconds,
-               result.counters.eye_rays, result.counters.point_queries, result.counters.paths,
-               total / static_cast<double>(result.image.values.size()), peak, exr.string(),
-               png.string());
+    fmt::print(
+        "{}: {}x{}, {} samples/ray, {:.3f} s, {} eye rays, {} queries, {} paths, "
+        "mean radiance {:.6g}, peak {:.6g}\nwrote {} and {}\n",
+        o.method, scene.width, scene.height, scene.samples, result.seconds,
+        result.counters.eye_rays, result.counters.point_queries, result.counters.paths,
+        total / static_cast<double>(result.image.values.size()), peak, exr.string(), png.string());
     return 0;
   };
 }

@@ -12,8 +12,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <initializer_list>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <string>
@@ -193,7 +193,6 @@ class TomlReader {
     if (const auto* value = node->as_string()) return value->get();
     wrong_type(*node, dotted(path, key), accepted);
   }
-
 
  private:
   std::string origin_;

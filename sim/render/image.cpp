@@ -24,7 +24,8 @@ void write_exr(const Image& image, const std::filesystem::path& path) {
                  [](double v) { return static_cast<float>(v); });
   try {
     Imf::Header header(image.width, image.height);
-    for (const char* name : {"R", "G", "B"}) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    for (const char* name : {"R", "G", "B"})
+      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
     Imf::OutputFile file(output.temporary_path().c_str(), header);
     Imf::FrameBuffer frame;
     auto* base = reinterpret_cast<char*>(pixels.data());
@@ -52,7 +53,8 @@ void write_png(const Image& image, const std::filesystem::path& path, double exp
   const double scale = std::exp2(exposure);
   std::vector<png_byte> rows(static_cast<std::size_t>(image.width) * image.height);
   for (std::size_t k = 0; k < rows.size(); ++k) {
-    const double v = std::clamp(std::pow(std::max(image.values[k] * scale, 0.0), 1.0 / gamma), 0.0, 1.0);
+    const double v =
+        std::clamp(std::pow(std::max(image.values[k] * scale, 0.0), 1.0 / gamma), 0.0, 1.0);
     rows[k] = static_cast<png_byte>(std::lround(255.0 * (std::isfinite(v) ? v : 0.0)));
   }
   std::FILE* file = std::fopen(output.temporary_path().c_str(), "wb");
@@ -66,8 +68,8 @@ void write_png(const Image& image, const std::filesystem::path& path, double exp
   }
   png_init_io(png, file);
   png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
-               static_cast<png_uint_32>(image.height), 8, PNG_COLOR_TYPE_GRAY,
-               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+               static_cast<png_uint_32>(image.height), 8, PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
   for (int j = 0; j < image.height; ++j) {
     png_write_row(png, rows.data() + static_cast<std::size_t>(j) * image.width);

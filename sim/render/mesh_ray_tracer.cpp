@@ -40,12 +40,12 @@ MeshRayTracer::MeshRayTracer(const TriangleMesh& mesh) : impl_(std::make_unique<
   impl_->scene = rtcNewScene(impl_->device);
   rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
   RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-      mesh.positions.size()));
-  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-      mesh.triangles.size()));
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                               RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                               mesh.positions.size()));
+  auto* indices = static_cast<unsigned*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                              3 * sizeof(unsigned), mesh.triangles.size()));
   if (vertices == nullptr || indices == nullptr) {
     rtcReleaseGeometry(geometry);
     throw std::runtime_error("Embree: cannot allocate the mesh buffers");
@@ -55,7 +55,8 @@ MeshRayTracer::MeshRayTracer(const TriangleMesh& mesh) : impl_(std::make_unique<
     const Vec3& p = mesh.positions[k];
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
-    for (int c = 0; c < 3; ++c) vertices[3 * k + static_cast<std::size_t>(c)] = static_cast<float>(p[c]);
+    for (int c = 0; c < 3; ++c)
+      vertices[3 * k + static_cast<std::size_t>(c)] = static_cast<float>(p[c]);
   }
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     for (std::size_t c = 0; c < 3; ++c) indices[3 * t + c] = mesh.triangles[t][c];

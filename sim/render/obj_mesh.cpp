@@ -45,7 +45,8 @@ TriangleMesh read_obj_mesh(const std::filesystem::path& path, bool interpolated_
                            "normals on every face corner, or none");
         }
         const auto key = std::make_pair(index.vertex_index, normal);
-        auto [it, inserted] = vertex_of.try_emplace(key, static_cast<std::uint32_t>(mesh.positions.size()));
+        auto [it, inserted] =
+            vertex_of.try_emplace(key, static_cast<std::uint32_t>(mesh.positions.size()));
         if (inserted) {
           const auto v = static_cast<std::size_t>(index.vertex_index);
           mesh.positions.emplace_back(attrib.vertices[3 * v], attrib.vertices[3 * v + 1],

@@ -25,7 +25,8 @@ class RenderSceneReader : public TomlReader {
     RenderScene scene;
     const toml::table* mesh = subtable(root, "mesh", "");
     if (mesh == nullptr) {
-      throw InputError("mesh", "missing", "a [mesh] table with shape = \"sphere\", "
+      throw InputError("mesh", "missing",
+                       "a [mesh] table with shape = \"sphere\", "
                        "\"bumpy_sphere\", \"rounded_tile\", \"box\" or \"obj\"");
     }
     scene.mesh = read_mesh(*mesh);
@@ -75,14 +76,16 @@ class RenderSceneReader : public TomlReader {
 
   TriangleMesh read_mesh(const toml::table& table) const {
     const std::string path = "mesh";
-    check_keys(table, path, {"shape", "path", "normals", "radius", "amplitude", "frequency",
-                             "rings", "segments", "half_size", "exponent"});
+    check_keys(table, path,
+               {"shape", "path", "normals", "radius", "amplitude", "frequency", "rings", "segments",
+                "half_size", "exponent"});
     const std::string_view shapes =
         "\"sphere\", \"bumpy_sphere\", \"rounded_tile\", \"box\" or \"obj\"";
     const auto shape = string(table, "shape", path, shapes);
     if (!shape) throw InputError("mesh.shape", "missing", std::string(shapes));
     const std::string_view normal_kinds = "\"interpolated\" or \"flat\"";
-    const std::string normals = string(table, "normals", path, normal_kinds).value_or("interpolated");
+    const std::string normals =
+        string(table, "normals", path, normal_kinds).value_or("interpolated");
     if (normals != "interpolated" && normals != "flat") {
       wrong_type(*table.get("normals"), "mesh.normals", normal_kinds);
     }
@@ -98,13 +101,16 @@ class RenderSceneReader : public TomlReader {
     if (*shape == "sphere") {
       mesh = make_sphere(radius, rings.value_or(24), segments.value_or(48), smooth);
     } else if (*shape == "bumpy_sphere") {
-      const double amplitude = number(table, "amplitude", path, "a number in [0, 0.5]").value_or(0.08);
+      const double amplitude =
+          number(table, "amplitude", path, "a number in [0, 0.5]").value_or(0.08);
       if (!(amplitude >= 0.0 && amplitude <= 0.5)) {
-        throw InputError("mesh.amplitude", fmt::format("got {}", amplitude), "a number in [0, 0.5]");
+        throw InputError("mesh.amplitude", fmt::format("got {}", amplitude),
+                         "a number in [0, 0.5]");
       }
       const int frequency =
           integer_as<int>(table, "frequency", path, 1, "an integer in [1, 64]").value_or(6);
-      mesh = make_bumpy_sphere(radius, amplitude, frequency, rings.value_or(71), segments.value_or(72));
+      mesh = make_bumpy_sphere(radius, amplitude, frequency, rings.value_or(71),
+                               segments.value_or(72));
       if (!smooth) mesh.normals.clear();
     } else if (*shape == "rounded_tile") {
       const double exponent = positive(table, "exponent", path, 0.3);
@@ -200,7 +206,8 @@ void require_closed_mesh(const TriangleMesh& mesh) {
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
   for (const auto& t : mesh.triangles) {
     for (int c = 0; c < 3; ++c) {
-      ++directed[{id[t[static_cast<std::size_t>(c)]], id[t[static_cast<std::size_t>((c + 1) % 3)]]}];
+      ++directed[{id[t[static_cast<std::size_t>(c)]],
+                  id[t[static_cast<std::size_t>((c + 1) % 3)]]}];
     }
   }
   for (const auto& [edge, count] : directed) {
@@ -224,9 +231,8 @@ TriangleMesh make_box(const Vec3& h) {
                                 (k & 4) ? h.z() : -h.z());
   }
   // Counter-clockwise seen from outside: quads (a, b, c, d) split into (a, b, c), (a, c, d).
-  const std::array<std::array<std::uint32_t, 4>, 6> faces{{{0, 2, 3, 1}, {4, 5, 7, 6},
-                                                           {0, 1, 5, 4}, {2, 6, 7, 3},
-                                                           {0, 4, 6, 2}, {1, 3, 7, 5}}};
+  const std::array<std::array<std::uint32_t, 4>, 6> faces{
+      {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}}};
   for (const auto& f : faces) {
     mesh.triangles.push_back({f[0], f[1], f[2]});
     mesh.triangles.push_back({f[0], f[2], f[3]});

@@ -31,10 +31,14 @@ RenderMethod parse_render_method(const std::string& name) {
 
 std::string to_string(RenderMethod method) {
   switch (method) {
-    case RenderMethod::straight: return "straight";
-    case RenderMethod::walter: return "walter";
-    case RenderMethod::holzschuch: return "holzschuch";
-    case RenderMethod::pathtrace: return "pathtrace";
+    case RenderMethod::straight:
+      return "straight";
+    case RenderMethod::walter:
+      return "walter";
+    case RenderMethod::holzschuch:
+      return "holzschuch";
+    case RenderMethod::pathtrace:
+      return "pathtrace";
   }
   return "?";
 }
@@ -137,12 +141,13 @@ class Renderer {
               value = walter(eye.segment, paths, count);
               break;
             case RenderMethod::holzschuch:
-              value = settings_.shared_points ? holzschuch_shared(eye.segment, paths, supports, count)
-                                              : holzschuch(eye.segment, paths, supports, count);
+              value = settings_.shared_points
+                          ? holzschuch_shared(eye.segment, paths, supports, count)
+                          : holzschuch(eye.segment, paths, supports, count);
               break;
             case RenderMethod::pathtrace:
-              value = pathtrace<Smooth>(eye.segment, static_cast<std::uint64_t>(j) * scene_.width + i,
-                                        error, count);
+              value = pathtrace<Smooth>(
+                  eye.segment, static_cast<std::uint64_t>(j) * scene_.width + i, error, count);
               break;
           }
           result.image.at(i, j) = eye.weight * value;
@@ -167,7 +172,8 @@ class Renderer {
     const TriangleMesh& mesh = scene_.mesh;
     if constexpr (Smooth) {
       const double w0 = 1.0 - hit.bary_a - hit.bary_b;
-      return (w0 * mesh.corner_normal(hit.triangle, 0) + hit.bary_a * mesh.corner_normal(hit.triangle, 1) +
+      return (w0 * mesh.corner_normal(hit.triangle, 0) +
+              hit.bary_a * mesh.corner_normal(hit.triangle, 1) +
               hit.bary_b * mesh.corner_normal(hit.triangle, 2))
           .normalized();
     } else {
@@ -380,8 +386,8 @@ class Renderer {
       if (tracer_.occluded(p, out, tracer_.epsilon(), t_light)) continue;
       ++count.paths;
       // Radiance inside: T eta^2 L_e (n^2 law); phase sampling cancels p / pdf.
-      const double f = transmittance * eta * eta * radiance *
-                       std::exp(-scene_.medium.sigma_t * hit.distance);
+      const double f =
+          transmittance * eta * eta * radiance * std::exp(-scene_.medium.sigma_t * hit.distance);
       sum += f;
       sum2 += f * f;
     }
@@ -419,8 +425,7 @@ RenderResult render_single_scatter(const RenderScene& scene, const RenderSetting
   if (refracting && !smooth) renderer.render<true, false>(result, progress);
   if (!refracting && smooth) renderer.render<false, true>(result, progress);
   if (!refracting && !smooth) renderer.render<false, false>(result, progress);
-  result.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 

@@ -74,13 +74,13 @@ double slab_exact(const RenderScene& scene, int i, int j) {
     const double d_v = std::hypot(r, depth), d_l = std::hypot(rho - r, height);
     const double cos_v = depth / d_v, cos_l = height / d_l;
     const double big_d = (d_v + eta * d_l) * (d_v * cos_l / cos_v + eta * d_l * cos_v / cos_l);
-    const Vec3 p = v + (rho > 0.0 ? Vec3(horizontal * (r / rho)) : Vec3::Zero()) +
-                   Vec3(0.0, 0.0, depth);
+    const Vec3 p =
+        v + (rho > 0.0 ? Vec3(horizontal * (r / rho)) : Vec3::Zero()) + Vec3(0.0, 0.0, depth);
     const Vec3 omega_v = (v - p) / d_v;
-    const double irradiance = fresnel_dielectric_transmittance(cos_l, eta) * eta * eta / big_d *
-                              std::exp(-sigma_t * d_v);
-    return scene.medium.sigma_s() * std::exp(-sigma_t * x) *
-           phase.evaluate(-omega_v.dot(w)) * scene.light.intensity * irradiance;
+    const double irradiance =
+        fresnel_dielectric_transmittance(cos_l, eta) * eta * eta / big_d * std::exp(-sigma_t * d_v);
+    return scene.medium.sigma_s() * std::exp(-sigma_t * x) * phase.evaluate(-omega_v.dot(w)) *
+           scene.light.intensity * irradiance;
   };
   QuadratureOptions options;
   options.rel_tol = 1e-10;
@@ -198,9 +198,9 @@ TEST(Render, BadScenesGiveOneClearError) {
             0u);
   EXPECT_EQ(error_of("[mesh]\nshape = \"sphere\"\n[medium]\neta = -1\n").rfind("medium.eta:", 0),
             0u);
-  EXPECT_NE(error_of("[mesh]\nshape = \"sphere\"\n[light]\nradus = 1\n")
-                .find("did you mean \"radius\""),
-            std::string::npos);
+  EXPECT_NE(
+      error_of("[mesh]\nshape = \"sphere\"\n[light]\nradus = 1\n").find("did you mean \"radius\""),
+      std::string::npos);
   const auto dir = std::filesystem::temp_directory_path() / "scatterlab_render_test";
   std::filesystem::create_directories(dir);
   {
@@ -213,14 +213,13 @@ TEST(Render, BadScenesGiveOneClearError) {
   EXPECT_EQ(error_of("[mesh]\nshape = \"obj\"\npath = \"open.obj\"\n", dir)
                 .rfind("mesh: not a closed", 0),
             0u);
-  EXPECT_EQ(error_of("[mesh]\nshape = \"obj\"\npath = \"nan.obj\"\n", dir)
-                .rfind("mesh.path: ", 0),
+  EXPECT_EQ(error_of("[mesh]\nshape = \"obj\"\npath = \"nan.obj\"\n", dir).rfind("mesh.path: ", 0),
             0u);
   EXPECT_NE(error_of("[mesh]\nshape = \"obj\"\npath = \"nan.obj\"\n", dir).find("not finite"),
             std::string::npos);
-  EXPECT_EQ(error_of("[mesh]\nshape = \"obj\"\npath = \"missing.obj\"\n", dir)
-                .rfind("mesh.path: ", 0),
-            0u);
+  EXPECT_EQ(
+      error_of("[mesh]\nshape = \"obj\"\npath = \"missing.obj\"\n", dir).rfind("mesh.path: ", 0),
+      0u);
   std::filesystem::remove_all(dir);
   // A point light cannot feed the path-traced reference.
   RenderSettings pathtrace;

@@ -13,7 +13,7 @@ namespace scatterlab {
 
 struct MeshHit {
   std::uint32_t triangle = 0;
-  double distance = 0.0;      // along the (unit) direction, from the ray's origin
+  double distance = 0.0;              // along the (unit) direction, from the ray's origin
   double bary_a = 0.0, bary_b = 0.0;  // point = (1 - a - b) p0 + a p1 + b p2
 };
 
