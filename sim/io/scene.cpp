@@ -13,83 +13,16 @@
 #include <vector>
 
 #include "scatterlab/core/error.hpp"
+#include "toml_reader.hpp"
 
 namespace scatterlab {
 namespace {
 
-using Keys = std::initializer_list<std::string_view>;
+using namespace toml_reading;
 
-std::string join(Keys keys, std::string_view before = "", std::string_view after = "") {
-  std::string joined;
-  for (const auto key : keys) {
-    if (!joined.empty()) joined += ", ";
-    joined += fmt::format("{}{}{}", before, key, after);
-  }
-  return joined;
-}
-
-std::string dotted(const std::string& path, std::string_view key) {
-  return path.empty() ? std::string(key) : path + "." + std::string(key);
-}
-
-// Levenshtein distance, to suggest the key a typo was meant to be.
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
-std::string suggestion(std::string_view key, Keys accepted) {
-  for (const auto candidate : accepted) {
-    // At most one edit per three characters: "albdo" -> "albedo", but not "min" -> "max".
-    if (3 * edit_distance(key, candidate) <= key.size()) {
-      return fmt::format(", did you mean \"{}\"?", candidate);
-    }
-  }
-  return "";
-}
-
-// A value as the user wrote it, for messages: `a string ("abc")`, `an integer (-3)`.
-std::string describe(const toml::node& node) {
-  switch (node.type()) {
-    case toml::node_type::string:
-      return fmt::format("a string (\"{}\")", node.as_string()->get());
-    case toml::node_type::integer:
-      return fmt::format("an integer ({})", node.as_integer()->get());
-    case toml::node_type::floating_point:
-      return fmt::format("a float ({})", node.as_floating_point()->get());
-    case toml::node_type::boolean:
-      return fmt::format("a boolean ({})", node.as_boolean()->get());
-    case toml::node_type::table:
-      return "a table";
-    case toml::node_type::array:
-      return "an array";
-    case toml::node_type::date:
-      return "a date";
-    case toml::node_type::time:
-      return "a time";
-    case toml::node_type::date_time:
-      return "a date-time";
-    case toml::node_type::none:
-      break;
-  }
-  return "nothing";
-}
-
-// Reads one parsed document into a Scene, checking names and types as it goes; ranges are left
-// to SimulationSpec::validate() so that the CLI and the file give the same messages.
-class SceneReader {
+class SceneReader : public TomlReader {
  public:
-  explicit SceneReader(const std::string& origin) : origin_(origin) {}
+  explicit SceneReader(const std::string& origin) : TomlReader(origin) {}
 
   Scene read(const toml::table& root) {
     check_keys(root, "", {"medium", "source", "grid", "tallies", "run", "output"});
@@ -150,101 +83,6 @@ class SceneReader {
                        "a non-empty file name");
     }
     return path;
-  }
-
-  std::string at(const toml::source_region& region) const {
-    return fmt::format(" ({}:{}:{})", origin_, region.begin.line, region.begin.column);
-  }
-  std::string at(const toml::node& node) const { return at(node.source()); }
-
-  [[noreturn]] void wrong_type(const toml::node& node, const std::string& field,
-                               std::string_view accepted) const {
-    throw InputError(field, "got " + describe(node) + at(node), std::string(accepted));
-  }
-
-  void check_keys(const toml::table& table, const std::string& path, Keys accepted) const {
-    for (auto&& [key, node] : table) {
-      const std::string_view name = key.str();
-      if (std::find(accepted.begin(), accepted.end(), name) != accepted.end()) continue;
-      const bool is_table = node.is_table();
-      const std::string what = std::string(is_table ? "unknown table" : "unknown key") +
-                               (path.empty() ? "" : " in [" + path + "]");
-      throw InputError(dotted(path, name), what + suggestion(name, accepted) + at(key.source()),
-                       path.empty() ? join(accepted, "[", "]") : join(accepted));
-    }
-  }
-
-  // The sub-table `key`, or nullptr when absent.
-  const toml::table* subtable(const toml::table& parent, std::string_view key,
-                              const std::string& path) const {
-    const toml::node* node = parent.get(key);
-    if (node == nullptr) return nullptr;
-    if (!node->is_table()) wrong_type(*node, dotted(path, key), "a table");
-    return node->as_table();
-  }
-
-  std::optional<double> number(const toml::table& table, std::string_view key,
-                               const std::string& path, std::string_view accepted) const {
-    const toml::node* node = table.get(key);
-    if (node == nullptr) return std::nullopt;
-    if (const auto* value = node->as_floating_point()) return value->get();
-    // An integer where a number is expected is fine: albedo = 1 means 1.0.
-    if (const auto* value = node->as_integer()) return static_cast<double>(value->get());
-    wrong_type(*node, dotted(path, key), accepted);
-  }
-
-  // An integer, or a float that is a whole number (photons = 1e7).
-  std::optional<std::int64_t> integer(const toml::table& table, std::string_view key,
-                                      const std::string& path, std::string_view accepted) const {
-    const toml::node* node = table.get(key);
-    if (node == nullptr) return std::nullopt;
-    if (const auto* value = node->as_integer()) return value->get();
-    if (const auto* value = node->as_floating_point()) {
-      const double x = value->get();
-      // 2^63 is exact in a double; every whole double below it converts exactly.
-      constexpr double limit = 9223372036854775808.0;
-      if (std::isfinite(x) && std::trunc(x) == x && x >= -limit && x < limit) {
-        return static_cast<std::int64_t>(x);
-      }
-      throw InputError(dotted(path, key),
-                       fmt::format("got {}, which is not a whole number{}", x, at(*node)),
-                       std::string(accepted));
-    }
-    wrong_type(*node, dotted(path, key), accepted);
-  }
-
-  // An integer converted to T, which must hold it; `lowest` (>= 0) is the least value accepted
-  // here (finer ranges are checked by SimulationSpec::validate()).
-  template <typename T>
-  std::optional<T> integer_as(const toml::table& table, std::string_view key,
-                              const std::string& path, std::int64_t lowest,
-                              std::string_view accepted) const {
-    const auto value = integer(table, key, path, accepted);
-    if (!value) return std::nullopt;
-    const bool fits =
-        *value >= lowest && *value >= static_cast<std::int64_t>(std::numeric_limits<T>::min()) &&
-        static_cast<std::uint64_t>(*value) <= std::uint64_t{std::numeric_limits<T>::max()};
-    if (!fits) {
-      throw InputError(dotted(path, key), fmt::format("got {}{}", *value, at(*table.get(key))),
-                       std::string(accepted));
-    }
-    return static_cast<T>(*value);
-  }
-
-  std::optional<bool> boolean(const toml::table& table, std::string_view key,
-                              const std::string& path) const {
-    const toml::node* node = table.get(key);
-    if (node == nullptr) return std::nullopt;
-    if (const auto* value = node->as_boolean()) return value->get();
-    wrong_type(*node, dotted(path, key), "true or false");
-  }
-
-  std::optional<std::string> string(const toml::table& table, std::string_view key,
-                                    const std::string& path, std::string_view accepted) const {
-    const toml::node* node = table.get(key);
-    if (node == nullptr) return std::nullopt;
-    if (const auto* value = node->as_string()) return value->get();
-    wrong_type(*node, dotted(path, key), accepted);
   }
 
   // Either (albedo, sigma_t, g) or (sigma_a, sigma_s, g), never a mix.
@@ -368,39 +206,8 @@ class SceneReader {
       run.escape_radius = *radius;
     }
   }
-
-  const std::string& origin_;
 };
 
-
-toml::table parse_toml(std::string_view toml_text, const std::string& origin) {
-  try {
-    return toml::parse(toml_text, origin);
-  } catch (const toml::parse_error& error) {
-    const auto& begin = error.source().begin;
-    throw InputError(
-        "scene", fmt::format("{}:{}:{}: {}", origin, begin.line, begin.column, error.description()),
-        "a valid TOML file");
-  }
-}
-
-std::string read_text(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  std::error_code code;
-  if (!std::filesystem::exists(path, code)) {
-    throw InputError("scene", fmt::format("'{}' does not exist", name), "a readable TOML file");
-  }
-  if (std::filesystem::is_directory(path, code)) {
-    throw InputError("scene", fmt::format("'{}' is a directory", name), "a readable TOML file");
-  }
-  std::ifstream in(path, std::ios::binary);
-  std::string text;
-  if (in) text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  if (!in.is_open() || in.bad()) {
-    throw InputError("scene", fmt::format("cannot read '{}'", name), "a readable TOML file");
-  }
-  return text;
-}
 
 // A key of the scene that holds a list of values to sweep over.
 struct SweptKey {

@@ -1,0 +1,71 @@
+#pragma once
+// A render scene: a closed triangle mesh bounding a homogeneous refractive medium, a point light
+// (optionally a small uniformly emitting sphere: the area light of the path-traced reference),
+// and a pinhole camera. Read strictly from TOML (the scene reader's rules: unknown keys, wrong
+// types and out-of-range values are one InputError naming the dotted key):
+//
+//   [mesh]    shape = "sphere" | "bumpy_sphere" | "rounded_tile" | "box" | "obj"
+//             path = "file.obj"            (shape = "obj"; relative to the scene file)
+//             normals = "interpolated" | "flat"
+//             radius, amplitude, frequency, rings, segments   (sphere, bumpy_sphere)
+//             half_size = [x, y, z], exponent, rings, segments (rounded_tile; box: half_size)
+//   [medium]  sigma_s, sigma_a (1/length), g (HG), eta (n_inside / n_outside)
+//   [light]   position = [x, y, z], intensity (W/sr), radius (0: a point light)
+//   [camera]  position, look_at, up = [x, y, z], fov (vertical, degrees)
+//   [image]   width, height, samples (per eye ray), light_samples (area light points)
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "scatterlab/core/frame.hpp"
+#include "scatterlab/core/medium.hpp"
+#include "scatterlab/core/triangle_mesh.hpp"
+
+namespace scatterlab {
+
+struct RenderLight {
+  Vec3 position = Vec3(0.0, 0.0, 4.0);
+  double intensity = 1.0;  // W/sr of the point light; the sphere of `radius` has power 4 pi I
+  double radius = 0.0;     // > 0: a sphere of uniform radiance I / (pi radius^2)
+};
+
+struct PinholeCamera {
+  Vec3 position = Vec3(0.0, -4.0, 0.0);
+  Vec3 look_at = Vec3::Zero();
+  Vec3 up = Vec3::UnitZ();
+  double fov_degrees = 30.0;  // vertical field of view
+
+  // Unit direction through the centre of pixel (i, j) of a width x height image (row j = 0 on
+  // top). Throws nothing; the scene checks the camera once.
+  Vec3 ray_direction(int i, int j, int width, int height) const;
+};
+
+struct RenderScene {
+  TriangleMesh mesh;  // closed, consistently oriented, validated
+  Medium medium;      // sigma_t, albedo, g (length unit: that of the mesh)
+  double eta = 1.5;   // n_inside / n_outside
+  RenderLight light;
+  PinholeCamera camera;
+  int width = 64, height = 64;
+  int samples = 32;        // points along each eye ray (per support interval for holzschuch)
+  int light_samples = 16;  // points on the area light for the deterministic methods
+
+  // Checks what the mesh alone cannot: a closed mesh (every edge shared by exactly two triangles
+  // in opposite directions), the light and the camera outside it, sizes. Throws InputError.
+  void validate() const;
+};
+
+// `base` resolves relative OBJ paths.
+RenderScene parse_render_scene(std::string_view toml_text, const std::string& origin,
+                               const std::filesystem::path& base = {});
+RenderScene load_render_scene(const std::filesystem::path& path);
+
+// Throws InputError("mesh", ...) naming the edge when the mesh is open or non-manifold.
+void require_closed_mesh(const TriangleMesh& mesh);
+
+// An axis-aligned box of the given half sizes centred at the origin, flat facets (12 triangles).
+TriangleMesh make_box(const Vec3& half_size);
+
+}  // namespace scatterlab

@@ -1,0 +1,77 @@
+#pragma once
+// Single-scatter images of a refractive mesh (Walter et al. 2009, §5; Holzschuch 2013, §3-4).
+// One eye ray per pixel centre: it refracts into the object at its first hit (Fresnel
+// transmittance T_0, Snell), and the once-scattered radiance along the inside segment
+// V(x) = P_0 + x w, x in [0, t_exit], is
+//   L_camera = (T_0 / eta^2) int_0^t_exit sigma_s exp(-sigma_t x) S(V(x)) dx,
+//   S(V) = sum over paths L -> P -> V of p(cos theta) I E(V),
+// with E the irradiance per unit intensity of path_contribution (T eta^2 A / D exp(-sigma_t d_V),
+// Walter eq. 17 with the eta^2 of etendue) and 1 / eta^2 the n^2 law of radiance leaving the
+// medium. Units: radiance per unit light intensity times I, W / (sr length^2) for I in W/sr.
+//
+// Methods:
+//  straight    Jensen et al. 2001, §4.3: the light's refraction ignored; the shadow ray goes
+//              straight from V to the light, attenuated by exp(-sigma_t s) to the boundary and
+//              the boundary's Fresnel transmittance; E = I T exp(-sigma_t s) / |L - V|^2.
+//  walter      `samples` points along the segment (midpoints of equal steps of the
+//              transmittance exp(-sigma_t x)), every refracted path at each found with the
+//              refractive solver (Walter §3).
+//  holzschuch  support intervals per triangle (Holzschuch §3.2, find_segment_supports), and
+//              `samples` points inside each interval; only that triangle is searched there.
+//              With shared_points, walter's points instead, each searched only in the
+//              triangles whose interval holds it: walter's sum to rounding.
+//  pathtrace   Monte Carlo reference with the area light: a distance by the transmittance,
+//              a direction by the phase function, traced to the boundary (Embree), Fresnel
+//              transmitted and refracted out, and counted when it reaches the light sphere
+//              unblocked (radiance T eta^2 I / (pi r^2)). Unbiased; the standard error per pixel
+//              is returned.
+// The deterministic methods light a sphere light by `light_samples` points on it (spherical
+// Fibonacci), each a point light of intensity 4 I cos+ / M towards the path (cos+ = cosine at
+// the sphere's surface): the sphere's radiance I / (pi r^2) times its area over M.
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "scatterlab/render/image.hpp"
+#include "scatterlab/render/render_scene.hpp"
+
+namespace scatterlab {
+
+enum class RenderMethod { straight, walter, holzschuch, pathtrace };
+
+// "straight", "walter", "holzschuch", "pathtrace"; InputError("method", ...) otherwise.
+RenderMethod parse_render_method(const std::string& name);
+std::string to_string(RenderMethod method);
+
+struct RenderSettings {
+  RenderMethod method = RenderMethod::holzschuch;
+  bool shared_points = false;  // holzschuch: walter's sample points (see above)
+  std::uint64_t seed = 1;      // pathtrace
+  int threads = 0;             // 0: all
+  // Tests only: take the general path (refraction, shading normals) even where the scene does
+  // not need it, to check that the specialised one gives the same image.
+  bool force_general = false;
+};
+
+struct RenderCounters {
+  std::uint64_t eye_rays = 0;       // pixels whose ray entered the object
+  std::uint64_t point_queries = 0;  // refractive-solver (or shadow-ray) queries
+  std::uint64_t triangle_searches = 0;
+  std::uint64_t paths = 0;     // refracted paths found (or light hits for pathtrace)
+  std::uint64_t supports = 0;  // holzschuch: triangle intervals
+};
+
+struct RenderResult {
+  Image image;           // radiance
+  Image standard_error;  // pathtrace: per pixel (same units); zeros for the other methods
+  RenderCounters counters;
+  double seconds = 0.0;
+};
+
+// progress(fraction) is called from one thread as tiles finish. Throws InputError for a
+// pathtrace run with a point light (radius 0).
+RenderResult render_single_scatter(const RenderScene& scene, const RenderSettings& settings,
+                                   const std::function<void(double)>& progress = {});
+
+}  // namespace scatterlab

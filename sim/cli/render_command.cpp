@@ -1,0 +1,103 @@
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
+
+#include "commands.hpp"
+#include "progress_bar.hpp"
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/io/atomic_output.hpp"
+#include "scatterlab/render/render_scene.hpp"
+#include "scatterlab/render/single_scatter_renderer.hpp"
+
+namespace scatterlab::cli {
+
+namespace {
+
+struct RenderOptions {
+  std::string scene;
+  std::string method = "holzschuch";
+  int width = 0, height = 0, samples = 0, light_samples = 0, threads = 0;
+  std::uint64_t seed = 1;
+  std::string out = "render.exr";
+  double exposure = 0.0;
+  double gamma = 2.2;
+};
+
+}  // namespace
+
+Action add_render_command(CLI::App& app) {
+  auto* render = app.add_subcommand(
+      "render", "Single-scatter image of a refractive mesh (OpenEXR, linear, and a PNG beside it)");
+  auto options = std::make_shared<RenderOptions>();
+  render->add_option("SCENE", options->scene, "Render scene (TOML; see data/scenes/tile.toml)")
+      ->required();
+  render
+      ->add_option("--method", options->method,
+                   "straight (Jensen 2001), walter (sample points), holzschuch (support "
+                   "intervals) or pathtrace (Monte Carlo reference, needs light.radius > 0)")
+      ->capture_default_str();
+  render->add_option("--width", options->width, "Image width in pixels (default: the scene's)");
+  render->add_option("--height", options->height, "Image height (default: the scene's)");
+  render->add_option("--samples", options->samples,
+                     "Samples per eye ray, per interval for holzschuch (default: the scene's)");
+  render->add_option("--light-samples", options->light_samples,
+                     "Points on a sphere light for the deterministic methods");
+  render->add_option("--threads", options->threads, "Threads (0: all)");
+  render->add_option("--seed", options->seed, "Random seed (pathtrace)");
+  render->add_option("--out", options->out, "Output OpenEXR file; the PNG gets the same name")
+      ->capture_default_str();
+  render->add_option("--exposure", options->exposure, "PNG exposure in stops")
+      ->capture_default_str();
+  render->add_option("--gamma", options->gamma, "PNG gamma")->capture_default_str();
+  return [options] {
+    const RenderOptions& o = *options;
+    RenderSettings settings;
+    settings.method = parse_render_method(o.method);
+    RenderScene scene = load_render_scene(o.scene);
+    const auto at_least_one = [](int value, const char* name) {
+      if (value < 0) throw InputError(name, fmt::format("got {}", value), "an integer >= 1");
+    };
+    at_least_one(o.width, "width");
+    at_least_one(o.height, "height");
+    at_least_one(o.samples, "samples");
+    at_least_one(o.light_samples, "light-samples");
+    if (o.width > 0) scene.width = o.width;
+    if (o.height > 0) scene.height = o.height;
+    if (o.samples > 0) scene.samples = o.samples;
+    if (o.light_samples > 0) scene.light_samples = o.light_samples;
+    if (o.threads < 0)
+      throw InputError("threads", fmt::format("got {}", o.threads), "an integer >= 0");
+    if (!(o.gamma > 0.0)) throw InputError("gamma", fmt::format("got {}", o.gamma), "a number > 0");
+    settings.threads = o.threads;
+    settings.seed = o.seed;
+    const std::filesystem::path exr(o.out);
+    std::filesystem::path png = exr;
+    png.replace_extension(".png");
+    if (png == exr) png += ".png";
+
+    // Fail before the work, not after it: AtomicOutput checks the place (InputError "out").
+    { const AtomicOutput exr_check(exr), png_check(png); }
+
+    ProgressBar bar("render " + o.method);
+    const RenderResult result =
+        render_single_scatter(scene, settings, [&bar](double f) { bar.update(f); });
+    bar.finish();
+    write_exr(result.image, exr);
+    write_png(result.image, png, o.exposure, o.gamma);
+    double total = 0.0, peak = 0.0;
+    for (const double v : result.image.values) {
+      total += v;
+      peak = std::max(peak, v);
+    }
+    fmt::print(
+        "{}: {}x{}, {} samples/ray, {:.3f} s, {} eye rays, {} queries, {} paths, "
+        "mean radiance {:.6g}, peak {:.6g}\nwrote {} and {}\n",
+        o.method, scene.width, scene.height, scene.samples, result.seconds,
+        result.counters.eye_rays, result.counters.point_queries, result.counters.paths,
+        total / static_cast<double>(result.image.values.size()), peak, exr.string(), png.string());
+    return 0;
+  };
+}
+
+}  // namespace scatterlab::cli

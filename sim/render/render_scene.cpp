@@ -1,0 +1,292 @@
+#include "scatterlab/render/render_scene.hpp"
+
+#include <array>
+#include <cmath>
+#include <map>
+
+#include "../io/toml_reader.hpp"
+#include "scatterlab/core/constants.hpp"
+#include "scatterlab/core/procedural_meshes.hpp"
+#include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/render/obj_mesh.hpp"
+
+namespace scatterlab {
+namespace {
+
+using namespace toml_reading;
+
+class RenderSceneReader : public TomlReader {
+ public:
+  RenderSceneReader(const std::string& origin, std::filesystem::path base)
+      : TomlReader(origin), base_(std::move(base)) {}
+
+  RenderScene read(const toml::table& root) const {
+    check_keys(root, "", {"mesh", "medium", "light", "camera", "image"});
+    RenderScene scene;
+    const toml::table* mesh = subtable(root, "mesh", "");
+    if (mesh == nullptr) {
+      throw InputError("mesh", "missing",
+                       "a [mesh] table with shape = \"sphere\", "
+                       "\"bumpy_sphere\", \"rounded_tile\", \"box\" or \"obj\"");
+    }
+    scene.mesh = read_mesh(*mesh);
+    if (const auto* medium = subtable(root, "medium", "")) read_medium(*medium, scene);
+    if (const auto* light = subtable(root, "light", "")) read_light(*light, scene.light);
+    if (const auto* camera = subtable(root, "camera", "")) read_camera(*camera, scene.camera);
+    if (const auto* image = subtable(root, "image", "")) read_image(*image, scene);
+    scene.validate();
+    return scene;
+  }
+
+ private:
+  std::optional<Vec3> vec3(const toml::table& table, std::string_view key,
+                           const std::string& path) const {
+    const toml::node* node = table.get(key);
+    if (node == nullptr) return std::nullopt;
+    const auto* array = node->as_array();
+    const std::string_view accepted = "an array of three finite numbers [x, y, z]";
+    if (array == nullptr || array->size() != 3) wrong_type(*node, dotted(path, key), accepted);
+    Vec3 v;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const toml::node& element = *array->get(c);
+      if (const auto* x = element.as_floating_point()) {
+        v[static_cast<Eigen::Index>(c)] = x->get();
+      } else if (const auto* n = element.as_integer()) {
+        v[static_cast<Eigen::Index>(c)] = static_cast<double>(n->get());
+      } else {
+        wrong_type(element, dotted(path, key), accepted);
+      }
+    }
+    if (!v.allFinite()) {
+      throw InputError(dotted(path, key), "not finite" + at(*node), std::string(accepted));
+    }
+    return v;
+  }
+
+  double positive(const toml::table& table, std::string_view key, const std::string& path,
+                  double fallback) const {
+    const auto value = number(table, key, path, "a finite number > 0");
+    if (!value) return fallback;
+    if (!(*value > 0.0) || !std::isfinite(*value)) {
+      throw InputError(dotted(path, key), fmt::format("got {}{}", *value, at(*table.get(key))),
+                       "a finite number > 0");
+    }
+    return *value;
+  }
+
+  TriangleMesh read_mesh(const toml::table& table) const {
+    const std::string path = "mesh";
+    check_keys(table, path,
+               {"shape", "path", "normals", "radius", "amplitude", "frequency", "rings", "segments",
+                "half_size", "exponent"});
+    const std::string_view shapes =
+        "\"sphere\", \"bumpy_sphere\", \"rounded_tile\", \"box\" or \"obj\"";
+    const auto shape = string(table, "shape", path, shapes);
+    if (!shape) throw InputError("mesh.shape", "missing", std::string(shapes));
+    const std::string_view normal_kinds = "\"interpolated\" or \"flat\"";
+    const std::string normals =
+        string(table, "normals", path, normal_kinds).value_or("interpolated");
+    if (normals != "interpolated" && normals != "flat") {
+      wrong_type(*table.get("normals"), "mesh.normals", normal_kinds);
+    }
+    const bool smooth = normals == "interpolated";
+    const double radius = positive(table, "radius", path, 1.0);
+    const auto rings = integer_as<int>(table, "rings", path, 3, "an integer in [3, 4096]");
+    const auto segments = integer_as<int>(table, "segments", path, 3, "an integer in [3, 4096]");
+    const Vec3 half = vec3(table, "half_size", path).value_or(Vec3(1.0, 1.0, 0.3));
+    if (!(half.minCoeff() > 0.0)) {
+      throw InputError("mesh.half_size", "not all > 0", "three finite numbers > 0");
+    }
+    TriangleMesh mesh;
+    if (*shape == "sphere") {
+      mesh = make_sphere(radius, rings.value_or(24), segments.value_or(48), smooth);
+    } else if (*shape == "bumpy_sphere") {
+      const double amplitude =
+          number(table, "amplitude", path, "a number in [0, 0.5]").value_or(0.08);
+      if (!(amplitude >= 0.0 && amplitude <= 0.5)) {
+        throw InputError("mesh.amplitude", fmt::format("got {}", amplitude),
+                         "a number in [0, 0.5]");
+      }
+      const int frequency =
+          integer_as<int>(table, "frequency", path, 1, "an integer in [1, 64]").value_or(6);
+      mesh = make_bumpy_sphere(radius, amplitude, frequency, rings.value_or(71),
+                               segments.value_or(72));
+      if (!smooth) mesh.normals.clear();
+    } else if (*shape == "rounded_tile") {
+      const double exponent = positive(table, "exponent", path, 0.3);
+      mesh = make_rounded_tile(half.x(), half.y(), half.z(), exponent, rings.value_or(24),
+                               segments.value_or(48));
+      if (!smooth) mesh.normals.clear();
+    } else if (*shape == "box") {
+      mesh = make_box(half);
+    } else if (*shape == "obj") {
+      const auto file = string(table, "path", path, "an OBJ file name");
+      if (!file) throw InputError("mesh.path", "missing for shape = \"obj\"", "an OBJ file name");
+      std::filesystem::path obj(*file);
+      if (obj.is_relative()) obj = base_ / obj;
+      mesh = read_obj_mesh(obj, smooth);
+    } else {
+      wrong_type(*table.get("shape"), "mesh.shape", shapes);
+    }
+    mesh.validate();
+    return mesh;
+  }
+
+  void read_medium(const toml::table& table, RenderScene& scene) const {
+    const std::string path = "medium";
+    check_keys(table, path, {"sigma_s", "sigma_a", "g", "eta"});
+    const double sigma_s = number(table, "sigma_s", path, "a finite number >= 0").value_or(1.0);
+    const double sigma_a = number(table, "sigma_a", path, "a finite number >= 0").value_or(0.0);
+    const double g = number(table, "g", path, "a number with |g| < 1").value_or(0.0);
+    scene.medium = Medium::from_coefficients(sigma_a, sigma_s, g, "mesh units");
+    scene.eta = positive(table, "eta", path, scene.eta);
+  }
+
+  void read_light(const toml::table& table, RenderLight& light) const {
+    const std::string path = "light";
+    check_keys(table, path, {"position", "intensity", "radius"});
+    light.position = vec3(table, "position", path).value_or(light.position);
+    light.intensity = positive(table, "intensity", path, light.intensity);
+    const auto radius = number(table, "radius", path, "a finite number >= 0");
+    if (radius) {
+      if (!(*radius >= 0.0) || !std::isfinite(*radius)) {
+        throw InputError("light.radius", fmt::format("got {}", *radius), "a finite number >= 0");
+      }
+      light.radius = *radius;
+    }
+  }
+
+  void read_camera(const toml::table& table, PinholeCamera& camera) const {
+    const std::string path = "camera";
+    check_keys(table, path, {"position", "look_at", "up", "fov"});
+    camera.position = vec3(table, "position", path).value_or(camera.position);
+    camera.look_at = vec3(table, "look_at", path).value_or(camera.look_at);
+    camera.up = vec3(table, "up", path).value_or(camera.up);
+    camera.fov_degrees = positive(table, "fov", path, camera.fov_degrees);
+  }
+
+  void read_image(const toml::table& table, RenderScene& scene) const {
+    const std::string path = "image";
+    check_keys(table, path, {"width", "height", "samples", "light_samples"});
+    const std::string_view size = "an integer in [1, 16384]";
+    scene.width = integer_as<int>(table, "width", path, 1, size).value_or(scene.width);
+    scene.height = integer_as<int>(table, "height", path, 1, size).value_or(scene.height);
+    scene.samples =
+        integer_as<int>(table, "samples", path, 1, "an integer >= 1").value_or(scene.samples);
+    scene.light_samples = integer_as<int>(table, "light_samples", path, 1, "an integer >= 1")
+                              .value_or(scene.light_samples);
+  }
+
+  std::filesystem::path base_;
+};
+
+}  // namespace
+
+Vec3 PinholeCamera::ray_direction(int i, int j, int width, int height) const {
+  const Vec3 forward = (look_at - position).normalized();
+  const Vec3 right = forward.cross(up).normalized();
+  const Vec3 true_up = right.cross(forward);
+  const double half_height = std::tan(0.5 * fov_degrees * pi / 180.0);
+  const double half_width = half_height * width / height;
+  const double u = (2.0 * (i + 0.5) / width - 1.0) * half_width;
+  const double v = (1.0 - 2.0 * (j + 0.5) / height) * half_height;
+  return (forward + u * right + v * true_up).normalized();
+}
+
+void require_closed_mesh(const TriangleMesh& mesh) {
+  // Vertices are matched by position, so that OBJ seams where normals split still close.
+  std::map<std::array<double, 3>, std::uint32_t> id_of;
+  std::vector<std::uint32_t> id(mesh.positions.size());
+  for (std::size_t k = 0; k < mesh.positions.size(); ++k) {
+    const Vec3& p = mesh.positions[k];
+    id[k] = id_of.try_emplace({p.x(), p.y(), p.z()}, static_cast<std::uint32_t>(id_of.size()))
+                .first->second;
+  }
+  // Each directed edge once, and its reverse once: closed, manifold, consistently oriented.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+  for (const auto& t : mesh.triangles) {
+    for (int c = 0; c < 3; ++c) {
+      ++directed[{id[t[static_cast<std::size_t>(c)]],
+                  id[t[static_cast<std::size_t>((c + 1) % 3)]]}];
+    }
+  }
+  for (const auto& [edge, count] : directed) {
+    const auto reverse = directed.find({edge.second, edge.first});
+    const int opposite = reverse == directed.end() ? 0 : reverse->second;
+    if (count != 1 || opposite != 1) {
+      throw InputError(
+          "mesh",
+          fmt::format("not a closed, consistently oriented mesh: an edge is used {} time(s) in "
+                      "one direction and {} in the other",
+                      count, opposite),
+          "a closed (watertight), manifold triangle mesh, counter-clockwise seen from outside");
+    }
+  }
+}
+
+TriangleMesh make_box(const Vec3& h) {
+  TriangleMesh mesh;
+  for (int k = 0; k < 8; ++k) {
+    mesh.positions.emplace_back((k & 1) ? h.x() : -h.x(), (k & 2) ? h.y() : -h.y(),
+                                (k & 4) ? h.z() : -h.z());
+  }
+  // Counter-clockwise seen from outside: quads (a, b, c, d) split into (a, b, c), (a, c, d).
+  const std::array<std::array<std::uint32_t, 4>, 6> faces{
+      {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}}};
+  for (const auto& f : faces) {
+    mesh.triangles.push_back({f[0], f[1], f[2]});
+    mesh.triangles.push_back({f[0], f[2], f[3]});
+  }
+  return mesh;
+}
+
+void RenderScene::validate() const {
+  mesh.validate();
+  require_closed_mesh(mesh);
+  medium.validate();
+  if (!(eta > 0.0) || !std::isfinite(eta)) {
+    throw InputError("medium.eta", fmt::format("got {}", eta), "a finite number > 0");
+  }
+  if (width < 1 || height < 1 || samples < 1 || light_samples < 1) {
+    throw InputError("image", "width, height, samples and light_samples must be >= 1",
+                     "integers >= 1");
+  }
+  const Vec3 forward = camera.look_at - camera.position;
+  if (!(forward.norm() > 0.0) || !(forward.cross(camera.up).norm() > 1e-12 * forward.norm())) {
+    throw InputError("camera", "look_at equals position, or up is parallel to the view",
+                     "a position, a different look_at and an up not along the view");
+  }
+  if (!(camera.fov_degrees < 180.0)) {
+    throw InputError("camera.fov", fmt::format("got {}", camera.fov_degrees),
+                     "a number of degrees in (0, 180)");
+  }
+  const MeshRayTracer tracer(mesh);
+  // Parity of crossings along a ray (an irrational direction, unlikely to graze an edge).
+  const Vec3 probe = Vec3(0.5773, 0.6123, 0.5407).normalized();
+  if (tracer.count_crossings(light.position, probe) % 2 == 1) {
+    throw InputError("light.position", "inside the object", "a point outside the mesh");
+  }
+  if (light.radius > 0.0) {
+    // The sphere light must not touch the mesh either: no vertex within it.
+    for (const Vec3& p : mesh.positions) {
+      if ((p - light.position).norm() <= light.radius) {
+        throw InputError("light.radius", "the light sphere overlaps the object",
+                         "a radius that keeps the light sphere outside the mesh");
+      }
+    }
+  }
+  if (tracer.count_crossings(camera.position, probe) % 2 == 1) {
+    throw InputError("camera.position", "inside the object", "a point outside the mesh");
+  }
+}
+
+RenderScene parse_render_scene(std::string_view toml_text, const std::string& origin,
+                               const std::filesystem::path& base) {
+  return RenderSceneReader(origin, base).read(parse_toml(toml_text, origin));
+}
+
+RenderScene load_render_scene(const std::filesystem::path& path) {
+  return parse_render_scene(read_text(path), path.string(), path.parent_path());
+}
+
+}  // namespace scatterlab

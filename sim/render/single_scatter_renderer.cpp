@@ -1,0 +1,432 @@
+#include "scatterlab/render/single_scatter_renderer.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "scatterlab/core/constants.hpp"
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/core/fresnel.hpp"
+#include "scatterlab/core/phase_function.hpp"
+#include "scatterlab/core/random.hpp"
+#include "scatterlab/refract/path_contribution.hpp"
+#include "scatterlab/refract/refractive_solver.hpp"
+#include "scatterlab/refract/support_interval.hpp"
+#include "scatterlab/render/mesh_ray_tracer.hpp"
+
+namespace scatterlab {
+
+RenderMethod parse_render_method(const std::string& name) {
+  if (name == "straight") return RenderMethod::straight;
+  if (name == "walter") return RenderMethod::walter;
+  if (name == "holzschuch") return RenderMethod::holzschuch;
+  if (name == "pathtrace") return RenderMethod::pathtrace;
+  throw InputError("method", "got \"" + name + "\"",
+                   "\"straight\", \"walter\", \"holzschuch\" or \"pathtrace\"");
+}
+
+std::string to_string(RenderMethod method) {
+  switch (method) {
+    case RenderMethod::straight:
+      return "straight";
+    case RenderMethod::walter:
+      return "walter";
+    case RenderMethod::holzschuch:
+      return "holzschuch";
+    case RenderMethod::pathtrace:
+      return "pathtrace";
+  }
+  return "?";
+}
+
+namespace {
+
+// Snell refraction of the travel direction d at a surface whose unit normal n faces the side d
+// comes from (d . n < 0); ratio = n_incident / n_transmitted. False under total internal
+// reflection (pbrt-v4, Refract).
+bool refract(const Vec3& d, const Vec3& n, double ratio, Vec3& out) {
+  const double cos_i = -d.dot(n);
+  const double sin2_t = ratio * ratio * std::max(0.0, 1.0 - cos_i * cos_i);
+  if (sin2_t >= 1.0) return false;
+  const double cos_t = std::sqrt(1.0 - sin2_t);
+  out = (ratio * d + (ratio * cos_i - cos_t) * n).normalized();
+  return true;
+}
+
+// Points of a sphere light (spherical Fibonacci lattice), each a point light of intensity
+// 4 I cos+ / M (see the header); one point of intensity I for a point light.
+struct LightPoint {
+  Vec3 position;
+  Vec3 normal;  // zero for a point light: isotropic
+  double intensity;
+
+  double towards(const Vec3& direction_from_light) const {
+    if (normal.isZero()) return intensity;
+    return intensity * std::max(0.0, normal.dot(direction_from_light));
+  }
+};
+
+std::vector<LightPoint> light_points(const RenderLight& light, int count) {
+  if (light.radius == 0.0) return {{light.position, Vec3::Zero(), light.intensity}};
+  std::vector<LightPoint> points;
+  const double golden = pi * (3.0 - std::sqrt(5.0));
+  for (int k = 0; k < count; ++k) {
+    const double z = 1.0 - (2.0 * k + 1.0) / count;
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const Vec3 n(r * std::cos(golden * k), r * std::sin(golden * k), z);
+    points.push_back({light.position + light.radius * n, n, 4.0 * light.intensity / count});
+  }
+  return points;
+}
+
+// Distances along [a, b] with density proportional to exp(-sigma_t x): x(u) inverts the CDF.
+struct TransmittanceSampler {
+  double a, sigma_t, mass;  // mass = int_a^b exp(-sigma_t x) dx
+  double span_factor;       // 1 - exp(-sigma_t (b - a))
+
+  TransmittanceSampler(double a_, double b, double sigma_t_) : a(a_), sigma_t(sigma_t_) {
+    span_factor = -std::expm1(-sigma_t * (b - a));
+    mass = std::exp(-sigma_t * a) * span_factor / sigma_t;
+  }
+  double at(double u) const { return a - std::log1p(-u * span_factor) / sigma_t; }
+};
+
+struct EyeSegmentInside {
+  EyeSegment segment;
+  double weight = 0.0;  // T_0 / eta^2
+};
+
+class Renderer {
+ public:
+  Renderer(const RenderScene& scene, const RenderSettings& settings)
+      : scene_(scene),
+        settings_(settings),
+        tracer_(scene.mesh),
+        solver_(scene.mesh, scene.eta),
+        phase_{scene.medium.g},
+        lights_(light_points(scene.light, scene.light_samples)) {}
+
+  // Compile-time specialised once per run: refraction at the boundary, and shading normals.
+  template <bool Refracting, bool Smooth>
+  void render(RenderResult& result, const std::function<void(double)>& progress) {
+    const int tile = 8;
+    const int tiles_x = (scene_.width + tile - 1) / tile;
+    const int tiles_y = (scene_.height + tile - 1) / tile;
+    const int tiles = tiles_x * tiles_y;
+    std::atomic<int> done{0};
+    std::vector<RenderCounters> counters(static_cast<std::size_t>(omp_get_max_threads()));
+    const int threads = settings_.threads > 0 ? settings_.threads : omp_get_max_threads();
+    counters.resize(static_cast<std::size_t>(std::max(threads, omp_get_max_threads())));
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (int t = 0; t < tiles; ++t) {
+      RenderCounters& count = counters[static_cast<std::size_t>(omp_get_thread_num())];
+      std::vector<RefractionPath> paths;
+      std::vector<TriangleSupport> supports;
+      const int x0 = (t % tiles_x) * tile, y0 = (t / tiles_x) * tile;
+      for (int j = y0; j < std::min(y0 + tile, scene_.height); ++j) {
+        for (int i = x0; i < std::min(x0 + tile, scene_.width); ++i) {
+          EyeSegmentInside eye;
+          if (!enter<Refracting, Smooth>(i, j, eye)) continue;
+          ++count.eye_rays;
+          double value = 0.0, error = 0.0;
+          switch (settings_.method) {
+            case RenderMethod::straight:
+              value = straight<Smooth>(eye.segment, count);
+              break;
+            case RenderMethod::walter:
+              value = walter(eye.segment, paths, count);
+              break;
+            case RenderMethod::holzschuch:
+              value = settings_.shared_points
+                          ? holzschuch_shared(eye.segment, paths, supports, count)
+                          : holzschuch(eye.segment, paths, supports, count);
+              break;
+            case RenderMethod::pathtrace:
+              value = pathtrace<Smooth>(
+                  eye.segment, static_cast<std::uint64_t>(j) * scene_.width + i, error, count);
+              break;
+          }
+          result.image.at(i, j) = eye.weight * value;
+          result.standard_error.at(i, j) = eye.weight * error;
+        }
+      }
+      const int finished = ++done;
+      if (progress && omp_get_thread_num() == 0) progress(static_cast<double>(finished) / tiles);
+    }
+    for (const auto& c : counters) {
+      result.counters.eye_rays += c.eye_rays;
+      result.counters.point_queries += c.point_queries;
+      result.counters.triangle_searches += c.triangle_searches;
+      result.counters.paths += c.paths;
+      result.counters.supports += c.supports;
+    }
+  }
+
+ private:
+  template <bool Smooth>
+  Vec3 normal_at(const MeshHit& hit) const {
+    const TriangleMesh& mesh = scene_.mesh;
+    if constexpr (Smooth) {
+      const double w0 = 1.0 - hit.bary_a - hit.bary_b;
+      return (w0 * mesh.corner_normal(hit.triangle, 0) +
+              hit.bary_a * mesh.corner_normal(hit.triangle, 1) +
+              hit.bary_b * mesh.corner_normal(hit.triangle, 2))
+          .normalized();
+    } else {
+      return mesh.geometric_normal(hit.triangle);
+    }
+  }
+
+  Vec3 point_at(const MeshHit& hit) const {
+    const TriangleMesh& mesh = scene_.mesh;
+    return (1.0 - hit.bary_a - hit.bary_b) * mesh.vertex(hit.triangle, 0) +
+           hit.bary_a * mesh.vertex(hit.triangle, 1) + hit.bary_b * mesh.vertex(hit.triangle, 2);
+  }
+
+  // The eye ray's first hit, Fresnel transmission and refraction into the medium, and the exit.
+  template <bool Refracting, bool Smooth>
+  bool enter(int i, int j, EyeSegmentInside& eye) const {
+    const Vec3 origin = scene_.camera.position;
+    const Vec3 d = scene_.camera.ray_direction(i, j, scene_.width, scene_.height);
+    MeshHit hit;
+    if (!tracer_.intersect(origin, d, 0.0, 1e300, hit)) return false;
+    const Vec3 p0 = point_at(hit);
+    const Vec3 n = normal_at<Smooth>(hit);
+    const double cos_i = -d.dot(n);
+    if (!(cos_i > 0.0)) return false;
+    Vec3 inside = d;
+    double weight = 1.0;
+    if constexpr (Refracting) {
+      // Fresnel (core/fresnel.hpp) and Snell from outside (index 1) into the medium (eta); the
+      // radiance leaving the medium towards the camera is T L / eta^2 (n^2 law).
+      if (!refract(d, n, 1.0 / scene_.eta, inside)) return false;
+      weight = fresnel_dielectric_transmittance(cos_i, scene_.eta) / (scene_.eta * scene_.eta);
+    }
+    if (!(inside.dot(scene_.mesh.geometric_normal(hit.triangle)) < 0.0)) return false;
+    MeshHit exit;
+    if (!tracer_.intersect(p0, inside, tracer_.epsilon(), 1e300, exit)) return false;
+    eye.segment = EyeSegment{p0, inside, 0.0, exit.distance};
+    eye.weight = weight;
+    return true;
+  }
+
+  // S(V) of the header over the paths in `paths`, for one light point.
+  double path_sum(const EyeSegment& segment, const LightPoint& light,
+                  const std::vector<RefractionPath>& paths, std::size_t first) const {
+    double sum = 0.0;
+    for (std::size_t k = first; k < paths.size(); ++k) {
+      const RefractionPath& path = paths[k];
+      const PathContribution c = path_contribution(solver_.triangle(path.triangle), path,
+                                                   scene_.eta, scene_.medium.sigma_t, false);
+      // Light travels along omega_v at V and leaves towards the camera along -direction.
+      const double cos_theta = -path.omega_v.dot(segment.direction);
+      sum += phase_.evaluate(cos_theta) * light.towards(-path.omega_l) * c.irradiance;
+    }
+    return sum;
+  }
+
+  double walter(const EyeSegment& segment, std::vector<RefractionPath>& paths,
+                RenderCounters& count) const {
+    const TransmittanceSampler sampler(segment.t0, segment.t1, scene_.medium.sigma_t);
+    const int n = scene_.samples;
+    double sum = 0.0;
+    RefractionStats stats;
+    for (int s = 0; s < n; ++s) {
+      const Vec3 v = segment.at(sampler.at((s + 0.5) / n));
+      for (const LightPoint& light : lights_) {
+        paths.clear();
+        solver_.find_paths(v, Light::point(light.position), paths, stats);
+        sum += path_sum(segment, light, paths, 0);
+      }
+    }
+    count.point_queries += stats.queries;
+    count.triangle_searches += stats.triangles_tested;
+    count.paths += stats.paths;
+    return scene_.medium.sigma_s() * sampler.mass * sum / n;
+  }
+
+  double holzschuch(const EyeSegment& segment, std::vector<RefractionPath>& paths,
+                    std::vector<TriangleSupport>& supports, RenderCounters& count) const {
+    double sum = 0.0;
+    RefractionStats stats;
+    SupportStats support_stats;
+    const int n = scene_.samples;
+    for (const LightPoint& light : lights_) {
+      const Light point = Light::point(light.position);
+      supports.clear();
+      find_segment_supports(solver_, segment, point, supports, support_stats);
+      for (const TriangleSupport& support : supports) {
+        const TransmittanceSampler sampler(support.interval.x_min, support.interval.x_max,
+                                           scene_.medium.sigma_t);
+        double triangle_sum = 0.0;
+        for (int s = 0; s < n; ++s) {
+          const Vec3 v = segment.at(sampler.at((s + 0.5) / n));
+          paths.clear();
+          solver_.find_paths_through(support.triangle, v, point, paths, stats);
+          solver_.merge_duplicates(paths, 0, stats);
+          triangle_sum += path_sum(segment, light, paths, 0);
+        }
+        sum += sampler.mass * triangle_sum / n;
+      }
+    }
+    count.supports += support_stats.supports;
+    count.point_queries += stats.queries;
+    count.triangle_searches += stats.triangles_tested;
+    count.paths += stats.paths;
+    return scene_.medium.sigma_s() * sum;
+  }
+
+  double holzschuch_shared(const EyeSegment& segment, std::vector<RefractionPath>& paths,
+                           std::vector<TriangleSupport>& supports, RenderCounters& count) const {
+    const TransmittanceSampler sampler(segment.t0, segment.t1, scene_.medium.sigma_t);
+    const int n = scene_.samples;
+    double sum = 0.0;
+    RefractionStats stats;
+    SupportStats support_stats;
+    for (const LightPoint& light : lights_) {
+      const Light point = Light::point(light.position);
+      supports.clear();
+      find_segment_supports(solver_, segment, point, supports, support_stats);
+      for (int s = 0; s < n; ++s) {
+        const double x = sampler.at((s + 0.5) / n);
+        const Vec3 v = segment.at(x);
+        paths.clear();
+        for (const TriangleSupport& support : supports) {
+          if (support.interval.contains(x)) {
+            solver_.find_paths_through(support.triangle, v, point, paths, stats);
+          }
+        }
+        solver_.merge_duplicates(paths, 0, stats);
+        sum += path_sum(segment, light, paths, 0);
+      }
+    }
+    count.supports += support_stats.supports;
+    count.point_queries += stats.queries;
+    count.triangle_searches += stats.triangles_tested;
+    count.paths += stats.paths;
+    return scene_.medium.sigma_s() * sampler.mass * sum / n;
+  }
+
+  // Jensen et al. 2001, §4.3 single scattering with the light's refraction ignored: the shadow
+  // ray runs straight from V to the light point.
+  template <bool Smooth>
+  double straight(const EyeSegment& segment, RenderCounters& count) const {
+    const TransmittanceSampler sampler(segment.t0, segment.t1, scene_.medium.sigma_t);
+    const int n = scene_.samples;
+    double sum = 0.0;
+    for (int s = 0; s < n; ++s) {
+      const Vec3 v = segment.at(sampler.at((s + 0.5) / n));
+      for (const LightPoint& light : lights_) {
+        ++count.point_queries;
+        const Vec3 to_light = light.position - v;
+        const double distance = to_light.norm();
+        const Vec3 w = to_light / distance;
+        MeshHit hit;
+        if (!tracer_.intersect(v, w, 0.0, distance, hit)) continue;
+        const Vec3 n_s = normal_at<Smooth>(hit);
+        const double cos_l = w.dot(n_s);
+        if (!(cos_l > 0.0)) continue;
+        if (tracer_.occluded(v, w, hit.distance + tracer_.epsilon(), distance)) continue;
+        ++count.paths;
+        const double transmittance = fresnel_dielectric_transmittance(cos_l, scene_.eta);
+        const double irradiance =
+            transmittance * std::exp(-scene_.medium.sigma_t * hit.distance) / (distance * distance);
+        // Light travels along -w at V and leaves towards the camera along -direction.
+        sum += phase_.evaluate(w.dot(segment.direction)) * light.towards(-w) * irradiance;
+      }
+    }
+    return scene_.medium.sigma_s() * sampler.mass * sum / n;
+  }
+
+  // Monte Carlo single scattering with the sphere light; returns the mean and sets its standard
+  // error.
+  template <bool Smooth>
+  double pathtrace(const EyeSegment& segment, std::uint64_t pixel, double& error,
+                   RenderCounters& count) const {
+    const TransmittanceSampler sampler(segment.t0, segment.t1, scene_.medium.sigma_t);
+    const RenderLight& light = scene_.light;
+    const double radiance = light.intensity / (pi * light.radius * light.radius);
+    const double eta = scene_.eta;
+    PhotonRandom random(settings_.seed, pixel);
+    const int n = scene_.samples;
+    double sum = 0.0, sum2 = 0.0;
+    for (int s = 0; s < n; ++s) {
+      const auto u = random.next4();
+      const Vec3 v = segment.at(sampler.at((s + u[0]) / n));  // stratified in the CDF
+      // Backwards from V: the phase function about the eye ray's direction (cos theta between
+      // the light's travel -w and the camera-bound -direction is w . direction).
+      const double cos_theta = phase_.sample_cos_theta(u[1]);
+      const double phi = 2.0 * pi * u[2];
+      const Vec3 w = scatter_direction(segment.direction, cos_theta, std::cos(phi), std::sin(phi));
+      ++count.point_queries;
+      MeshHit hit;
+      if (!tracer_.intersect(v, w, 0.0, 1e300, hit)) continue;
+      const Vec3 n_s = normal_at<Smooth>(hit);
+      const double cos_o = w.dot(n_s);
+      if (!(cos_o > 0.0)) continue;
+      Vec3 out = w;
+      double transmittance = 1.0;
+      if (eta != 1.0) {
+        if (!refract(w, -n_s, eta, out)) continue;  // total internal reflection
+        transmittance = fresnel_dielectric_transmittance(cos_o, 1.0 / eta);
+      }
+      const Vec3 p = point_at(hit);
+      if (!(out.dot(scene_.mesh.geometric_normal(hit.triangle)) > 0.0)) continue;
+      // The sphere light along out from p, unless the mesh comes first.
+      const Vec3 oc = p - light.position;
+      const double b = oc.dot(out);
+      const double disc = b * b - (oc.squaredNorm() - light.radius * light.radius);
+      if (disc < 0.0) continue;
+      const double t_light = -b - std::sqrt(disc);
+      if (!(t_light > 0.0)) continue;
+      if (tracer_.occluded(p, out, tracer_.epsilon(), t_light)) continue;
+      ++count.paths;
+      // Radiance inside: T eta^2 L_e (n^2 law); phase sampling cancels p / pdf.
+      const double f =
+          transmittance * eta * eta * radiance * std::exp(-scene_.medium.sigma_t * hit.distance);
+      sum += f;
+      sum2 += f * f;
+    }
+    const double mean = sum / n;
+    const double variance = n > 1 ? std::max(0.0, (sum2 / n - mean * mean)) / (n - 1) : 0.0;
+    const double scale = scene_.medium.sigma_s() * sampler.mass;
+    error = scale * std::sqrt(variance);
+    return scale * mean;
+  }
+
+  const RenderScene& scene_;
+  const RenderSettings& settings_;
+  MeshRayTracer tracer_;
+  RefractiveSolver solver_;
+  HenyeyGreenstein phase_;
+  std::vector<LightPoint> lights_;
+};
+
+}  // namespace
+
+RenderResult render_single_scatter(const RenderScene& scene, const RenderSettings& settings,
+                                   const std::function<void(double)>& progress) {
+  if (settings.method == RenderMethod::pathtrace && !(scene.light.radius > 0.0)) {
+    throw InputError("light.radius", "0 (a point light) with method pathtrace",
+                     "a sphere light of radius > 0 for the path-traced reference");
+  }
+  const auto start = std::chrono::steady_clock::now();
+  RenderResult result;
+  result.image = Image(scene.width, scene.height);
+  result.standard_error = Image(scene.width, scene.height);
+  Renderer renderer(scene, settings);
+  const bool refracting = settings.force_general || scene.eta != 1.0;
+  const bool smooth = settings.force_general || scene.mesh.has_shading_normals();
+  if (refracting && smooth) renderer.render<true, true>(result, progress);
+  if (refracting && !smooth) renderer.render<true, false>(result, progress);
+  if (!refracting && smooth) renderer.render<false, true>(result, progress);
+  if (!refracting && !smooth) renderer.render<false, false>(result, progress);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace scatterlab

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Usage: render_runs.sh SCATTERLAB SOURCE_DIR
+# `scatterlab render` end to end: each method writes an OpenEXR and a PNG; bad input gets one
+# clear error, a non-zero exit and no image.
+set -u
+exe=$1
+source_dir=$2
+source "$(dirname "$0")/harness.sh"
+scene="$source_dir/data/scenes/tile.toml"
+
+for method in straight walter holzschuch pathtrace; do
+  if "$exe" render "$scene" --method "$method" --width 8 --height 8 --samples 4 \
+       --light-samples 1 --out "$work/$method.exr" >stdout 2>stderr \
+     && [ -s "$work/$method.exr" ] && [ -s "$work/$method.png" ] \
+     && head -c 4 "$work/$method.exr" | od -An -tx1 | grep -q "76 2f 31 01" \
+     && head -c 8 "$work/$method.png" | od -An -c | grep -q "P   N   G"; then
+    pass
+  else
+    fail "$method: $(cat stderr)"
+  fi
+done
+
+# expect_error NAME FIELD ARGS...
+expect_error() {
+  local name=$1 field=$2
+  shift 2
+  if "$exe" render "$@" --width 4 --height 4 --out "$work/$name.exr" >stdout 2>stderr; then
+    fail "$name: exited 0"
+  elif ! grep -q -- "$field" stderr; then
+    fail "$name: error does not name $field: $(cat stderr)"
+  elif [ "$(grep -c . stderr)" -ne 1 ]; then
+    fail "$name: more than one line of error: $(cat stderr)"
+  elif compgen -G "$work/$name.*" >/dev/null; then
+    fail "$name: left a file behind"
+  else
+    pass
+  fi
+}
+
+printf '[mesh]\nshape = "sphere"\n[light]\nposition = [0.1, 0.0, 0.0]\n' >inside.toml
+printf '[medium]\neta = 1.5\n' >nomesh.toml
+expect_error bad-method method "$scene" --method jensen
+expect_error light-inside light.position inside.toml
+expect_error no-mesh mesh nomesh.toml
+expect_error missing-scene scene "$work/none.toml"
+if "$exe" render "$scene" --width 4 --height 4 --out "$work/no/such/dir/x.exr" >stdout 2>stderr; then
+  fail "bad-dir: exited 0"
+elif ! grep -q "^scatterlab: error: out:" stderr || [ "$(grep -c . stderr)" -ne 1 ]; then
+  fail "bad-dir: $(cat stderr)"
+else
+  pass
+fi
+
+report render_runs

@@ -1,0 +1,241 @@
+// The single-scatter renderer: a flat slab against the exact once-scattered radiance, the
+// support-interval method against Walter's sample points, the specialised paths against the
+// general one, and bad scenes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/core/fresnel.hpp"
+#include "scatterlab/core/phase_function.hpp"
+#include "scatterlab/core/procedural_meshes.hpp"
+#include "scatterlab/core/quadrature.hpp"
+#include "scatterlab/render/render_scene.hpp"
+#include "scatterlab/render/single_scatter_renderer.hpp"
+
+namespace scatterlab {
+namespace {
+
+// A box much wider than deep, seen from above at an angle: the top face is a flat half-space
+// boundary for the pixels near its centre.
+RenderScene slab_scene(double eta) {
+  RenderScene scene;
+  scene.mesh = make_box(Vec3(6.0, 6.0, 1.0));
+  scene.medium = Medium::from_coefficients(0.2, 0.8, 0.4, "mesh units");
+  scene.eta = eta;
+  scene.light.position = Vec3(0.4, 0.7, 2.5);
+  scene.light.intensity = 2.0;
+  scene.camera.position = Vec3(0.0, -2.0, 3.5);
+  scene.camera.look_at = Vec3(0.0, 0.2, 1.0);
+  scene.camera.up = Vec3::UnitZ();
+  scene.camera.fov_degrees = 20.0;
+  scene.width = 4;
+  scene.height = 4;
+  scene.samples = 400;
+  scene.light_samples = 1;
+  scene.validate();
+  return scene;
+}
+
+// The exact once-scattered radiance of one pixel of the slab, independent of the renderer's
+// machinery: the eye ray refracts at the plane z = h (Snell, Fresnel), the light's refraction
+// point is found by bisection on Snell's law in the plane of incidence, D is Walter eq. 18 with
+// eta (path_contribution.hpp), and the integral along the ray is adaptive Gauss-Kronrod.
+double slab_exact(const RenderScene& scene, int i, int j) {
+  const double h = 1.0, eta = scene.eta;
+  const Vec3 c = scene.camera.position;
+  const Vec3 d = scene.camera.ray_direction(i, j, scene.width, scene.height);
+  const Vec3 p0 = c + ((h - c.z()) / d.z()) * d;
+  const double cos_i = -d.z();
+  const double sin2_t = (1.0 - cos_i * cos_i) / (eta * eta);
+  const double cos_t = std::sqrt(1.0 - sin2_t);
+  const Vec3 w = (d / eta + (cos_i / eta - cos_t) * Vec3::UnitZ()).normalized();
+  const double t_exit = (2.0 * h) / -w.z();  // through the bottom z = -h
+  const Vec3 light = scene.light.position;
+  const double height = light.z() - h;
+  const HenyeyGreenstein phase{scene.medium.g};
+  const double sigma_t = scene.medium.sigma_t;
+  const auto integrand = [&](double x) {
+    const Vec3 v = p0 + x * w;
+    const double depth = h - v.z();
+    const Vec3 horizontal(light.x() - v.x(), light.y() - v.y(), 0.0);
+    const double rho = horizontal.norm();
+    // Snell: (rho - r) / d_L = eta r / d_V, decreasing in r on [0, rho].
+    double lo = 0.0, hi = rho;
+    for (int k = 0; k < 200; ++k) {
+      const double r = 0.5 * (lo + hi);
+      const double f = (rho - r) / std::hypot(rho - r, height) - eta * r / std::hypot(r, depth);
+      (f > 0.0 ? lo : hi) = r;
+    }
+    const double r = 0.5 * (lo + hi);
+    const double d_v = std::hypot(r, depth), d_l = std::hypot(rho - r, height);
+    const double cos_v = depth / d_v, cos_l = height / d_l;
+    const double big_d = (d_v + eta * d_l) * (d_v * cos_l / cos_v + eta * d_l * cos_v / cos_l);
+    const Vec3 p =
+        v + (rho > 0.0 ? Vec3(horizontal * (r / rho)) : Vec3::Zero()) + Vec3(0.0, 0.0, depth);
+    const Vec3 omega_v = (v - p) / d_v;
+    const double irradiance =
+        fresnel_dielectric_transmittance(cos_l, eta) * eta * eta / big_d * std::exp(-sigma_t * d_v);
+    return scene.medium.sigma_s() * std::exp(-sigma_t * x) * phase.evaluate(-omega_v.dot(w)) *
+           scene.light.intensity * irradiance;
+  };
+  QuadratureOptions options;
+  options.rel_tol = 1e-10;
+  const double inside = integrate_adaptive(integrand, 0.0, t_exit, options).value;
+  return fresnel_dielectric_transmittance(cos_i, eta) / (eta * eta) * inside;
+}
+
+TEST(Render, FlatSlabMatchesExactOnceScatteredRadiance) {
+  for (const double eta : {1.5, 0.8}) {
+    const RenderScene scene = slab_scene(eta);
+    for (const RenderMethod method : {RenderMethod::walter, RenderMethod::holzschuch}) {
+      RenderSettings settings;
+      settings.method = method;
+      const RenderResult result = render_single_scatter(scene, settings);
+      for (int j = 0; j < scene.height; ++j) {
+        for (int i = 0; i < scene.width; ++i) {
+          const double exact = slab_exact(scene, i, j);
+          ASSERT_GT(exact, 0.0);
+          // Midpoint rule in the transmittance CDF, 400 points: O(1 / N^2).
+          EXPECT_NEAR(result.image.at(i, j), exact, 2e-4 * exact)
+              << "eta " << eta << " method " << to_string(method) << " pixel " << i << "," << j;
+        }
+      }
+    }
+  }
+}
+
+RenderScene small_bumpy_scene() {
+  RenderScene scene;
+  scene.mesh = make_bumpy_sphere(1.0, 0.08, 4, 12, 12);
+  scene.medium = Medium::from_coefficients(0.05, 0.5, 0.3, "mesh units");
+  scene.eta = 1.4;
+  scene.light.position = Vec3(0.3, 3.0, 0.6);
+  scene.camera.position = Vec3(0.0, -4.0, 0.3);
+  scene.camera.look_at = Vec3::Zero();
+  scene.camera.up = Vec3::UnitZ();
+  scene.camera.fov_degrees = 25.0;
+  scene.width = 6;
+  scene.height = 6;
+  scene.samples = 6;
+  scene.light_samples = 1;
+  scene.validate();
+  return scene;
+}
+
+TEST(Render, SupportIntervalsAtWalterPointsGiveWalterImage) {
+  const RenderScene scene = small_bumpy_scene();
+  RenderSettings walter;
+  walter.method = RenderMethod::walter;
+  RenderSettings holzschuch;
+  holzschuch.method = RenderMethod::holzschuch;
+  holzschuch.shared_points = true;
+  const RenderResult a = render_single_scatter(scene, walter);
+  const RenderResult b = render_single_scatter(scene, holzschuch);
+  double total = 0.0;
+  for (std::size_t k = 0; k < a.image.values.size(); ++k) {
+    total += a.image.values[k];
+    EXPECT_NEAR(b.image.values[k], a.image.values[k], 1e-12 * a.image.values[k] + 1e-300) << k;
+  }
+  EXPECT_GT(total, 0.0);
+  EXPECT_GT(a.counters.triangle_searches, b.counters.triangle_searches);
+}
+
+TEST(Render, SpecialisedPathsGiveTheGeneralImage) {
+  // eta = 1 (no refraction) and flat facets (no shading normals) against the general kernel.
+  RenderScene scene = small_bumpy_scene();
+  scene.mesh.normals.clear();
+  scene.eta = 1.0;
+  for (const RenderMethod method :
+       {RenderMethod::straight, RenderMethod::walter, RenderMethod::holzschuch}) {
+    RenderSettings fast;
+    fast.method = method;
+    RenderSettings general = fast;
+    general.force_general = true;
+    const RenderResult a = render_single_scatter(scene, fast);
+    const RenderResult b = render_single_scatter(scene, general);
+    double total = 0.0;
+    for (std::size_t k = 0; k < a.image.values.size(); ++k) {
+      total += a.image.values[k];
+      EXPECT_NEAR(b.image.values[k], a.image.values[k], 1e-9 * a.image.values[k]) << k;
+    }
+    EXPECT_GT(total, 0.0) << to_string(method);
+  }
+}
+
+TEST(Render, StraightLineIsExactWhenNothingRefracts) {
+  // With eta = 1 the straight shadow ray is the refracted path: methods (a) and (b) agree.
+  RenderScene scene = small_bumpy_scene();
+  scene.eta = 1.0;
+  RenderSettings straight;
+  straight.method = RenderMethod::straight;
+  RenderSettings walter;
+  walter.method = RenderMethod::walter;
+  const RenderResult a = render_single_scatter(scene, straight);
+  const RenderResult b = render_single_scatter(scene, walter);
+  for (std::size_t k = 0; k < a.image.values.size(); ++k) {
+    EXPECT_NEAR(a.image.values[k], b.image.values[k], 1e-6 * b.image.values[k]) << k;
+  }
+}
+
+std::string error_of(const std::string& text, const std::filesystem::path& base = {}) {
+  try {
+    parse_render_scene(text, "test.toml", base);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(Render, BadScenesGiveOneClearError) {
+  EXPECT_EQ(error_of("[medium]\neta = 1.5\n").rfind("mesh: missing", 0), 0u);
+  EXPECT_EQ(error_of("[mesh]\nshape = \"cube\"\n").rfind("mesh.shape:", 0), 0u);
+  EXPECT_EQ(error_of("[mesh]\nshape = \"sphere\"\n[light]\nposition = [0, 0, 0.2]\n")
+                .rfind("light.position: inside the object", 0),
+            0u);
+  EXPECT_EQ(error_of("[mesh]\nshape = \"sphere\"\n[medium]\neta = -1\n").rfind("medium.eta:", 0),
+            0u);
+  EXPECT_NE(
+      error_of("[mesh]\nshape = \"sphere\"\n[light]\nradus = 1\n").find("did you mean \"radius\""),
+      std::string::npos);
+  const auto dir = std::filesystem::temp_directory_path() / "scatterlab_render_test";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream open_mesh(dir / "open.obj");
+    open_mesh << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n";
+    std::ofstream nan_normals(dir / "nan.obj");
+    nan_normals << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn nan 0 0\n"
+                   "f 1//1 3//1 2//1\nf 1//1 2//1 4//1\nf 2//1 3//1 4//1\nf 1//1 4//1 3//1\n";
+  }
+  EXPECT_EQ(error_of("[mesh]\nshape = \"obj\"\npath = \"open.obj\"\n", dir)
+                .rfind("mesh: not a closed", 0),
+            0u);
+  EXPECT_EQ(error_of("[mesh]\nshape = \"obj\"\npath = \"nan.obj\"\n", dir).rfind("mesh.path: ", 0),
+            0u);
+  EXPECT_NE(error_of("[mesh]\nshape = \"obj\"\npath = \"nan.obj\"\n", dir).find("not finite"),
+            std::string::npos);
+  EXPECT_EQ(
+      error_of("[mesh]\nshape = \"obj\"\npath = \"missing.obj\"\n", dir).rfind("mesh.path: ", 0),
+      0u);
+  std::filesystem::remove_all(dir);
+  // A point light cannot feed the path-traced reference.
+  RenderSettings pathtrace;
+  pathtrace.method = RenderMethod::pathtrace;
+  EXPECT_THROW(render_single_scatter(slab_scene(1.5), pathtrace), InputError);
+  EXPECT_THROW(parse_render_method("jensen"), InputError);
+}
+
+TEST(Render, ShippedScenesLoad) {
+  const auto scenes = std::filesystem::path(SCATTERLAB_SOURCE_DIR) / "data" / "scenes";
+  const RenderScene bumpy = load_render_scene(scenes / "bumpy-sphere.toml");
+  EXPECT_EQ(bumpy.mesh.triangle_count(), 10080u);
+  EXPECT_TRUE(bumpy.mesh.has_shading_normals());
+  const RenderScene tile = load_render_scene(scenes / "tile.toml");
+  EXPECT_GT(tile.light.radius, 0.0);
+}
+
+}  // namespace
+}  // namespace scatterlab
