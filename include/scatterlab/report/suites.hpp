@@ -23,6 +23,12 @@ Section infinite_medium_convergence(const Profile& profile);
 // depth 1 / (1 - albedo g) and the mean number of scattering events albedo / (1 - albedo).
 Section infinite_medium_extremes(const Profile& profile);
 
+// Half-space Monte Carlo: total diffuse reflectance against Chandrasekhar's H-function at
+// doubling budgets (error against run time), and a matrix of extreme albedo, g, eta and
+// incidence checked for energy, Fresnel specular reflection and the exact once-scattered light.
+Section half_space_convergence(const Profile& profile);
+Section half_space_extremes(const Profile& profile);
+
 // Lobe fits against synthetic lobes of known parameters: parameter error against the
 // quadrature order of the bin averages, and time per fit.
 Section lobe_fit_accuracy(const Profile& profile);
