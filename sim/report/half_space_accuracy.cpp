@@ -17,6 +17,7 @@
 #include "scatterlab/refract/half_space_single_scatter.hpp"
 #include "scatterlab/report/suites.hpp"
 #include "scatterlab/transport/searchlight.hpp"
+#include "simulation_checks.hpp"
 
 namespace scatterlab::report {
 namespace {
@@ -30,16 +31,6 @@ Scalar scalar(const SearchlightOutput& out, const std::string& name) {
     if (t.name == name) return {t.mean[0], t.stderr_of_mean[0]};
   }
   throw std::logic_error("report: searchlight run has no tally " + name);
-}
-
-int count_non_finite(const SearchlightOutput& out) {
-  int count = 0;
-  for (const TallyResult& t : out.tallies) {
-    for (std::size_t i = 0; i < t.size(); ++i) {
-      count += !std::isfinite(t.mean[i]) || !std::isfinite(t.stderr_of_mean[i]);
-    }
-  }
-  return count;
 }
 
 SearchlightSpec small_spec(double albedo, double g, double eta, std::uint64_t photons,
@@ -86,7 +77,7 @@ Section half_space_convergence(const Profile& profile) {
     SearchlightSpec spec = small_spec(albedo, 0.0, 1.0, photons, profile);
     spec.run.seed = profile.seed + static_cast<std::uint64_t>(b);
     const SearchlightOutput out = run_searchlight(spec);
-    section.non_finite_values += count_non_finite(out);
+    section.non_finite_values += count_non_finite(out.tallies);
     const Scalar r = scalar(out, "diffuse_reflectance");
     const double z = (r.mean - exact) / r.stderr_of_mean;
     section.checks.push_back(
@@ -146,7 +137,7 @@ Section half_space_extremes(const Profile& profile) {
     SearchlightSpec spec = small_spec(c.albedo, c.g, c.eta, photons, profile);
     spec.incidence_deg = c.incidence;
     const SearchlightOutput out = run_searchlight(spec);
-    section.non_finite_values += count_non_finite(out);
+    section.non_finite_values += count_non_finite(out.tallies);
     const double specular = scalar(out, "specular_reflectance").mean;
     const double energy = specular + scalar(out, "diffuse_reflectance").mean +
                           scalar(out, "absorbed").mean - 1.0;
@@ -187,9 +178,7 @@ Section half_space_extremes(const Profile& profile) {
          fmt::format("{:.9f}", specular), fmt::format("{:.9f}", specular_exact), single_text,
          exact_text, z_text});
   }
-  int passed = 0;
-  for (const Check& check : section.checks) passed += check.passed;
-  section.findings = fmt::format("{} of {} checks pass over {} cells.\n", passed,
+  section.findings = fmt::format("{} of {} checks pass over {} cells.\n", section.checks_passed(),
                                  section.checks.size(), section.table.rows.size());
   return section;
 }

@@ -99,7 +99,7 @@ Section infinite_medium_convergence(const Profile& profile) {
       spec.run.seed = profile.seed + static_cast<std::uint64_t>(b);
       spec.run.threads = profile.threads;
       const SimulationOutput out = simulate(spec);
-      section.non_finite_values += count_non_finite(out);
+      section.non_finite_values += count_non_finite(out.tallies);
       last = accuracy(tally(out, "fluence_spherical"), shells, exact);
       photons.push_back(static_cast<double>(spec.run.photons));
       seconds.push_back(out.wall_seconds);

@@ -48,7 +48,7 @@ Section infinite_medium_extremes(const Profile& profile) {
       spec.run.seed = profile.seed;
       spec.run.threads = profile.threads;
       const SimulationOutput out = simulate(spec);
-      const int non_finite = count_non_finite(out);
+      const int non_finite = count_non_finite(out.tallies);
       section.non_finite_values += non_finite;
 
       const double n = static_cast<double>(spec.run.photons);
@@ -81,9 +81,7 @@ Section infinite_medium_extremes(const Profile& profile) {
            fmt::format("{}", non_finite)});
     }
   }
-  int passed = 0;
-  for (const Check& check : section.checks) passed += check.passed;
-  section.findings = fmt::format("{} of {} checks pass over {} cells.\n", passed,
+  section.findings = fmt::format("{} of {} checks pass over {} cells.\n", section.checks_passed(),
                                  section.checks.size(), section.table.rows.size());
   return section;
 }

@@ -6,6 +6,12 @@ namespace scatterlab::report {
 
 bool Section::passed() const { return failures().empty(); }
 
+std::size_t Section::checks_passed() const {
+  std::size_t passed = 0;
+  for (const Check& check : checks) passed += check.passed ? 1 : 0;
+  return passed;
+}
+
 std::vector<std::string> Section::failures() const {
   std::vector<std::string> failed;
   for (const Check& check : checks) {

@@ -15,9 +15,10 @@ inline const TallyResult& tally(const SimulationOutput& output, const std::strin
   throw std::logic_error("report: simulation has no tally " + name);
 }
 
-inline int count_non_finite(const SimulationOutput& output) {
+// NaN or Inf anywhere in a run's tallies (means and standard errors).
+inline int count_non_finite(const std::vector<TallyResult>& tallies) {
   int count = 0;
-  for (const TallyResult& t : output.tallies) {
+  for (const TallyResult& t : tallies) {
     for (std::size_t i = 0; i < t.size(); ++i) {
       count += !std::isfinite(t.mean[i]) || !std::isfinite(t.stderr_of_mean[i]);
     }

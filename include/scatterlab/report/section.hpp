@@ -39,6 +39,7 @@ struct Section {
   int non_finite_values = 0;  // NaN or Inf seen anywhere in the section's results; must be 0
 
   bool passed() const;
+  std::size_t checks_passed() const;
   std::vector<std::string> failures() const;  // the checks that failed, plus any NaN/Inf count
 };
 
