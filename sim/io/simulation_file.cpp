@@ -300,6 +300,13 @@ FileSummary summarize(const hdf5::File& file) {
   for (const std::string& name : tallies.member_names()) {
     summary.tallies.push_back(summarize_tally(tallies, name));
   }
+  if (root.has_member("models")) {
+    const hdf5::Group models = root.open_group("models");
+    for (const std::string& name : models.member_names()) {
+      summary.models.emplace_back(name, models.open_group(name).member_names());
+    }
+  }
+  if (root.has_member("fits")) summary.fits = root.open_group("fits").member_names();
   return summary;
 }
 
@@ -438,6 +445,11 @@ std::string describe(const FileSummary& summary) {
   text += "\ntallies\n";
   if (summary.tallies.empty()) text += "  (none)\n";
   for (const TallySummary& tally : summary.tallies) text += tally_text(tally);
+  if (!summary.models.empty()) text += "\nmodels (analytic and exact curves on the same grid)\n";
+  for (const auto& [model, curves] : summary.models) {
+    text += fmt::format("  {:<15} {}\n", model, join(curves, ", "));
+  }
+  if (!summary.fits.empty()) text += fmt::format("\nfits\n  {}\n", join(summary.fits, ", "));
   return text;
 }
 

@@ -89,7 +89,8 @@ if "$exe" searchlight --photons 20000 --batches 8 --eta 1.33 --out "$work/half.h
 fi
 if "$exe" info "$work/half.h5" >"$work/info" && grep -q "eta *1.33" "$work/info" &&
   grep -q "geometry *half_space" "$work/info" && grep -q "reflectance_single" "$work/info" &&
-  grep -q "theta_o" "$work/info"; then pass; else fail "info on searchlight: $(cat "$work/info")"; fi
+  grep -q "theta_o" "$work/info" && grep -q "^  single_scatter  *reflectance_single" "$work/info"
+then pass; else fail "info on searchlight: $(cat "$work/info")"; fi
 if "$exe" searchlight --eta 1 --albedo 0.9 --photons 20000 --batches 8 --no-fluence \
   --out "$work/matched.h5" | grep -q "exact diffuse reflectance"; then pass; else fail "index-matched summary"; fi
 if "$exe" searchlight --help | grep -q -- "--incidence"; then pass; else fail "searchlight help"; fi

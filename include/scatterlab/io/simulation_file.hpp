@@ -116,6 +116,9 @@ struct FileSummary {
   std::vector<AxisSummary> grid;
   bool phi_folded = false;
   std::vector<TallySummary> tallies;
+  // /models/<model> and the curves it holds; /fits/<model> names (scatterlab fit).
+  std::vector<std::pair<std::string, std::vector<std::string>>> models;
+  std::vector<std::string> fits;
 };
 
 // Throws InputError("FILE", ...) for a file that is missing, not HDF5, or not a scatterlab file.
