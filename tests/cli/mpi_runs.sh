@@ -26,6 +26,12 @@ if [ "$(grep -c '^scatterlab simulate' 2x1.out)" -eq 1 ] && [ ! -s 2x1.err ] &&
 "$exe" "${run[@]}" --seed 22 --threads 1 --out seed22.h5 >/dev/null
 if ! "$same" 1x1.h5 seed22.h5 >/dev/null; then pass; else fail "another seed gave the same tallies"; fi
 
+# The searchlight on the same runner: 1 x 1 and 2 x 1 give the same bits.
+half=(searchlight --eta 1.33 --albedo 0.9 --g 0.5 --photons 100000 --batches 16 --seed 5 --r-bins 40)
+"$exe" "${half[@]}" --threads 1 --out half1.h5 >/dev/null || fail "searchlight 1 x 1"
+if mpi 2 "$exe" "${half[@]}" --threads 1 --out half2.h5 >/dev/null 2>half2.err &&
+  "$same" half1.h5 half2.h5; then pass; else fail "searchlight 2 x 1: $(cat half2.err)"; fi
+
 # Stopped on one process after 4 batches, finished on two ranks of two threads.
 "$exe" "${run[@]}" --threads 1 --out resumed.h5 --checkpoint-interval 4b >/dev/null 2>&1 &
 pid=$!
