@@ -39,16 +39,18 @@ double exposure_for(const Image& reference) {
   return high > 0.0 ? -std::log2(high) : 0.0;
 }
 
-// The panels left to right with a two-pixel black gap.
+// The panels left to right with a black gap, each enlarged by pixel replication to at least 128
+// pixels wide so that small study images can be seen.
 Image side_by_side(const std::vector<const Image*>& panels) {
-  constexpr int gap = 2;
   const int w = panels.front()->width, h = panels.front()->height;
+  const int zoom = std::max(1, 128 / w), gap = 2 * zoom;
   const int count = static_cast<int>(panels.size());
-  Image out(count * w + (count - 1) * gap, h);
+  Image out(count * w * zoom + (count - 1) * gap, h * zoom);
   for (int p = 0; p < count; ++p) {
-    for (int j = 0; j < h; ++j) {
-      for (int i = 0; i < w; ++i)
-        out.at(p * (w + gap) + i, j) = panels[static_cast<std::size_t>(p)]->at(i, j);
+    const Image& panel = *panels[static_cast<std::size_t>(p)];
+    for (int j = 0; j < h * zoom; ++j) {
+      for (int i = 0; i < w * zoom; ++i)
+        out.at(p * (w * zoom + gap) + i, j) = panel.at(i / zoom, j / zoom);
     }
   }
   return out;
