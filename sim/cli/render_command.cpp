@@ -1,13 +1,17 @@
 #include <fmt/format.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "progress_bar.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/render/render_scene.hpp"
+#include "scatterlab/render/render_study.hpp"
 #include "scatterlab/render/single_scatter_renderer.hpp"
 
 namespace scatterlab::cli {
@@ -15,7 +19,8 @@ namespace scatterlab::cli {
 namespace {
 
 struct RenderOptions {
-  std::string scene;
+  std::vector<std::string> scenes;
+  bool study = false, quick = false;
   std::string method = "holzschuch";
   int width = 0, height = 0, samples = 0, light_samples = 0, threads = 0;
   std::uint64_t seed = 1;
@@ -24,14 +29,47 @@ struct RenderOptions {
   double gamma = 2.2;
 };
 
+// `render --study`: the study itself lives in sim/render/render_study.cpp.
+int run_study(const RenderOptions& o, const std::filesystem::path& out_dir) {
+  if (o.threads < 0)
+    throw InputError("threads", fmt::format("got {}", o.threads), "an integer >= 0");
+  const std::vector<std::string> paths =
+      o.scenes.empty()
+          ? std::vector<std::string>{"data/scenes/bumpy-sphere.toml", "data/scenes/tile.toml"}
+          : o.scenes;
+  std::vector<RenderStudyScene> scenes;
+  for (const std::string& path : paths) {
+    scenes.push_back({std::filesystem::path(path).stem().string(), load_render_scene(path)});
+  }
+  RenderStudyOptions options = o.quick ? RenderStudyOptions::quick() : RenderStudyOptions{};
+  options.threads = o.threads;
+  options.seed = o.seed;
+  fmt::print("study: {}x{} pixels, reference holzschuch at {} samples per interval\n", options.size,
+             options.size, options.reference_samples);
+  run_render_study(scenes, options, out_dir, [](const RenderStudyRow& row) {
+    fmt::print("{:>14} {:>10} budget {:>6}: {:9.3f} s, rmse {:.4g}, relative error {:.4g}\n",
+               row.scene, to_string(row.method), row.budget, row.seconds, row.rmse,
+               row.relative_error);
+    std::fflush(stdout);
+  });
+  fmt::print("wrote {}\n", (out_dir / "render_study.csv").string());
+  return 0;
+}
+
 }  // namespace
 
 Action add_render_command(CLI::App& app) {
   auto* render = app.add_subcommand(
       "render", "Single-scatter image of a refractive mesh (OpenEXR, linear, and a PNG beside it)");
   auto options = std::make_shared<RenderOptions>();
-  render->add_option("SCENE", options->scene, "Render scene (TOML; see data/scenes/tile.toml)")
-      ->required();
+  render->add_option("SCENE", options->scenes,
+                     "Render scene (TOML; see data/scenes/tile.toml); with --study, the scenes "
+                     "to study (default: data/scenes/bumpy-sphere.toml data/scenes/tile.toml)");
+  render->add_flag("--study", options->study,
+                   "Error against run time: every method at increasing budgets against a "
+                   "converged reference (holzschuch, many samples); writes render_study.csv, "
+                   "<scene>_error.png and <scene>_images.png into --out (a directory)");
+  render->add_flag("--quick", options->quick, "With --study: tiny images and budgets");
   render
       ->add_option("--method", options->method,
                    "straight (Jensen 2001), walter (sample points), holzschuch (support "
@@ -45,16 +83,26 @@ Action add_render_command(CLI::App& app) {
                      "Points on a sphere light for the deterministic methods");
   render->add_option("--threads", options->threads, "Threads (0: all)");
   render->add_option("--seed", options->seed, "Random seed (pathtrace)");
-  render->add_option("--out", options->out, "Output OpenEXR file; the PNG gets the same name")
-      ->capture_default_str();
+  CLI::Option* out_option =
+      render
+          ->add_option("--out", options->out,
+                       "Output OpenEXR file; the PNG gets the same name (--study: the "
+                       "output directory, default render-study)")
+          ->capture_default_str();
   render->add_option("--exposure", options->exposure, "PNG exposure in stops")
       ->capture_default_str();
   render->add_option("--gamma", options->gamma, "PNG gamma")->capture_default_str();
-  return [options] {
+  return [options, out_option] {
     const RenderOptions& o = *options;
+    if (o.study) return run_study(o, out_option->count() > 0 ? o.out : "render-study");
+    if (o.quick) throw InputError("quick", "given without --study", "--quick with --study");
+    if (o.scenes.size() != 1) {
+      throw InputError("SCENE", fmt::format("{} scene files", o.scenes.size()),
+                       "exactly one scene file (several only with --study)");
+    }
     RenderSettings settings;
     settings.method = parse_render_method(o.method);
-    RenderScene scene = load_render_scene(o.scene);
+    RenderScene scene = load_render_scene(o.scenes.front());
     const auto at_least_one = [](int value, const char* name) {
       if (value < 0) throw InputError(name, fmt::format("got {}", value), "an integer >= 1");
     };

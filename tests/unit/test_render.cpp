@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 
 #include "scatterlab/core/error.hpp"
@@ -14,6 +15,7 @@
 #include "scatterlab/core/procedural_meshes.hpp"
 #include "scatterlab/core/quadrature.hpp"
 #include "scatterlab/render/render_scene.hpp"
+#include "scatterlab/render/render_study.hpp"
 #include "scatterlab/render/single_scatter_renderer.hpp"
 
 namespace scatterlab {
@@ -226,6 +228,21 @@ TEST(Render, BadScenesGiveOneClearError) {
   pathtrace.method = RenderMethod::pathtrace;
   EXPECT_THROW(render_single_scatter(slab_scene(1.5), pathtrace), InputError);
   EXPECT_THROW(parse_render_method("jensen"), InputError);
+}
+
+// The study's error measures on a 2 x 1 image: differences (0.3, -0.4) against (1, 0).
+TEST(Render, StudyErrorsAreRmsAndRelativeL2) {
+  Image reference(2, 1), image(2, 1);
+  reference.values = {1.0, 0.0};
+  image.values = {1.3, -0.4};
+  double rmse = 0.0, relative = 0.0;
+  image_errors(image, reference, rmse, relative);
+  EXPECT_NEAR(rmse, std::sqrt(0.25 / 2.0), 1e-15);
+  EXPECT_NEAR(relative, 0.5, 1e-15);
+  image_errors(reference, reference, rmse, relative);
+  EXPECT_EQ(rmse, 0.0);
+  EXPECT_EQ(relative, 0.0);
+  EXPECT_THROW(image_errors(Image(1, 1), reference, rmse, relative), std::invalid_argument);
 }
 
 TEST(Render, ShippedScenesLoad) {

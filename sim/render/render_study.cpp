@@ -1,0 +1,168 @@
+#include "scatterlab/render/render_study.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <stdexcept>
+
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/io/atomic_output.hpp"
+#include "scatterlab/io/plot.hpp"
+
+namespace scatterlab {
+
+namespace {
+
+constexpr RenderMethod study_methods[] = {RenderMethod::straight, RenderMethod::walter,
+                                          RenderMethod::holzschuch, RenderMethod::pathtrace};
+
+RenderResult render_at(RenderScene scene, RenderMethod method, int samples,
+                       const RenderStudyOptions& options) {
+  scene.samples = samples;
+  RenderSettings settings;
+  settings.method = method;
+  settings.threads = options.threads;
+  settings.seed = options.seed;
+  return render_single_scatter(scene, settings);
+}
+
+// One exposure for every panel: the reference's 99th percentile maps to white.
+double exposure_for(const Image& reference) {
+  std::vector<double> values = reference.values;
+  const auto k = static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), values.begin() + k, values.end());
+  const double high = values[static_cast<std::size_t>(k)];
+  return high > 0.0 ? -std::log2(high) : 0.0;
+}
+
+// The panels left to right with a black gap, each enlarged by pixel replication to at least 128
+// pixels wide so that small study images can be seen.
+Image side_by_side(const std::vector<const Image*>& panels) {
+  const int w = panels.front()->width, h = panels.front()->height;
+  const int zoom = std::max(1, 128 / w), gap = 2 * zoom;
+  const int count = static_cast<int>(panels.size());
+  Image out(count * w * zoom + (count - 1) * gap, h * zoom);
+  for (int p = 0; p < count; ++p) {
+    const Image& panel = *panels[static_cast<std::size_t>(p)];
+    for (int j = 0; j < h * zoom; ++j) {
+      for (int i = 0; i < w * zoom; ++i)
+        out.at(p * (w * zoom + gap) + i, j) = panel.at(i / zoom, j / zoom);
+    }
+  }
+  return out;
+}
+
+void write_csv(const std::vector<RenderStudyRow>& rows, const std::filesystem::path& path) {
+  AtomicOutput output(path);
+  {
+    std::ofstream file(output.temporary_path());
+    file << "scene,method,budget,light_samples,seconds,rmse,relative_error\n";
+    for (const RenderStudyRow& row : rows) {
+      file << fmt::format("{},{},{},{},{:.6g},{:.6g},{:.6g}\n", row.scene, to_string(row.method),
+                          row.budget, row.light_samples, row.seconds, row.rmse, row.relative_error);
+    }
+    if (!file.flush()) throw std::runtime_error("cannot write " + path.string());
+  }
+  output.commit();
+}
+
+void write_error_plot(const std::string& scene, const std::vector<RenderStudyRow>& rows,
+                      const std::filesystem::path& path) {
+  LinePlot plot;
+  plot.title = fmt::format("{}: single scattering, error against run time", scene);
+  plot.x_label = "seconds per image";
+  plot.y_label = "relative RMS error against the reference";
+  plot.y_scale = AxisScale::log;
+  plot.log_x = true;
+  for (const RenderMethod method : study_methods) {
+    PlotSeries series;
+    series.name = to_string(method);
+    for (const RenderStudyRow& row : rows) {
+      if (row.scene != scene || row.method != method) continue;
+      // A log axis cannot show 0 s; the clock's resolution is the floor.
+      series.x.push_back(std::max(row.seconds, 1e-6));
+      series.y.push_back(row.relative_error);
+    }
+    if (!series.x.empty()) plot.series.push_back(std::move(series));
+  }
+  write_png(plot, path);
+}
+
+}  // namespace
+
+RenderStudyOptions RenderStudyOptions::quick() {
+  RenderStudyOptions options;
+  options.size = 8;
+  options.budgets = {1, 4};
+  options.pathtrace_budgets = {2000, 8000};
+  options.reference_samples = 8;
+  return options;
+}
+
+void image_errors(const Image& image, const Image& reference, double& rmse,
+                  double& relative_error) {
+  if (image.width != reference.width || image.height != reference.height) {
+    throw std::invalid_argument("image_errors: images of different sizes");
+  }
+  double squared = 0.0, reference_squared = 0.0;
+  for (std::size_t k = 0; k < image.values.size(); ++k) {
+    const double d = image.values[k] - reference.values[k];
+    squared += d * d;
+    reference_squared += reference.values[k] * reference.values[k];
+  }
+  rmse = std::sqrt(squared / static_cast<double>(std::max<std::size_t>(image.values.size(), 1)));
+  relative_error = reference_squared > 0.0 ? std::sqrt(squared / reference_squared)
+                                           : std::numeric_limits<double>::infinity();
+}
+
+std::vector<RenderStudyRow> run_render_study(
+    const std::vector<RenderStudyScene>& scenes, const RenderStudyOptions& options,
+    const std::filesystem::path& out_dir,
+    const std::function<void(const RenderStudyRow&)>& on_row) {
+  if (options.size < 1 || options.budgets.empty() || options.pathtrace_budgets.empty() ||
+      options.reference_samples < 1) {
+    throw InputError("study", "an empty study", "size, budgets and samples >= 1");
+  }
+  // Fail before the work: the directory must exist (InputError "out").
+  { const AtomicOutput check(out_dir / "render_study.csv"); }
+
+  std::vector<RenderStudyRow> rows;
+  for (const RenderStudyScene& entry : scenes) {
+    RenderScene scene = entry.scene;
+    scene.width = scene.height = options.size;
+    const RenderResult reference =
+        render_at(scene, RenderMethod::holzschuch, options.reference_samples, options);
+    std::vector<RenderResult> largest;
+    for (const RenderMethod method : study_methods) {
+      RenderResult last;
+      const bool pathtrace = method == RenderMethod::pathtrace;
+      for (const int samples : pathtrace ? options.pathtrace_budgets : options.budgets) {
+        RenderResult result = render_at(scene, method, samples, options);
+        RenderStudyRow row;
+        row.scene = entry.name;
+        row.method = method;
+        row.budget = samples;
+        row.light_samples = pathtrace ? 0 : scene.light_samples;
+        row.seconds = result.seconds;
+        image_errors(result.image, reference.image, row.rmse, row.relative_error);
+        rows.push_back(row);
+        if (on_row) on_row(row);
+        last = std::move(result);
+      }
+      largest.push_back(std::move(last));
+    }
+    write_error_plot(entry.name, rows, out_dir / (entry.name + "_error.png"));
+    std::vector<const Image*> panels = {&reference.image};
+    for (const RenderResult& result : largest) panels.push_back(&result.image);
+    write_png(side_by_side(panels), out_dir / (entry.name + "_images.png"),
+              exposure_for(reference.image), 2.2);
+  }
+  write_csv(rows, out_dir / "render_study.csv");
+  return rows;
+}
+
+}  // namespace scatterlab

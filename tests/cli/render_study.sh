@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Usage: render_study.sh SCATTERLAB SOURCE_DIR
+# `scatterlab render --study --quick` end to end: the CSV has a row per scene, method and budget
+# with finite errors and times, and the error plot and the side-by-side images are written.
+set -u
+exe=$1
+source_dir=$2
+source "$(dirname "$0")/harness.sh"
+scenes=("$source_dir/data/scenes/bumpy-sphere.toml" "$source_dir/data/scenes/tile.toml")
+
+# A missing output directory is refused before any rendering.
+if "$exe" render --study --quick --out "$work/study" "${scenes[@]}" >stdout 2>stderr; then
+  fail "missing output directory: exited 0"
+elif ! grep -q out stderr; then
+  fail "missing output directory: error does not name out: $(cat stderr)"
+else
+  pass
+fi
+mkdir -p "$work/study"
+if "$exe" render --study --quick --out "$work/study" "${scenes[@]}" >stdout 2>stderr; then
+  pass
+else
+  fail "study: $(cat stderr)"
+fi
+
+csv="$work/study/render_study.csv"
+if [ "$(head -1 "$csv" 2>/dev/null)" = "scene,method,budget,light_samples,seconds,rmse,relative_error" ]; then
+  pass
+else
+  fail "CSV header: $(head -1 "$csv" 2>/dev/null)"
+fi
+# 2 scenes x 4 methods x 2 quick budgets.
+rows=$(tail -n +2 "$csv" 2>/dev/null | grep -c .)
+[ "$rows" = 16 ] && pass || fail "expected 16 rows, got $rows"
+bad=$(tail -n +2 "$csv" 2>/dev/null | awk -F, '
+  function finite(v) { return v ~ /^-?[0-9.]+(e[-+]?[0-9]+)?$/ }
+  !(finite($5) && finite($6) && finite($7) && $6 >= 0 && $7 >= 0) { print }')
+[ -z "$bad" ] && pass || fail "non-finite or negative values: $bad"
+# Every method of each scene is present.
+for method in straight walter holzschuch pathtrace; do
+  [ "$(grep -c ",$method," "$csv")" = 4 ] && pass || fail "$method rows"
+done
+for name in bumpy-sphere tile; do
+  for kind in error images; do
+    png="$work/study/${name}_$kind.png"
+    if [ -s "$png" ] && head -c 8 "$png" | od -An -c | grep -q "P   N   G"; then
+      pass
+    else
+      fail "missing $png"
+    fi
+  done
+done
+
+report cli.render_study
