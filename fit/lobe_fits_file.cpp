@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <optional>
 #include <stdexcept>
 
@@ -301,9 +300,7 @@ void write_fits(const RadianceLobes& lobes, const LobeGrid& grid, const LobeFitR
 
 void write_fits_csv(const std::filesystem::path& path, const RadianceLobes& lobes,
                     const LobeFitRun& run) {
-  AtomicOutput output(path);
-  {
-    std::ofstream csv(output.temporary_path());
+  write_text_file(path, [&lobes, &run](std::ostream& csv) {
     std::vector<std::string> header = {"r_index", "z_index", "r", "z"};
     for (const ModelFits& model : run.models) {
       const std::string name = to_string(model.model);
@@ -333,10 +330,7 @@ void write_fits_csv(const std::filesystem::path& path, const RadianceLobes& lobe
         csv << join(row) << '\n';
       }
     }
-    csv.close();
-    if (!csv) throw std::runtime_error("cannot write " + output.temporary_path().string());
-  }
-  output.commit();
+  });
 }
 
 LobeFitSummary summarize(const LobeFitRun& run) {

@@ -33,15 +33,11 @@ struct SearchlightOptions {
   bool model_fluence = false;
 };
 
+// A scalar tally's value and its standard error in *error; 0 and 0 when the run has none.
 double scalar(const std::vector<TallyResult>& tallies, const std::string& name, double* error) {
-  for (const TallyResult& t : tallies) {
-    if (t.name == name) {
-      *error = t.stderr_of_mean[0];
-      return t.mean[0];
-    }
-  }
-  *error = 0.0;
-  return 0.0;
+  const TallyResult* t = find_tally(tallies, name);
+  *error = t != nullptr ? t->stderr_of_mean[0] : 0.0;
+  return t != nullptr ? t->mean[0] : 0.0;
 }
 
 void print_summary(const SearchlightSpec& spec, const SearchlightOutput& out,

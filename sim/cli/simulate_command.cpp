@@ -42,13 +42,6 @@ std::string shape_text(const TallyResult& t) {
   return text;
 }
 
-const TallyResult* find(const std::vector<TallyResult>& tallies, const std::string& name) {
-  for (const TallyResult& t : tallies) {
-    if (t.name == name) return &t;
-  }
-  return nullptr;
-}
-
 void print_summary(const SimulationSpec& spec, const SimulationOutput& out,
                    const std::string& path) {
   const double events = static_cast<double>(out.scattering_events);
@@ -65,7 +58,7 @@ void print_summary(const SimulationSpec& spec, const SimulationOutput& out,
   std::string energy = "  energy per W incident:";
   double total = 0.0;
   for (const char* name : {"absorbed", "absorbed_outside_grid", "escaped"}) {
-    if (const TallyResult* t = find(out.tallies, name)) {
+    if (const TallyResult* t = find_tally(out.tallies, name)) {
       energy += fmt::format(" {} {:.6f} ± {:.1e},", name, t->mean[0], t->stderr_of_mean[0]);
       total += t->mean[0];
     }

@@ -65,16 +65,9 @@ struct SearchlightValidateOptions {
 };
 
 MonteCarloCurve curve(const std::vector<TallyResult>& tallies, const std::string& name) {
-  for (const TallyResult& t : tallies) {
-    if (t.name == name) return {t.mean, t.stderr_of_mean};
-  }
-  throw std::logic_error("searchlight run has no tally " + name);
-}
-
-std::vector<double> edges(const UniformAxis& axis) {
-  std::vector<double> e;
-  for (int i = 0; i <= axis.bins; ++i) e.push_back(axis.edge(i));
-  return e;
+  const TallyResult* t = find_tally(tallies, name);
+  if (t == nullptr) throw std::logic_error("searchlight run has no tally " + name);
+  return {t->mean, t->stderr_of_mean};
 }
 
 // The half-space comparison: the searchlight Monte Carlo against the diffusion models
@@ -98,7 +91,7 @@ int run_searchlight_validation(const SearchlightValidateOptions& o) {
   const SearchlightOutput out = run_searchlight(spec);
   const MonteCarloCurve reflectance = curve(out.tallies, "reflectance");
   const MonteCarloCurve specular = curve(out.tallies, "specular_reflectance");
-  const std::vector<double> r = edges(spec.grid.r), z = edges(spec.grid.z);
+  const std::vector<double> r = spec.grid.r.edges(), z = spec.grid.z.edges();
 
   const HalfSpaceComparison comparison = compare_half_space(
       HalfSpaceMedium::from_albedo(o.albedo, o.g, o.eta), 1.0 - specular.mean[0], r, z,

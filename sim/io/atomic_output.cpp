@@ -1,5 +1,7 @@
 #include "scatterlab/io/atomic_output.hpp"
 
+#include <fstream>
+
 #include <unistd.h>
 
 #include <atomic>
@@ -57,6 +59,19 @@ void AtomicOutput::commit() {
                              final_path_.string() + "': " + error.message());
   }
   committed_ = true;
+}
+
+void write_text_file(const std::filesystem::path& path,
+                     const std::function<void(std::ostream&)>& body) {
+  AtomicOutput output(path);
+  {
+    std::ofstream file(output.temporary_path());
+    if (!file) throw std::runtime_error("cannot write " + output.temporary_path().string());
+    body(file);
+    file.flush();
+    if (!file) throw std::runtime_error("failed writing " + output.temporary_path().string());
+  }
+  output.commit();
 }
 
 }  // namespace scatterlab

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <limits>
 #include <stdexcept>
 
@@ -57,17 +56,13 @@ Image side_by_side(const std::vector<const Image*>& panels) {
 }
 
 void write_csv(const std::vector<RenderStudyRow>& rows, const std::filesystem::path& path) {
-  AtomicOutput output(path);
-  {
-    std::ofstream file(output.temporary_path());
+  write_text_file(path, [&rows](std::ostream& file) {
     file << "scene,method,budget,light_samples,seconds,rmse,relative_error\n";
     for (const RenderStudyRow& row : rows) {
       file << fmt::format("{},{},{},{},{:.6g},{:.6g},{:.6g}\n", row.scene, to_string(row.method),
                           row.budget, row.light_samples, row.seconds, row.rmse, row.relative_error);
     }
-    if (!file.flush()) throw std::runtime_error("cannot write " + path.string());
-  }
-  output.commit();
+  });
 }
 
 void write_error_plot(const std::string& scene, const std::vector<RenderStudyRow>& rows,

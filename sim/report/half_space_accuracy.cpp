@@ -27,10 +27,8 @@ struct Scalar {
 };
 
 Scalar scalar(const SearchlightOutput& out, const std::string& name) {
-  for (const TallyResult& t : out.tallies) {
-    if (t.name == name) return {t.mean[0], t.stderr_of_mean[0]};
-  }
-  throw std::logic_error("report: searchlight run has no tally " + name);
+  const TallyResult& t = tally(out.tallies, name);
+  return {t.mean[0], t.stderr_of_mean[0]};
 }
 
 SearchlightSpec small_spec(double albedo, double g, double eta, std::uint64_t photons,
@@ -70,7 +68,7 @@ Section half_space_convergence(const Profile& profile) {
                 "relative error of the total diffuse reflectance", AxisScale::log, true, {}};
   PlotSeries errors{"|Monte Carlo - exact| / exact", {}, {}, {}, true};
   PlotSeries predicted{"standard error / exact", {}, {}, {}, false};
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  std::vector<double> photon_counts, standard_errors;
   const int budgets = profile.quick ? 6 : 9;
   for (int b = 0; b < budgets; ++b) {
     const auto photons = static_cast<std::uint64_t>((profile.quick ? 2e4 : 1e5) * std::ldexp(1.0, b));
@@ -91,11 +89,10 @@ Section half_space_convergence(const Profile& profile) {
     errors.y.push_back(std::abs(r.mean - exact) / exact);
     predicted.x.push_back(out.wall_seconds);
     predicted.y.push_back(r.stderr_of_mean / exact);
-    const double lx = std::log(static_cast<double>(photons)), ly = std::log(r.stderr_of_mean);
-    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
+    photon_counts.push_back(static_cast<double>(photons));
+    standard_errors.push_back(r.stderr_of_mean);
   }
-  const double n = budgets;
-  const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  const double slope = log_log_slope(photon_counts, standard_errors);
   section.checks.push_back(
       {fmt::format("slope of log stderr against log photons {:.3f} in [-0.6, -0.4]", slope),
        slope >= -0.6 && slope <= -0.4});

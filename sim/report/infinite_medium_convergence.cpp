@@ -40,17 +40,6 @@ Accuracy accuracy(const TallyResult& fluence, const UniformAxis& shells,
   return {std::sqrt(error2 / used), std::sqrt(predicted2 / used), z2 / used};
 }
 
-// Least-squares slope of log(y) against log(x).
-double log_log_slope(const std::vector<double>& x, const std::vector<double>& y) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = static_cast<double>(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const double lx = std::log(x[i]), ly = std::log(y[i]);
-    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
-
 }  // namespace
 
 Section infinite_medium_convergence(const Profile& profile) {
@@ -100,7 +89,7 @@ Section infinite_medium_convergence(const Profile& profile) {
       spec.run.threads = profile.threads;
       const SimulationOutput out = simulate(spec);
       section.non_finite_values += count_non_finite(out.tallies);
-      last = accuracy(tally(out, "fluence_spherical"), shells, exact);
+      last = accuracy(tally(out.tallies, "fluence_spherical"), shells, exact);
       photons.push_back(static_cast<double>(spec.run.photons));
       seconds.push_back(out.wall_seconds);
       errors.push_back(last.relative_rms_error);

@@ -52,9 +52,9 @@ Section infinite_medium_extremes(const Profile& profile) {
       section.non_finite_values += non_finite;
 
       const double n = static_cast<double>(spec.run.photons);
-      const double energy = tally(out, "absorbed").mean[0] +
-                            tally(out, "absorbed_outside_grid").mean[0] - 1.0;
-      const TallyResult& depth = tally(out, "absorbed_mean_depth");
+      const double energy = tally(out.tallies, "absorbed").mean[0] +
+                            tally(out.tallies, "absorbed_outside_grid").mean[0] - 1.0;
+      const TallyResult& depth = tally(out.tallies, "absorbed_mean_depth");
       const double depth_exact = 1.0 / (1.0 - albedo * g);
       const double depth_z = (depth.mean[0] - depth_exact) / depth.stderr_of_mean[0];
       const double events = static_cast<double>(out.scattering_events) / n;

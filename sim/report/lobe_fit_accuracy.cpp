@@ -15,6 +15,7 @@
 
 #include "scatterlab/fit/lobe_fit.hpp"
 #include "scatterlab/report/suites.hpp"
+#include "scatterlab/tally/axis.hpp"
 
 namespace scatterlab::report {
 namespace {
@@ -27,11 +28,7 @@ struct Case {
   fit::LobeParameters truth;
 };
 
-std::vector<double> edges(double max, int bins) {
-  std::vector<double> e;
-  for (int i = 0; i <= bins; ++i) e.push_back(max * i / bins);
-  return e;
-}
+std::vector<double> edges(double max, int bins) { return UniformAxis{0.0, max, bins}.edges(); }
 
 Eigen::Vector3d direction(double theta, double phi) {
   return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};

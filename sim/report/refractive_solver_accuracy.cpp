@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <numbers>
 #include <vector>
 
 #include "scatterlab/core/procedural_meshes.hpp"
@@ -17,6 +16,7 @@
 #include "scatterlab/refract/path_contribution.hpp"
 #include "scatterlab/refract/refractive_solver.hpp"
 #include "scatterlab/report/suites.hpp"
+#include "scatterlab/transport/random_walk.hpp"
 
 namespace scatterlab::report {
 namespace {
@@ -34,12 +34,8 @@ std::vector<Query> make_queries(int count, std::uint64_t seed) {
   for (int i = 0; i < count; ++i) {
     PhotonRandom random(seed, static_cast<std::uint64_t>(i));
     const auto a = random.next4(), b = random.next4();
-    const auto unit = [](double u, double w) {
-      const double z = 2.0 * u - 1.0, s = std::sqrt(1.0 - z * z), phi = 2.0 * std::numbers::pi * w;
-      return Vec3(s * std::cos(phi), s * std::sin(phi), z);
-    };
-    queries.push_back({0.8 * std::cbrt(a[0]) * unit(a[1], a[2]),
-                       Light::point((1.5 + 1.5 * a[3]) * unit(b[0], b[1]))});
+    queries.push_back({0.8 * std::cbrt(a[0]) * isotropic_direction(a[1], a[2]),
+                       Light::point((1.5 + 1.5 * a[3]) * isotropic_direction(b[0], b[1]))});
   }
   return queries;
 }

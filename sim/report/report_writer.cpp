@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <fstream>
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
@@ -28,13 +27,7 @@ std::string joined(const std::vector<std::string>& cells, const std::string& sep
 std::string as_is(const std::string& text) { return text; }
 
 void write_text(const std::filesystem::path& path, const std::string& text) {
-  AtomicOutput output(path);
-  {
-    std::ofstream stream(output.temporary_path());
-    stream << text;
-    if (!stream.flush()) throw std::runtime_error("cannot write " + path.string());
-  }
-  output.commit();
+  write_text_file(path, [&text](std::ostream& stream) { stream << text; });
 }
 
 }  // namespace

@@ -2,17 +2,29 @@
 // Small helpers the report's Monte Carlo sections share.
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "scatterlab/transport/simulate.hpp"
 
 namespace scatterlab::report {
 
-inline const TallyResult& tally(const SimulationOutput& output, const std::string& name) {
-  for (const TallyResult& t : output.tallies) {
-    if (t.name == name) return t;
+inline const TallyResult& tally(const std::vector<TallyResult>& tallies, const std::string& name) {
+  const TallyResult* t = find_tally(tallies, name);
+  if (t == nullptr) throw std::logic_error("report: run has no tally " + name);
+  return *t;
+}
+
+// Least-squares slope of log(y) against log(x): the exponent of a power law y ~ x^slope.
+inline double log_log_slope(const std::vector<double>& x, const std::vector<double>& y) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double lx = std::log(x[i]), ly = std::log(y[i]);
+    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
   }
-  throw std::logic_error("report: simulation has no tally " + name);
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 // NaN or Inf anywhere in a run's tallies (means and standard errors).

@@ -46,10 +46,7 @@ PointSourceComparison compare_point_source(double albedo,
   spec.run.threads = settings.threads;
   spec.validate();
   const SimulationOutput out = simulate(spec);
-  const TallyResult* fluence = nullptr;
-  for (const TallyResult& t : out.tallies) {
-    if (t.name == "fluence_spherical") fluence = &t;
-  }
+  const TallyResult* fluence = find_tally(out.tallies, "fluence_spherical");
   if (fluence == nullptr) throw std::logic_error("compare_point_source: no fluence_spherical tally");
 
   PointSourceComparison c;

@@ -10,12 +10,6 @@ namespace {
 
 constexpr const char* kUnits = "W mfp^-2 per W incident";
 
-std::vector<double> edges(const UniformAxis& axis) {
-  std::vector<double> e;
-  for (int i = 0; i <= axis.bins; ++i) e.push_back(axis.edge(i));
-  return e;
-}
-
 ModelResult scalar(const std::string& model, const std::string& name, double value,
                    const std::string& description, double error = -1.0) {
   ModelResult m{model, name, {}, {}, "W per W incident", description, {value}, {}};
@@ -30,7 +24,7 @@ std::vector<ModelResult> searchlight_model_curves(const SearchlightSpec& spec,
                                                   bool with_fluence) {
   std::vector<ModelResult> models;
   if (spec.incidence_deg != 0.0) return models;
-  const std::vector<double> r = edges(spec.grid.r);
+  const std::vector<double> r = spec.grid.r.edges();
   const std::size_t nr = r.size() - 1;
 
   // The exact once-scattered light: only what left after exactly one scattering event, the
@@ -48,7 +42,7 @@ std::vector<ModelResult> searchlight_model_curves(const SearchlightSpec& spec,
   const HalfSpaceMedium medium =
       HalfSpaceMedium::from_albedo(spec.medium.albedo, spec.medium.g, spec.eta);
   const std::vector<double> z =
-      spec.tallies.fluence && with_fluence ? edges(spec.grid.z) : std::vector<double>{};
+      spec.tallies.fluence && with_fluence ? spec.grid.z.edges() : std::vector<double>{};
   const HalfSpaceComparison comparison =
       compare_half_space(medium, 1.0 - specular_reflectance, r, z);
   for (const ModelCurve& curve : comparison.reflectance) {

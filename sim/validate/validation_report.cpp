@@ -4,8 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <functional>
 #include <limits>
 #include <stdexcept>
 
@@ -15,19 +13,6 @@
 
 namespace scatterlab {
 namespace {
-
-// Writes text through a temporary file renamed into place.
-void write_text(const std::filesystem::path& path, const std::function<void(std::ostream&)>& body) {
-  AtomicOutput output(path);
-  {
-    std::ofstream file(output.temporary_path());
-    if (!file) throw std::runtime_error("cannot write " + output.temporary_path().string());
-    body(file);
-    file.flush();
-    if (!file) throw std::runtime_error("failed writing " + output.temporary_path().string());
-  }
-  output.commit();
-}
 
 void make_directory(const std::filesystem::path& directory) {
   std::error_code error;
@@ -60,7 +45,7 @@ std::vector<std::filesystem::path> write_point_source_report(
   make_directory(directory);
   std::vector<std::filesystem::path> written;
   const auto shells = directory / "deon_point_source.csv";
-  write_text(shells, [&](std::ostream& out) {
+  write_text_file(shells, [&](std::ostream& out) {
     out << "# Isotropic point source, infinite medium, g = 0: shell-averaged fluence in mfp^-2 per "
            "unit source power (Monte Carlo mean and standard error, exact transport, classical "
            "diffusion, Grosjean)\n";
@@ -75,7 +60,7 @@ std::vector<std::filesystem::path> write_point_source_report(
   });
   written.push_back(shells);
   const auto errors = directory / "deon_errors.csv";
-  write_text(errors, [&](std::ostream& out) {
+  write_text_file(errors, [&](std::ostream& out) {
     out << "# Mean relative error |model - exact| / exact of the shell averages, near (rho < 1 mfp) "
            "and far (1 <= rho < rho_max); Monte Carlo over shells expecting >= 100 collisions\n";
     out << "albedo,model,near_relative_error,far_relative_error,max_abs_z,within_3_sigma,"
@@ -142,7 +127,7 @@ std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceCompar
       c.medium.sigma_s, c.medium.g, c.medium.eta, c.entry_transmittance);
 
   const auto reflectance_csv = directory / (stem + "_reflectance.csv");
-  write_text(reflectance_csv, [&](std::ostream& out) {
+  write_text_file(reflectance_csv, [&](std::ostream& out) {
     out << "# Searchlight problem, " << medium_line
         << ": R_d annulus averages per unit area per unit incident power\n# totals:";
     for (const ModelCurve& m : c.reflectance) {
@@ -201,7 +186,7 @@ std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceCompar
 
   if (nz > 0) {
     const auto fluence_csv = directory / (stem + "_fluence.csv");
-    write_text(fluence_csv, [&](std::ostream& out) {
+    write_text_file(fluence_csv, [&](std::ostream& out) {
       out << "# Searchlight problem, " << medium_line
           << ": fluence cell averages per unit incident power\nr_lo,r_hi,z_lo,z_hi,monte_carlo,"
              "monte_carlo_stderr";
@@ -269,7 +254,7 @@ std::vector<std::filesystem::path> write_single_scatter_report(
   make_directory(directory);
   const std::size_t nr = r_edges.size() - 1;
   const auto csv = directory / fmt::format("{}_single_scatter.csv", stem);
-  write_text(csv, [&](std::ostream& out) {
+  write_text_file(csv, [&](std::ostream& out) {
     out << "# once-scattered R_1(r), annulus averages per unit area per unit incident power\n"
            "r_lo,r_hi,monte_carlo,monte_carlo_stderr,exact,exact_error,z\n";
     for (std::size_t i = 0; i < nr; ++i) {

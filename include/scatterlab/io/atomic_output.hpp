@@ -4,6 +4,8 @@
 // directory is atomic on POSIX, so readers see either the old file or the whole new one.
 
 #include <filesystem>
+#include <functional>
+#include <ostream>
 
 namespace scatterlab {
 
@@ -31,5 +33,11 @@ class AtomicOutput {
   std::filesystem::path temporary_path_;
   bool committed_ = false;
 };
+
+// A text file (CSV, Markdown) written the same way: `body` writes to a stream on the temporary
+// file, which is renamed into place once the stream reports no error. Throws
+// std::runtime_error naming the file otherwise (and InputError as AtomicOutput does).
+void write_text_file(const std::filesystem::path& path,
+                     const std::function<void(std::ostream&)>& body);
 
 }  // namespace scatterlab

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace scatterlab {
@@ -19,6 +20,15 @@ struct TallyResult {
 
   std::size_t size() const { return mean.size(); }
 };
+
+// The tally called `name` among `tallies`, or nullptr when there is none.
+inline const TallyResult* find_tally(const std::vector<TallyResult>& tallies,
+                                     std::string_view name) {
+  for (const TallyResult& t : tallies) {
+    if (t.name == name) return &t;
+  }
+  return nullptr;
+}
 
 // Fills `tally` (name, dims, shape, units and description set) from the raw per-photon batch
 // mean and standard error at [offset, offset + cells), dividing cell i by measure(i): its
