@@ -16,6 +16,9 @@ mkdir -p "$data"
 "$exe" fit "$data/paper-beam.h5" >/dev/null
 "$exe" searchlight --albedo 0.9 --g 0.5 --eta 1.33 --photons 1e5 --batches 16 --r-bins 50 \
   --out "$data/searchlight.h5" >/dev/null
+mkdir -p "$data/render-study"
+"$exe" render --study --quick --out "$data/render-study" \
+  "$source_dir/data/scenes/bumpy-sphere.toml" "$source_dir/data/scenes/tile.toml" >/dev/null
 for albedo in 0.3 0.9; do
   "$exe" simulate --source point --albedo "$albedo" --g 0 --photons 5e4 --batches 16 \
     --out "$data/point-$albedo.h5" >/dev/null
