@@ -123,7 +123,8 @@ void BM_EyeRaySupports(benchmark::State& state) {
     const double length = ray.segment.t1 - ray.segment.t0;
     supports.clear();
     if (mode <= 1) {
-      find_segment_supports(solver, ray.segment, ray.light, supports, support_stats);
+      find_segment_supports(RefractedLight(solver, ray.light), ray.segment, supports,
+                            support_stats);
       for (const TriangleSupport& t : supports) interval_fraction += t.interval.length() / length;
     }
     if (mode == 0) continue;

@@ -35,49 +35,69 @@ bool cones_may_connect(const DirectionCone& normals, const DirectionCone& v_cone
   return cones_admit_path(normals, v_cone, l_cone, eta);
 }
 
-// Step 2's test on the sub-triangle with barycentric corners ab. With interpolated normals the
-// normal cone does not shrink as the segment is bisected, so the test also splits the triangle
-// (at the edge midpoints, Walter §3.3.1) up to `splits` times and keeps the segment if any part
-// may connect.
-bool subtriangle_may_contribute(const RefractiveTriangle& tri, const std::array<Vec2, 3>& ab,
-                                const Vec3& va, const Vec3& vb, const Light& light, double eta,
+// The normal and light cones of the sub-triangle with barycentric corners ab. n(a, b) is linear,
+// so inside the sub-triangle it is a non-negative combination of the corners' n: its direction
+// lies in their cone. False when a corner is at the light.
+bool part_cones(const RefractiveTriangle& tri, const std::array<Vec2, 3>& ab, const Light& light,
+                DirectionCone& normal_cone, DirectionCone& l_cone) {
+  std::array<Vec3, 3> to_l, normals;
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (!light.at_infinity) {
+      const Vec3 dl = light.position - tri.point(ab[i].x(), ab[i].y());
+      if (!(dl.norm() > 0.0)) return false;
+      to_l[i] = dl.normalized();
+    }
+    if (tri.smooth) normals[i] = tri.shading_normal(ab[i].x(), ab[i].y());
+  }
+  l_cone = light.at_infinity ? DirectionCone{light.direction_to_light, 0.0}
+                             : cone_of_directions(to_l);
+  normal_cone = tri.smooth ? cone_of_directions(normals) : DirectionCone{tri.geometric_normal, 0.0};
+  return true;
+}
+
+// The four parts of a sub-triangle, split at its edge midpoints (Walter §3.3.1), in the order of
+// RefractedLight::parts.
+std::array<std::array<Vec2, 3>, 4> quarters(const std::array<Vec2, 3>& ab) {
+  const Vec2 m01 = 0.5 * (ab[0] + ab[1]), m12 = 0.5 * (ab[1] + ab[2]), m20 = 0.5 * (ab[2] + ab[0]);
+  return {{{ab[0], m01, m20}, {m01, ab[1], m12}, {m20, m12, ab[2]}, {m01, m12, m20}}};
+}
+
+const std::array<Vec2, 3> whole_triangle{Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
+
+// Step 2's test on part `part` of the triangle (barycentric corners ab): first the light's
+// refracted cone against the directions from the part to the segment, then the deviation and
+// half-vector tests. With interpolated normals the normal cone does not shrink as the segment is
+// bisected, so the test also splits the triangle up to `splits` times and keeps the segment if
+// any part may connect.
+bool subtriangle_may_contribute(const RefractedLight& lit, const RefractiveTriangle& tri,
+                                const DirectionCone* refracted, std::size_t part,
+                                const std::array<Vec2, 3>& ab, const Vec3& va, const Vec3& vb,
                                 int splits) {
-  std::array<Vec3, 3> corners, to_l, normals;
-  for (std::size_t i = 0; i < 3; ++i) corners[i] = tri.point(ab[i].x(), ab[i].y());
   // Directions from the triangle to the segment: V - P ranges over a convex polytope whose
   // vertices are the six corner-to-end differences, so a cone (< 90 degrees) holding their
   // directions holds all (as Walter §3.3.1 argues for sub-triangles).
   std::array<Vec3, 6> to_v;
   for (std::size_t i = 0; i < 3; ++i) {
-    const Vec3 da = va - corners[i], db = vb - corners[i];
+    const Vec3 corner = tri.point(ab[i].x(), ab[i].y());
+    const Vec3 da = va - corner, db = vb - corner;
     if (!(da.norm() > 0.0 && db.norm() > 0.0)) return true;
     to_v[2 * i] = da.normalized();
     to_v[2 * i + 1] = db.normalized();
-    if (!light.at_infinity) {
-      const Vec3 dl = light.position - corners[i];
-      if (!(dl.norm() > 0.0)) return true;
-      to_l[i] = dl.normalized();
-    }
   }
   const DirectionCone v_cone = cone_of_directions(to_v);
-  const DirectionCone l_cone = light.at_infinity ? DirectionCone{light.direction_to_light, 0.0}
-                                                 : cone_of_directions(to_l);
-  DirectionCone normal_cone{tri.geometric_normal, 0.0};
-  if (tri.smooth) {
-    // n(a, b) is linear, so inside the sub-triangle it is a non-negative combination of the
-    // corners' n: its direction lies in their cone.
-    for (std::size_t i = 0; i < 3; ++i) normals[i] = tri.shading_normal(ab[i].x(), ab[i].y());
-    normal_cone = cone_of_directions(normals);
-  }
+  const double eta = lit.solver().eta();
+  if (eta != 1.0 && !overlap(v_cone, refracted[part])) return false;
+  DirectionCone normal_cone, l_cone;
+  if (!part_cones(tri, ab, lit.light(), normal_cone, l_cone)) return true;
   if (!cones_may_connect(normal_cone, v_cone, l_cone, eta)) return false;
   if (splits == 0) return true;
-  const Vec2 m01 = 0.5 * (ab[0] + ab[1]), m12 = 0.5 * (ab[1] + ab[2]), m20 = 0.5 * (ab[2] + ab[0]);
-  const std::array<std::array<Vec2, 3>, 4> parts{{{ab[0], m01, m20},
-                                                  {m01, ab[1], m12},
-                                                  {m20, m12, ab[2]},
-                                                  {m01, m12, m20}}};
-  for (const auto& part : parts) {
-    if (subtriangle_may_contribute(tri, part, va, vb, light, eta, splits - 1)) return true;
+  const auto parts = quarters(ab);
+  for (std::size_t i = 0; i < 4; ++i) {
+    // Children of part p (level d, first index f_d = (4^d - 1) / 3) are f_{d+1} + 4 (p - f_d) + i.
+    const std::size_t child = part == 0 ? 1 + i : 5 + 4 * (part - 1) + i;
+    if (subtriangle_may_contribute(lit, tri, refracted, child, parts[i], va, vb, splits - 1)) {
+      return true;
+    }
   }
   return false;
 }
@@ -256,12 +276,12 @@ class FlatSupport {
 };
 
 // Step 2: the first (from_left) or last surviving leaf of the bisection of [lo, hi].
-std::optional<double> extreme_surviving_x(const RefractiveTriangle& tri, const EyeSegment& segment,
-                                          const Light& light, double eta, double lo, double hi,
+std::optional<double> extreme_surviving_x(const RefractedLight& lit, std::uint32_t triangle,
+                                          const EyeSegment& segment, double lo, double hi,
                                           double leaf, bool from_left, int depth,
                                           SupportStats& stats) {
   ++stats.cone_tests;
-  if (!triangle_may_contribute(tri, segment.at(lo), segment.at(hi), light, eta)) {
+  if (!triangle_may_contribute(lit, triangle, segment.at(lo), segment.at(hi))) {
     return std::nullopt;
   }
   if (hi - lo <= leaf || depth >= 24) return from_left ? lo : hi;
@@ -269,7 +289,7 @@ std::optional<double> extreme_surviving_x(const RefractiveTriangle& tri, const E
   const std::array<std::array<double, 2>, 2> halves{{{lo, mid}, {mid, hi}}};
   for (int i = 0; i < 2; ++i) {
     const auto& half = halves[static_cast<std::size_t>(from_left ? i : 1 - i)];
-    if (auto x = extreme_surviving_x(tri, segment, light, eta, half[0], half[1], leaf, from_left,
+    if (auto x = extreme_surviving_x(lit, triangle, segment, half[0], half[1], leaf, from_left,
                                      depth + 1, stats)) {
       return x;
     }
@@ -290,14 +310,55 @@ SupportStats& SupportStats::operator+=(const SupportStats& o) {
   return *this;
 }
 
-bool triangle_may_contribute(const RefractiveTriangle& tri, const Vec3& va, const Vec3& vb,
-                             const Light& light, double eta) {
-  return subtriangle_may_contribute(tri, {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)}, va, vb, light, eta,
+RefractedLight::RefractedLight(const RefractiveSolver& solver, const Light& light)
+    : solver_(&solver), light_(light) {
+  const double eta = solver.eta();
+  const auto& tree_nodes = solver.tree().nodes();
+  nodes_.reserve(tree_nodes.size());
+  for (const PositionNormalTree::Node& node : tree_nodes) {
+    const Vec3 center = 0.5 * (node.lo + node.hi);
+    const double radius = 0.5 * (node.hi - node.lo).norm();
+    const DirectionCone l_cone = light.at_infinity
+                                     ? DirectionCone{light.direction_to_light, 0.0}
+                                     : cone_towards(center, radius, light.position);
+    nodes_.push_back(refracted_cone(node.normals, l_cone, eta));
+  }
+  const std::size_t count = solver.triangle_count();
+  bool smooth = false;
+  for (std::size_t t = 0; t < count; ++t) smooth = smooth || solver.triangle(t).smooth;
+  parts_per_triangle_ = smooth ? 21 : 1;
+  parts_.assign(count * parts_per_triangle_, DirectionCone::everything());
+  for (std::size_t t = 0; t < count; ++t) {
+    const RefractiveTriangle& tri = solver.triangle(t);
+    DirectionCone* out = &parts_[t * parts_per_triangle_];
+    const auto refracted = [&](const std::array<Vec2, 3>& ab) {
+      DirectionCone normal_cone, l_cone;
+      if (!part_cones(tri, ab, light, normal_cone, l_cone)) return DirectionCone::everything();
+      return refracted_cone(normal_cone, l_cone, eta);
+    };
+    out[0] = refracted(whole_triangle);
+    if (parts_per_triangle_ == 1 || !tri.smooth) continue;
+    const auto level1 = quarters(whole_triangle);
+    for (std::size_t i = 0; i < 4; ++i) {
+      out[1 + i] = refracted(level1[i]);
+      const auto level2 = quarters(level1[i]);
+      for (std::size_t j = 0; j < 4; ++j) out[5 + 4 * i + j] = refracted(level2[j]);
+    }
+  }
+}
+
+bool triangle_may_contribute(const RefractedLight& lit, std::uint32_t triangle, const Vec3& va,
+                             const Vec3& vb) {
+  const RefractiveTriangle& tri = lit.solver().triangle(triangle);
+  return subtriangle_may_contribute(lit, tri, lit.parts(triangle), 0, whole_triangle, va, vb,
                                     tri.smooth ? smooth_split_depth : 0);
 }
 
-bool node_may_contribute(const PositionNormalTree::Node& node, const Vec3& va, const Vec3& vb,
-                         const Light& light, double eta) {
+bool node_may_contribute(const RefractedLight& lit, std::uint32_t index, const Vec3& va,
+                         const Vec3& vb) {
+  const PositionNormalTree::Node& node = lit.solver().tree().nodes()[index];
+  const Light& light = lit.light();
+  const double eta = lit.solver().eta();
   const Vec3 center = 0.5 * (node.lo + node.hi);
   const double radius = 0.5 * (node.hi - node.lo).norm();
   // Holzschuch §3.2.4: the sweeping cone of omega_V, axis from u_Vmin to u_Vmax (the arc between
@@ -314,15 +375,19 @@ bool node_may_contribute(const PositionNormalTree::Node& node, const Vec3& va, c
     v_cone.half_angle += std::asin(radius / d_min);
     if (v_cone.half_angle >= 0.5 * pi) v_cone = DirectionCone::everything();
   }
+  if (eta != 1.0 && !overlap(v_cone, lit.node(index))) return false;
   const DirectionCone l_cone = light.at_infinity ? DirectionCone{light.direction_to_light, 0.0}
                                                  : cone_towards(center, radius, light.position);
   return cones_may_connect(node.normals, v_cone, l_cone, eta);
 }
 
-std::optional<SupportInterval> triangle_support_interval(const RefractiveTriangle& tri,
+std::optional<SupportInterval> triangle_support_interval(const RefractedLight& lit,
+                                                         std::uint32_t triangle,
                                                          const EyeSegment& segment,
-                                                         const Light& light, double eta,
                                                          SupportStats& stats) {
+  const RefractiveTriangle& tri = lit.solver().triangle(triangle);
+  const Light& light = lit.light();
+  const double eta = lit.solver().eta();
   ++stats.triangles_tested;
   const Vec3& ng = tri.geometric_normal;
   if (ng.squaredNorm() == 0.0) return std::nullopt;  // degenerate: no plane, no path
@@ -341,9 +406,9 @@ std::optional<SupportInterval> triangle_support_interval(const RefractiveTriangl
     // Step 2: outer bound.
     const double leaf = 0.125 * std::max({tri.edge1.norm(), tri.edge2.norm(),
                                           (tri.edge2 - tri.edge1).norm()});
-    const auto first = extreme_surviving_x(tri, segment, light, eta, lo, hi, leaf, true, 0, stats);
+    const auto first = extreme_surviving_x(lit, triangle, segment, lo, hi, leaf, true, 0, stats);
     if (!first) return std::nullopt;
-    const auto last = extreme_surviving_x(tri, segment, light, eta, lo, hi, leaf, false, 0, stats);
+    const auto last = extreme_surviving_x(lit, triangle, segment, lo, hi, leaf, false, 0, stats);
     lo = *first;
     hi = last ? *last : hi;
     // Step 3: exact ends for flat triangles.
@@ -355,9 +420,8 @@ std::optional<SupportInterval> triangle_support_interval(const RefractiveTriangl
   return SupportInterval{lo, hi};
 }
 
-void find_segment_supports(const RefractiveSolver& solver, const EyeSegment& segment,
-                           const Light& light, std::vector<TriangleSupport>& supports,
-                           SupportStats& stats) {
+void find_segment_supports(const RefractedLight& lit, const EyeSegment& segment,
+                           std::vector<TriangleSupport>& supports, SupportStats& stats) {
   if (!(std::abs(segment.direction.norm() - 1.0) <= 1e-9)) {
     throw InputError("segment.direction", fmt::format("has length {}", segment.direction.norm()),
                      "a unit vector");
@@ -368,14 +432,14 @@ void find_segment_supports(const RefractiveSolver& solver, const EyeSegment& seg
   }
   ++stats.segments;
   const Vec3 va = segment.at(segment.t0), vb = segment.at(segment.t1);
-  const double eta = solver.eta();
-  solver.tree().for_each_leaf_triangle(
+  const PositionNormalTree::Node* first_node = lit.solver().tree().nodes().data();
+  lit.solver().tree().for_each_leaf_triangle(
       [&](const PositionNormalTree::Node& node) {
-        return node_may_contribute(node, va, vb, light, eta);
+        return node_may_contribute(lit, static_cast<std::uint32_t>(&node - first_node), va, vb);
       },
       stats.nodes_visited,
       [&](std::uint32_t t) {
-        if (auto interval = triangle_support_interval(solver.triangle(t), segment, light, eta, stats)) {
+        if (auto interval = triangle_support_interval(lit, t, segment, stats)) {
           supports.push_back({t, *interval});
         }
       });

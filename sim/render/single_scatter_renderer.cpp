@@ -45,42 +45,37 @@ std::string to_string(RenderMethod method) {
 
 namespace {
 
-// Snell refraction of the travel direction d at a surface whose unit normal n faces the side d
-// comes from (d . n < 0); ratio = n_incident / n_transmitted. False under total internal
-// reflection (pbrt-v4, Refract).
-bool refract(const Vec3& d, const Vec3& n, double ratio, Vec3& out) {
-  const double cos_i = -d.dot(n);
-  const double sin2_t = ratio * ratio * std::max(0.0, 1.0 - cos_i * cos_i);
-  if (sin2_t >= 1.0) return false;
-  const double cos_t = std::sqrt(1.0 - sin2_t);
-  out = (ratio * d + (ratio * cos_i - cos_t) * n).normalized();
-  return true;
-}
-
-// Points of a sphere light (spherical Fibonacci lattice), each a point light of intensity
-// 4 I cos+ / M (see the header); one point of intensity I for a point light.
+// Points standing for the light (see the header): a point light is itself; a sphere light is
+// the disc it shows the object, centred on the light and facing `target`, cut into M cells of
+// equal area (Vogel's spiral: radius r sqrt((k + 1/2) / M), golden-angle turns), each an
+// isotropic point of intensity I / M.
 struct LightPoint {
   Vec3 position;
-  Vec3 normal;  // zero for a point light: isotropic
   double intensity;
-
-  double towards(const Vec3& direction_from_light) const {
-    if (normal.isZero()) return intensity;
-    return intensity * std::max(0.0, normal.dot(direction_from_light));
-  }
 };
 
-std::vector<LightPoint> light_points(const RenderLight& light, int count) {
-  if (light.radius == 0.0) return {{light.position, Vec3::Zero(), light.intensity}};
-  std::vector<LightPoint> points;
+std::vector<LightPoint> light_points(const RenderLight& light, int count, const Vec3& target) {
+  if (light.radius == 0.0) return {{light.position, light.intensity}};
+  const Frame frame(Vec3(target - light.position).normalized());
   const double golden = pi * (3.0 - std::sqrt(5.0));
+  std::vector<LightPoint> points;
   for (int k = 0; k < count; ++k) {
-    const double z = 1.0 - (2.0 * k + 1.0) / count;
-    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-    const Vec3 n(r * std::cos(golden * k), r * std::sin(golden * k), z);
-    points.push_back({light.position + light.radius * n, n, 4.0 * light.intensity / count});
+    const double r = light.radius * std::sqrt((k + 0.5) / count);
+    const double phi = golden * k;
+    const Vec3 offset = std::cos(phi) * frame.tangent + std::sin(phi) * frame.bitangent;
+    points.push_back({light.position + r * offset, light.intensity / count});
   }
   return points;
+}
+
+// Centre of the mesh's bounding box.
+Vec3 mesh_center(const TriangleMesh& mesh) {
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  for (const Vec3& p : mesh.positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return 0.5 * (lo + hi);
 }
 
 // Distances along [a, b] with density proportional to exp(-sigma_t x): x(u) inverts the CDF.
@@ -108,7 +103,12 @@ class Renderer {
         tracer_(scene.mesh),
         solver_(scene.mesh, scene.eta),
         phase_{scene.medium.g},
-        lights_(light_points(scene.light, scene.light_samples)) {}
+        lights_(light_points(scene.light, scene.light_samples, mesh_center(scene.mesh))) {
+    if (settings.method == RenderMethod::holzschuch) {
+      lit_.reserve(lights_.size());
+      for (const LightPoint& light : lights_) lit_.emplace_back(solver_, Light::point(light.position));
+    }
+  }
 
   // Compile-time specialised once per run: refraction at the boundary, and shading normals.
   template <bool Refracting, bool Smooth>
@@ -203,7 +203,7 @@ class Renderer {
     if constexpr (Refracting) {
       // Fresnel (core/fresnel.hpp) and Snell from outside (index 1) into the medium (eta); the
       // radiance leaving the medium towards the camera is T L / eta^2 (n^2 law).
-      if (!refract(d, n, 1.0 / scene_.eta, inside)) return false;
+      if (!refract(d, n, scene_.eta, inside)) return false;
       weight = fresnel_dielectric_transmittance(cos_i, scene_.eta) / (scene_.eta * scene_.eta);
     }
     if (!(inside.dot(scene_.mesh.geometric_normal(hit.triangle)) < 0.0)) return false;
@@ -224,7 +224,7 @@ class Renderer {
                                                    scene_.eta, scene_.medium.sigma_t, false);
       // Light travels along omega_v at V and leaves towards the camera along -direction.
       const double cos_theta = -path.omega_v.dot(segment.direction);
-      sum += phase_.evaluate(cos_theta) * light.towards(-path.omega_l) * c.irradiance;
+      sum += phase_.evaluate(cos_theta) * light.intensity * c.irradiance;
     }
     return sum;
   }
@@ -255,10 +255,11 @@ class Renderer {
     RefractionStats stats;
     SupportStats support_stats;
     const int n = scene_.samples;
-    for (const LightPoint& light : lights_) {
-      const Light point = Light::point(light.position);
+    for (std::size_t k = 0; k < lights_.size(); ++k) {
+      const LightPoint& light = lights_[k];
+      const Light& point = lit_[k].light();
       supports.clear();
-      find_segment_supports(solver_, segment, point, supports, support_stats);
+      find_segment_supports(lit_[k], segment, supports, support_stats);
       for (const TriangleSupport& support : supports) {
         const TransmittanceSampler sampler(support.interval.x_min, support.interval.x_max,
                                            scene_.medium.sigma_t);
@@ -287,10 +288,11 @@ class Renderer {
     double sum = 0.0;
     RefractionStats stats;
     SupportStats support_stats;
-    for (const LightPoint& light : lights_) {
-      const Light point = Light::point(light.position);
+    for (std::size_t k = 0; k < lights_.size(); ++k) {
+      const LightPoint& light = lights_[k];
+      const Light& point = lit_[k].light();
       supports.clear();
-      find_segment_supports(solver_, segment, point, supports, support_stats);
+      find_segment_supports(lit_[k], segment, supports, support_stats);
       for (int s = 0; s < n; ++s) {
         const double x = sampler.at((s + 0.5) / n);
         const Vec3 v = segment.at(x);
@@ -336,7 +338,7 @@ class Renderer {
         const double irradiance =
             transmittance * std::exp(-scene_.medium.sigma_t * hit.distance) / (distance * distance);
         // Light travels along -w at V and leaves towards the camera along -direction.
-        sum += phase_.evaluate(w.dot(segment.direction)) * light.towards(-w) * irradiance;
+        sum += phase_.evaluate(w.dot(segment.direction)) * light.intensity * irradiance;
       }
     }
     return scene_.medium.sigma_s() * sampler.mass * sum / n;
@@ -371,7 +373,7 @@ class Renderer {
       Vec3 out = w;
       double transmittance = 1.0;
       if (eta != 1.0) {
-        if (!refract(w, -n_s, eta, out)) continue;  // total internal reflection
+        if (!refract(w, -n_s, 1.0 / eta, out)) continue;  // total internal reflection
         transmittance = fresnel_dielectric_transmittance(cos_o, 1.0 / eta);
       }
       const Vec3 p = point_at(hit);
@@ -404,6 +406,7 @@ class Renderer {
   RefractiveSolver solver_;
   HenyeyGreenstein phase_;
   std::vector<LightPoint> lights_;
+  std::vector<RefractedLight> lit_;  // holzschuch: per light point
 };
 
 }  // namespace

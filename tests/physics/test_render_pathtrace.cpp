@@ -24,7 +24,7 @@ TEST(RenderPathtrace, ConvergesToTheRefractiveSolution) {
   scene.camera.fov_degrees = 40.0;
   scene.width = 8;
   scene.height = 8;
-  scene.light_samples = 24;  // Fibonacci points on the sphere light
+  scene.light_samples = 24;  // points on the sphere light's disc
   scene.samples = 8;
   scene.validate();
 

@@ -101,7 +101,7 @@ TEST_P(SupportContainment, IntervalsHoldEverySampleAtWhichATriangleContributes) 
   const auto ray_cases = make_ray_cases(c, bumpy ? 3 : 5, 29 + static_cast<std::uint64_t>(GetParam()));
   for (const RayCase& s : ray_cases) {
     std::vector<TriangleSupport> supports;
-    find_segment_supports(solver, s.segment, s.light, supports, stats);
+    find_segment_supports(RefractedLight(solver, s.light), s.segment, supports, stats);
     supports_total += supports.size();
     for (const TriangleSupport& t : supports) {
       relative_length += t.interval.length() / (s.segment.t1 - s.segment.t0);
@@ -160,7 +160,7 @@ TEST(SupportInterval, FlatIntervalsAreExact) {
       for (const RayCase& s : make_ray_cases(c, 6, 71)) {
         std::vector<TriangleSupport> supports;
         SupportStats stats;
-        find_segment_supports(solver, s.segment, s.light, supports, stats);
+        find_segment_supports(RefractedLight(solver, s.light), s.segment, supports, stats);
         for (const TriangleSupport& t : supports) {
           const double nudge = 1e-7 * (s.segment.t1 - s.segment.t0);
           if (!(t.interval.length() > 4.0 * nudge)) continue;
@@ -195,7 +195,7 @@ TEST(SupportInterval, IntegralOverIntervalsEqualsIntegralOverSegment) {
     for (const RayCase& s : make_ray_cases(c, 3, 5)) {
       std::vector<TriangleSupport> supports;
       SupportStats stats;
-      find_segment_supports(solver, s.segment, s.light, supports, stats);
+      find_segment_supports(RefractedLight(solver, s.light), s.segment, supports, stats);
       const double dx = (s.segment.t1 - s.segment.t0) / samples;
       double whole = 0.0, restricted = 0.0;
       std::vector<RefractionPath> paths;
@@ -240,12 +240,13 @@ TEST(SupportInterval, RejectsBadSegments) {
   std::vector<TriangleSupport> supports;
   SupportStats stats;
   const Light light = Light::point(Vec3(0, 0, 3));
-  EXPECT_THROW(find_segment_supports(solver, {Vec3::Zero(), Vec3(2, 0, 0), 0.0, 0.5}, light,
-                                     supports, stats),
-               InputError);
-  EXPECT_THROW(find_segment_supports(solver, {Vec3::Zero(), Vec3::UnitX(), 0.5, 0.0}, light,
-                                     supports, stats),
-               InputError);
+  const RefractedLight lit(solver, light);
+  EXPECT_THROW(
+      find_segment_supports(lit, {Vec3::Zero(), Vec3(2, 0, 0), 0.0, 0.5}, supports, stats),
+      InputError);
+  EXPECT_THROW(
+      find_segment_supports(lit, {Vec3::Zero(), Vec3::UnitX(), 0.5, 0.0}, supports, stats),
+      InputError);
 }
 
 }  // namespace

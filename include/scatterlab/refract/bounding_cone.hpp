@@ -17,12 +17,18 @@ inline double angle_between(const Vec3& a, const Vec3& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
 }
 
+// Choosing the widest direction by its cosine can miss by a rounding tie: cosines equal to 1e-16
+// differ in angle by at most about 1e-8 (at angle 0), which this slack covers.
+constexpr double cosine_tie_slack = 2e-8;
+
 struct DirectionCone {
   Vec3 axis = Vec3::UnitZ();
   double half_angle = pi;  // >= pi / 2 is treated as "any direction"
 
   static DirectionCone everything() { return {Vec3::UnitZ(), pi}; }
+  static DirectionCone none() { return {Vec3::UnitZ(), -1.0}; }  // holds no direction
   bool is_everything() const { return half_angle >= 0.5 * pi; }
+  bool is_none() const { return half_angle < 0.0; }
 };
 
 // Smallest-axis-is-the-mean cone holding unit directions. A cone of half-angle below pi/2 is
@@ -34,9 +40,12 @@ inline DirectionCone cone_of_directions(std::span<const Vec3> directions) {
   const double length = sum.norm();
   if (!(length > 1e-12)) return DirectionCone::everything();
   DirectionCone cone{sum / length, 0.0};
+  // The widest direction has the least cosine; one accurate angle for it, not one per direction.
+  const Vec3* widest = &directions.front();
   for (const Vec3& d : directions) {
-    cone.half_angle = std::max(cone.half_angle, angle_between(cone.axis, d));
+    if (cone.axis.dot(d) < cone.axis.dot(*widest)) widest = &d;
   }
+  cone.half_angle = angle_between(cone.axis, *widest) + cosine_tie_slack;
   if (cone.half_angle >= 0.5 * pi) cone.half_angle = pi;
   return cone;
 }
@@ -67,6 +76,7 @@ inline DirectionCone merge(const DirectionCone& a, const DirectionCone& b) {
 // Two cones share a direction iff the angle between their axes is at most the sum of their
 // half-angles (Walter §3.3.1). A small slack covers rounding.
 inline bool overlap(const DirectionCone& a, const DirectionCone& b) {
+  if (a.is_none() || b.is_none()) return false;
   if (a.is_everything() || b.is_everything()) return true;
   return angle_between(a.axis, b.axis) <= a.half_angle + b.half_angle + 1e-9;
 }
@@ -81,10 +91,16 @@ struct VectorBox {
 inline VectorBox box_of_cone(const DirectionCone& cone) {
   VectorBox box;
   if (cone.is_everything()) return box;
+  // cos(alpha -+ theta) expanded, with alpha = acos(axis_k): no per-component trig. The clips
+  // alpha - theta <= 0 and alpha + theta >= pi compare cosines (cos decreases on [0, pi]); the
+  // box is widened by rounding slack so that it stays a bound.
+  const double cos_t = std::cos(cone.half_angle), sin_t = std::sin(cone.half_angle);
+  constexpr double slack = 1e-12;
   for (int k = 0; k < 3; ++k) {
-    const double alpha = std::acos(std::clamp(cone.axis[k], -1.0, 1.0));
-    box.lo[k] = std::cos(std::min(pi, alpha + cone.half_angle));
-    box.hi[k] = std::cos(std::max(0.0, alpha - cone.half_angle));
+    const double cos_a = std::clamp(cone.axis[k], -1.0, 1.0);
+    const double sin_a = std::sqrt(std::max(0.0, 1.0 - cos_a * cos_a));
+    box.lo[k] = cos_a <= -cos_t ? -1.0 : std::max(-1.0, cos_a * cos_t - sin_a * sin_t - slack);
+    box.hi[k] = cos_a >= cos_t ? 1.0 : std::min(1.0, cos_a * cos_t + sin_a * sin_t + slack);
   }
   return box;
 }
@@ -102,7 +118,17 @@ inline DirectionCone cone_of_box(const VectorBox& box) {
   }
   const Vec3 center = 0.5 * (box.lo + box.hi);
   DirectionCone cone{center.normalized(), 0.0};
-  for (const Vec3& c : corners) cone.half_angle = std::max(cone.half_angle, angle_between(cone.axis, c));
+  // The widest corner has the least cosine to the axis (as in cone_of_directions).
+  std::size_t widest = 0;
+  double least = 2.0;
+  for (std::size_t c = 0; c < corners.size(); ++c) {
+    const double cosine = cone.axis.dot(corners[c]) / corners[c].norm();
+    if (cosine < least) {
+      least = cosine;
+      widest = c;
+    }
+  }
+  cone.half_angle = angle_between(cone.axis, corners[widest]) + cosine_tie_slack;
   if (cone.half_angle >= 0.5 * pi) cone.half_angle = pi;
   return cone;
 }
@@ -115,6 +141,44 @@ inline DirectionCone half_vector_cone(const DirectionCone& omega_v, const Direct
   const VectorBox v = box_of_cone(omega_v);
   const VectorBox l = box_of_cone(omega_l);
   return cone_of_box({eta * v.lo + l.lo, eta * v.hi + l.hi});
+}
+
+// Cone holding the direction t in which light travels after refracting into the medium (index
+// ratio eta = n_inside / n_outside), when it arrives from directions in l_cone (towards the
+// light) through shading normals in `normals` (facing the light's side); none() when no light
+// enters there (behind every normal, or totally reflected). Snell in vector form (pbrt-v4,
+// Refract): eta t = -omega_L + k n with k = cos_i - eta cos_t. The range of cos_i (from the
+// angle between the cones) bounds cos_t (increasing in cos_i) and so k, and interval arithmetic
+// on boxes bounds -omega_L + k n. Unlike half_vector_cone it does not involve V, so it can be
+// computed once per light.
+inline DirectionCone refracted_cone(const DirectionCone& normals, const DirectionCone& l_cone,
+                                    double eta) {
+  if (normals.is_everything() || l_cone.is_everything()) return DirectionCone::everything();
+  const double between = angle_between(l_cone.axis, normals.axis);
+  const double theta_min = std::max(0.0, between - l_cone.half_angle - normals.half_angle);
+  const double theta_max = between + l_cone.half_angle + normals.half_angle;
+  if (theta_min >= 0.5 * pi) return DirectionCone::none();
+  constexpr double slack = 1e-12;
+  double cos_lo = theta_max >= 0.5 * pi ? 0.0 : std::cos(theta_max) - slack;
+  const double cos_hi = std::min(1.0, std::cos(theta_min) + slack);
+  if (eta < 1.0) {  // total internal reflection below the critical cosine
+    const double cos_critical = std::sqrt(1.0 - eta * eta);
+    if (cos_hi <= cos_critical) return DirectionCone::none();
+    cos_lo = std::max(cos_lo, cos_critical);
+  }
+  const auto cos_t = [eta](double cos_i) {
+    return std::sqrt(std::max(0.0, 1.0 - (1.0 - cos_i * cos_i) / (eta * eta)));
+  };
+  const double k_lo = cos_lo - eta * cos_t(cos_hi), k_hi = cos_hi - eta * cos_t(cos_lo);
+  const VectorBox n = box_of_cone(normals);
+  const VectorBox l = box_of_cone(l_cone);
+  VectorBox t;
+  for (int c = 0; c < 3; ++c) {
+    const std::array<double, 4> kn{k_lo * n.lo[c], k_lo * n.hi[c], k_hi * n.lo[c], k_hi * n.hi[c]};
+    t.lo[c] = -l.hi[c] + *std::min_element(kn.begin(), kn.end()) - slack;
+    t.hi[c] = -l.lo[c] + *std::max_element(kn.begin(), kn.end()) + slack;
+  }
+  return cone_of_box(t);
 }
 
 }  // namespace scatterlab

@@ -75,26 +75,53 @@ struct SupportStats {
   SupportStats& operator+=(const SupportStats& o);
 };
 
-// Step 2's test: whether any V on the segment [va, vb] can receive a refracted path through tri.
-// False only when none can (sound); eta = 1 uses the deviation test alone.
-bool triangle_may_contribute(const RefractiveTriangle& tri, const Vec3& va, const Vec3& vb,
-                             const Light& light, double eta);
+// Step 2's light-side bounds, which depend on the light and not on the eye ray, built once per
+// light: for every tree node and every part of every triangle (the whole triangle and, with
+// interpolated normals, its 4 and 16 parts split at the edge midpoints), the cone of directions
+// in which light refracted there travels (refracted_cone). V can receive light from a part only
+// in a direction from the part within that cone, a test of one cone overlap per part and
+// sub-segment; the half-vector test then runs only where it passes. Memory: 21 cones (672
+// bytes) per triangle with interpolated normals, one per flat triangle, one per tree node.
+class RefractedLight {
+ public:
+  RefractedLight(const RefractiveSolver& solver, const Light& light);
+
+  const RefractiveSolver& solver() const { return *solver_; }
+  const Light& light() const { return light_; }
+  const DirectionCone& node(std::uint32_t index) const { return nodes_[index]; }
+  // The cones of a triangle's parts: [0] the whole, [1 + i] quarter i, [5 + 4 i + j] quarter j of
+  // quarter i (interpolated normals only).
+  const DirectionCone* parts(std::uint32_t triangle) const {
+    return &parts_[static_cast<std::size_t>(triangle) * parts_per_triangle_];
+  }
+
+ private:
+  const RefractiveSolver* solver_;
+  Light light_;
+  std::size_t parts_per_triangle_ = 1;
+  std::vector<DirectionCone> nodes_;
+  std::vector<DirectionCone> parts_;
+};
+
+// Step 2's test: whether any V on the segment [va, vb] can receive a refracted path through the
+// triangle. False only when none can (sound); eta = 1 uses the deviation test alone.
+bool triangle_may_contribute(const RefractedLight& lit, std::uint32_t triangle, const Vec3& va,
+                             const Vec3& vb);
 
 // The same test for a tree node (its box bounded by a ball) and a segment.
-bool node_may_contribute(const PositionNormalTree::Node& node, const Vec3& va, const Vec3& vb,
-                         const Light& light, double eta);
+bool node_may_contribute(const RefractedLight& lit, std::uint32_t node, const Vec3& va,
+                         const Vec3& vb);
 
 // The support interval of one triangle along the segment; nullopt when it cannot contribute.
-std::optional<SupportInterval> triangle_support_interval(const RefractiveTriangle& tri,
+std::optional<SupportInterval> triangle_support_interval(const RefractedLight& lit,
+                                                         std::uint32_t triangle,
                                                          const EyeSegment& segment,
-                                                         const Light& light, double eta,
                                                          SupportStats& stats);
 
 // Every triangle of the solver's mesh that can contribute somewhere on the segment, with its
 // interval, in the order of the tree's depth-first leaves (the order find_paths visits them).
 // Throws InputError for a segment with a non-unit direction or t1 < t0.
-void find_segment_supports(const RefractiveSolver& solver, const EyeSegment& segment,
-                           const Light& light, std::vector<TriangleSupport>& supports,
-                           SupportStats& stats);
+void find_segment_supports(const RefractedLight& lit, const EyeSegment& segment,
+                           std::vector<TriangleSupport>& supports, SupportStats& stats);
 
 }  // namespace scatterlab
