@@ -29,6 +29,20 @@ RenderResult render_at(RenderScene scene, RenderMethod method, int samples,
   return render_single_scatter(scene, settings);
 }
 
+// Mean z^2 of a Monte Carlo image against the reference, over the pixels with a standard error.
+double mean_z2(const RenderResult& result, const Image& reference) {
+  double sum = 0.0;
+  int count = 0;
+  for (std::size_t k = 0; k < reference.values.size(); ++k) {
+    const double se = result.standard_error.values[k];
+    if (!(se > 0.0)) continue;
+    const double z = (result.image.values[k] - reference.values[k]) / se;
+    sum += z * z;
+    ++count;
+  }
+  return count > 0 ? sum / count : std::numeric_limits<double>::quiet_NaN();
+}
+
 // One exposure for every panel: the reference's 99th percentile maps to white.
 double exposure_for(const Image& reference) {
   std::vector<double> values = reference.values;
@@ -57,10 +71,11 @@ Image side_by_side(const std::vector<const Image*>& panels) {
 
 void write_csv(const std::vector<RenderStudyRow>& rows, const std::filesystem::path& path) {
   write_text_file(path, [&rows](std::ostream& file) {
-    file << "scene,method,budget,light_samples,seconds,rmse,relative_error\n";
+    file << "scene,method,budget,light_samples,seconds,rmse,relative_error,mean_z2\n";
     for (const RenderStudyRow& row : rows) {
-      file << fmt::format("{},{},{},{},{:.6g},{:.6g},{:.6g}\n", row.scene, to_string(row.method),
-                          row.budget, row.light_samples, row.seconds, row.rmse, row.relative_error);
+      file << fmt::format("{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g}\n", row.scene,
+                          to_string(row.method), row.budget, row.light_samples, row.seconds,
+                          row.rmse, row.relative_error, row.mean_z2);
     }
   });
 }
@@ -95,6 +110,7 @@ RenderStudyOptions RenderStudyOptions::quick() {
   options.budgets = {1, 4};
   options.pathtrace_budgets = {2000, 8000};
   options.reference_samples = 8;
+  options.reference_light_samples = 4;
   return options;
 }
 
@@ -129,13 +145,17 @@ std::vector<RenderStudyRow> run_render_study(
   for (const RenderStudyScene& entry : scenes) {
     RenderScene scene = entry.scene;
     scene.width = scene.height = options.size;
+    RenderScene reference_scene = scene;
+    reference_scene.light_samples = options.reference_light_samples;
     const RenderResult reference =
-        render_at(scene, RenderMethod::holzschuch, options.reference_samples, options);
+        render_at(reference_scene, RenderMethod::holzschuch, options.reference_samples, options);
     std::vector<RenderResult> largest;
     for (const RenderMethod method : study_methods) {
       RenderResult last;
       const bool pathtrace = method == RenderMethod::pathtrace;
       for (const int samples : pathtrace ? options.pathtrace_budgets : options.budgets) {
+        // A deterministic budget is both the points per ray and the points on the light.
+        if (!pathtrace) scene.light_samples = samples;
         RenderResult result = render_at(scene, method, samples, options);
         RenderStudyRow row;
         row.scene = entry.name;
@@ -144,6 +164,7 @@ std::vector<RenderStudyRow> run_render_study(
         row.light_samples = pathtrace ? 0 : scene.light_samples;
         row.seconds = result.seconds;
         image_errors(result.image, reference.image, row.rmse, row.relative_error);
+        if (pathtrace) row.mean_z2 = mean_z2(result, reference.image);
         rows.push_back(row);
         if (on_row) on_row(row);
         last = std::move(result);

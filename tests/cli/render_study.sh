@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Usage: render_study.sh SCATTERLAB SOURCE_DIR
 # `scatterlab render --study --quick` end to end: the CSV has a row per scene, method and budget
-# with finite errors and times, and the error plot and the side-by-side images are written.
+# with finite errors and times (and pathtrace's z-scores against the reference), and the error
+# plot and the side-by-side images are written.
 set -u
 exe=$1
 source_dir=$2
@@ -24,7 +25,7 @@ else
 fi
 
 csv="$work/study/render_study.csv"
-if [ "$(head -1 "$csv" 2>/dev/null)" = "scene,method,budget,light_samples,seconds,rmse,relative_error" ]; then
+if [ "$(head -1 "$csv" 2>/dev/null)" = "scene,method,budget,light_samples,seconds,rmse,relative_error,mean_z2" ]; then
   pass
 else
   fail "CSV header: $(head -1 "$csv" 2>/dev/null)"
@@ -36,6 +37,10 @@ bad=$(tail -n +2 "$csv" 2>/dev/null | awk -F, '
   function finite(v) { return v ~ /^-?[0-9.]+(e[-+]?[0-9]+)?$/ }
   !(finite($5) && finite($6) && finite($7) && $6 >= 0 && $7 >= 0) { print }')
 [ -z "$bad" ] && pass || fail "non-finite or negative values: $bad"
+# mean_z2: a finite non-negative number for pathtrace, nan for the deterministic methods.
+bad=$(tail -n +2 "$csv" 2>/dev/null | awk -F, '
+  ($2 == "pathtrace") != ($8 ~ /^[0-9.]+(e[-+]?[0-9]+)?$/) { print }')
+[ -z "$bad" ] && pass || fail "mean_z2 column: $bad"
 # Every method of each scene is present.
 for method in straight walter holzschuch pathtrace; do
   [ "$(grep -c ",$method," "$csv")" = 4 ] && pass || fail "$method rows"
