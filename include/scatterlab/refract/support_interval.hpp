@@ -10,9 +10,11 @@
 //  1. V(x) must lie below the triangle's plane and the light above it (sidedness about N_g, exact).
 //  2. An outer bound by bisection on x with a sound cone test on each sub-segment: the directions
 //     from the triangle to the sub-segment (the six corner-to-end directions span them), to the
-//     light, and the shading normals are bounded by cones, and the sidedness, deviation
-//     (Holzschuch's spindle-based test, §3.2.4) and half-vector overlap tests (Walter §3.3.1)
-//     reject sub-segments on which no path exists. Leaves are 1/8 of the longest triangle edge.
+//     light, and the shading normals are bounded by cones. The cone of the light's refracted
+//     directions (refracted_cone, computed once per light in RefractedLight) must meet the
+//     directions to the sub-segment; then the sidedness, deviation (Holzschuch's spindle-based
+//     test, §3.2.4) and half-vector overlap tests (Walter §3.3.1) reject sub-segments on which
+//     no path exists. Leaves are 1/8 of the longest triangle edge.
 //  3. Flat triangles: within that window, where a barycentric coordinate changes sign between the
 //     window's ends, the curve crosses that edge line; the crossing (x, tau) is solved with the
 //     pseudo-inverse Newton on the 3 x 2 system (Holzschuch §3.2.2), and the sign rules of §3.2.3
