@@ -328,6 +328,8 @@ RefractedLight::RefractedLight(const RefractiveSolver& solver, const Light& ligh
   for (std::size_t t = 0; t < count; ++t) smooth = smooth || solver.triangle(t).smooth;
   parts_per_triangle_ = smooth ? 21 : 1;
   parts_.assign(count * parts_per_triangle_, DirectionCone::everything());
+  beam_first_.reserve(count + 1);
+  beam_first_.push_back(0);
   for (std::size_t t = 0; t < count; ++t) {
     const RefractiveTriangle& tri = solver.triangle(t);
     DirectionCone* out = &parts_[t * parts_per_triangle_];
@@ -337,6 +339,8 @@ RefractedLight::RefractedLight(const RefractiveSolver& solver, const Light& ligh
       return refracted_cone(normal_cone, l_cone, eta);
     };
     out[0] = refracted(whole_triangle);
+    if (eta != 1.0) add_beam_planes(tri, out[0]);
+    beam_first_.push_back(beam_planes_.size());
     if (parts_per_triangle_ == 1 || !tri.smooth) continue;
     const auto level1 = quarters(whole_triangle);
     for (std::size_t i = 0; i < 4; ++i) {
@@ -345,6 +349,50 @@ RefractedLight::RefractedLight(const RefractiveSolver& solver, const Light& ligh
       for (std::size_t j = 0; j < 4; ++j) out[5 + 4 * i + j] = refracted(level2[j]);
     }
   }
+}
+
+void RefractedLight::add_beam_planes(const RefractiveTriangle& tri, const DirectionCone& cone) {
+  // The pyramid on the regular octagon circumscribing the cone's circle: half-angle gamma' with
+  // tan gamma' = tan gamma / cos(pi / 8). Too wide a cone bounds nothing worth clipping by.
+  constexpr int sides = 8;
+  if (cone.is_none() || !(cone.half_angle < 1.2)) return;
+  const double tan_wide = std::tan(cone.half_angle) / std::cos(pi / sides);
+  const Frame frame(cone.axis);
+  std::array<Vec3, sides> generators;
+  for (int j = 0; j < sides; ++j) {
+    const double phi = 2.0 * pi * j / sides;
+    generators[static_cast<std::size_t>(j)] =
+        (cone.axis + tan_wide * (std::cos(phi) * frame.tangent + std::sin(phi) * frame.bitangent))
+            .normalized();
+  }
+  const auto corners = triangle_corners(tri);
+  const double scale = 1.0 + std::max({corners[0].norm(), corners[1].norm(), corners[2].norm()});
+  // A plane bounds the beam if every generator points behind it; its offset is then the
+  // farthest corner (the beam is the corners' hull plus the pyramid).
+  const auto try_plane = [&](Vec3 normal) {
+    const double length = normal.norm();
+    if (!(length > 1e-12)) return;
+    normal /= length;
+    double most = -1.0, least = 1.0;
+    for (const Vec3& g : generators) {
+      most = std::max(most, normal.dot(g));
+      least = std::min(least, normal.dot(g));
+    }
+    constexpr double tolerance = 1e-12;
+    if (least >= -tolerance) normal = -normal;  // the generators lie on the far side of -normal
+    else if (!(most <= tolerance)) return;      // generators on both sides: not a bound
+    const double offset = std::max({normal.dot(corners[0]), normal.dot(corners[1]),
+                                    normal.dot(corners[2])});
+    beam_planes_.push_back({normal, offset + 1e-9 * scale});
+  };
+  for (std::size_t e = 0; e < 3; ++e) {
+    const Vec3 edge = corners[(e + 1) % 3] - corners[e];
+    for (const Vec3& g : generators) try_plane(edge.cross(g));
+  }
+  for (std::size_t j = 0; j < generators.size(); ++j) {
+    try_plane(generators[j].cross(generators[(j + 1) % generators.size()]));
+  }
+  try_plane(tri.geometric_normal);
 }
 
 bool triangle_may_contribute(const RefractedLight& lit, std::uint32_t triangle, const Vec3& va,
@@ -403,8 +451,14 @@ std::optional<SupportInterval> triangle_support_interval(const RefractedLight& l
     clip_to_light_pyramid(tri, segment, light, lo, hi);
     if (!(lo <= hi)) return std::nullopt;
   } else {
-    // Step 2: outer bound.
-    const double leaf = 0.125 * std::max({tri.edge1.norm(), tri.edge2.norm(),
+    // The beam of the light refracted through the triangle, then step 2's outer bound.
+    if (lit.parts(triangle)[0].is_none()) return std::nullopt;
+    for (const RefractedLight::BeamPlane& plane : lit.beam(triangle)) {
+      clip_half_line(plane.offset - plane.normal.dot(segment.origin),
+                     -plane.normal.dot(segment.direction), lo, hi);
+    }
+    if (!(lo <= hi)) return std::nullopt;
+    const double leaf = 0.5 * std::max({tri.edge1.norm(), tri.edge2.norm(),
                                           (tri.edge2 - tri.edge1).norm()});
     const auto first = extreme_surviving_x(lit, triangle, segment, lo, hi, leaf, true, 0, stats);
     if (!first) return std::nullopt;

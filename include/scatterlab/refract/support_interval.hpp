@@ -14,7 +14,7 @@
 //     directions (refracted_cone, computed once per light in RefractedLight) must meet the
 //     directions to the sub-segment; then the sidedness, deviation (Holzschuch's spindle-based
 //     test, §3.2.4) and half-vector overlap tests (Walter §3.3.1) reject sub-segments on which
-//     no path exists. Leaves are 1/8 of the longest triangle edge.
+//     no path exists. Leaves are 1/2 of the longest triangle edge.
 //  3. Flat triangles: within that window, where a barycentric coordinate changes sign between the
 //     window's ends, the curve crosses that edge line; the crossing (x, tau) is solved with the
 //     pseudo-inverse Newton on the 3 x 2 system (Holzschuch §3.2.2), and the sign rules of §3.2.3
@@ -34,6 +34,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "scatterlab/refract/position_normal_tree.hpp"
@@ -82,8 +83,19 @@ struct SupportStats {
 // interpolated normals, its 4 and 16 parts split at the edge midpoints), the cone of directions
 // in which light refracted there travels (refracted_cone). V can receive light from a part only
 // in a direction from the part within that cone, a test of one cone overlap per part and
-// sub-segment; the half-vector test then runs only where it passes. Memory: 21 cones (672
-// bytes) per triangle with interpolated normals, one per flat triangle, one per tree node.
+// sub-segment; the half-vector test then runs only where it passes.
+//
+// The whole triangle's cone also bounds its beam, the points light refracted through the
+// triangle can reach: the Minkowski sum of the triangle and the cone. With the cone widened to
+// the pyramid on a regular octagon around it, the beam is a polyhedron whose faces lie on planes
+// through an edge and a side of the pyramid, through a corner and a face of the pyramid, or on
+// the triangle's own plane; every such plane with the pyramid's sides behind it bounds the beam.
+// An eye ray meets the beam in one interval (it is convex), found by clipping the ray with those
+// planes before any cone test: most triangles near a ray send it no light and end there.
+//
+// Memory: 21 cones (672 bytes) per triangle with interpolated normals, one per flat triangle,
+// one per tree node, and up to 33 planes (32 bytes each) per triangle (7 on average for the
+// bumpy sphere).
 class RefractedLight {
  public:
   RefractedLight(const RefractiveSolver& solver, const Light& light);
@@ -97,12 +109,27 @@ class RefractedLight {
     return &parts_[static_cast<std::size_t>(triangle) * parts_per_triangle_];
   }
 
+  // A bounding plane of a triangle's beam: the beam lies where normal . X <= offset.
+  struct BeamPlane {
+    Vec3 normal;
+    double offset;
+  };
+  // The triangle's beam planes (none where the cone is too wide to bound it).
+  std::span<const BeamPlane> beam(std::uint32_t triangle) const {
+    return {beam_planes_.data() + beam_first_[triangle],
+            beam_first_[triangle + 1] - beam_first_[triangle]};
+  }
+
  private:
+  void add_beam_planes(const RefractiveTriangle& tri, const DirectionCone& cone);
+
   const RefractiveSolver* solver_;
   Light light_;
   std::size_t parts_per_triangle_ = 1;
   std::vector<DirectionCone> nodes_;
   std::vector<DirectionCone> parts_;
+  std::vector<BeamPlane> beam_planes_;
+  std::vector<std::size_t> beam_first_;  // triangle t's planes: [first[t], first[t + 1])
 };
 
 // Step 2's test: whether any V on the segment [va, vb] can receive a refracted path through the
