@@ -326,6 +326,7 @@ RefractedLight::RefractedLight(const RefractiveSolver& solver, const Light& ligh
   const std::size_t count = solver.triangle_count();
   bool smooth = false;
   for (std::size_t t = 0; t < count; ++t) smooth = smooth || solver.triangle(t).smooth;
+  static_assert(smooth_split_depth <= 2, "parts() holds levels 0 to 2: 1 + 4 + 16 cones");
   parts_per_triangle_ = smooth ? 21 : 1;
   parts_.assign(count * parts_per_triangle_, DirectionCone::everything());
   beam_first_.reserve(count + 1);

@@ -260,6 +260,7 @@ class Renderer {
       const Light& point = lit_[k].light();
       supports.clear();
       find_segment_supports(lit_[k], segment, supports, support_stats);
+      count.point_queries += supports.size() * static_cast<std::size_t>(n);
       for (const TriangleSupport& support : supports) {
         const TransmittanceSampler sampler(support.interval.x_min, support.interval.x_max,
                                            scene_.medium.sigma_t);
@@ -275,7 +276,6 @@ class Renderer {
       }
     }
     count.supports += support_stats.supports;
-    count.point_queries += stats.queries;
     count.triangle_searches += stats.triangles_tested;
     count.paths += stats.paths;
     return scene_.medium.sigma_s() * sum;
@@ -293,6 +293,7 @@ class Renderer {
       const Light& point = lit_[k].light();
       supports.clear();
       find_segment_supports(lit_[k], segment, supports, support_stats);
+      count.point_queries += static_cast<std::size_t>(n);
       for (int s = 0; s < n; ++s) {
         const double x = sampler.at((s + 0.5) / n);
         const Vec3 v = segment.at(x);
@@ -307,7 +308,6 @@ class Renderer {
       }
     }
     count.supports += support_stats.supports;
-    count.point_queries += stats.queries;
     count.triangle_searches += stats.triangles_tested;
     count.paths += stats.paths;
     return scene_.medium.sigma_s() * sampler.mass * sum / n;

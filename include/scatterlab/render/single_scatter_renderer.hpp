@@ -60,7 +60,7 @@ struct RenderSettings {
 
 struct RenderCounters {
   std::uint64_t eye_rays = 0;       // pixels whose ray entered the object
-  std::uint64_t point_queries = 0;  // refractive-solver (or shadow-ray) queries
+  std::uint64_t point_queries = 0;  // points searched (shadow rays; holzschuch: per interval)
   std::uint64_t triangle_searches = 0;
   std::uint64_t paths = 0;     // refracted paths found (or light hits for pathtrace)
   std::uint64_t supports = 0;  // holzschuch: triangle intervals
