@@ -45,10 +45,10 @@ int run_study(const RenderOptions& o, const std::filesystem::path& out_dir) {
   RenderStudyOptions options = o.quick ? RenderStudyOptions::quick() : RenderStudyOptions{};
   options.threads = o.threads;
   options.seed = o.seed;
-  fmt::print("study: {}x{} pixels, reference holzschuch at {} samples per interval and {} light "
-             "points\n",
-             options.size, options.size, options.reference_samples,
-             options.reference_light_samples);
+  fmt::print(
+      "study: {}x{} pixels, reference holzschuch at {} samples per interval and {} light "
+      "points\n",
+      options.size, options.size, options.reference_samples, options.reference_light_samples);
   run_render_study(scenes, options, out_dir, [](const RenderStudyRow& row) {
     fmt::print("{:>14} {:>10} budget {:>6}: {:9.3f} s, rmse {:.4g}, relative error {:.4g}{}\n",
                row.scene, to_string(row.method), row.budget, row.seconds, row.rmse,

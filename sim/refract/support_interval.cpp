@@ -49,8 +49,8 @@ bool part_cones(const RefractiveTriangle& tri, const std::array<Vec2, 3>& ab, co
     }
     if (tri.smooth) normals[i] = tri.shading_normal(ab[i].x(), ab[i].y());
   }
-  l_cone = light.at_infinity ? DirectionCone{light.direction_to_light, 0.0}
-                             : cone_of_directions(to_l);
+  l_cone =
+      light.at_infinity ? DirectionCone{light.direction_to_light, 0.0} : cone_of_directions(to_l);
   normal_cone = tri.smooth ? cone_of_directions(normals) : DirectionCone{tri.geometric_normal, 0.0};
   return true;
 }
@@ -318,9 +318,8 @@ RefractedLight::RefractedLight(const RefractiveSolver& solver, const Light& ligh
   for (const PositionNormalTree::Node& node : tree_nodes) {
     const Vec3 center = 0.5 * (node.lo + node.hi);
     const double radius = 0.5 * (node.hi - node.lo).norm();
-    const DirectionCone l_cone = light.at_infinity
-                                     ? DirectionCone{light.direction_to_light, 0.0}
-                                     : cone_towards(center, radius, light.position);
+    const DirectionCone l_cone = light.at_infinity ? DirectionCone{light.direction_to_light, 0.0}
+                                                   : cone_towards(center, radius, light.position);
     nodes_.push_back(refracted_cone(node.normals, l_cone, eta));
   }
   const std::size_t count = solver.triangle_count();
@@ -380,10 +379,13 @@ void RefractedLight::add_beam_planes(const RefractiveTriangle& tri, const Direct
       least = std::min(least, normal.dot(g));
     }
     constexpr double tolerance = 1e-12;
-    if (least >= -tolerance) normal = -normal;  // the generators lie on the far side of -normal
-    else if (!(most <= tolerance)) return;      // generators on both sides: not a bound
-    const double offset = std::max({normal.dot(corners[0]), normal.dot(corners[1]),
-                                    normal.dot(corners[2])});
+    if (least >= -tolerance) {
+      normal = -normal;  // the generators lie on the far side of -normal
+    } else if (!(most <= tolerance)) {
+      return;  // generators on both sides: not a bound
+    }
+    const double offset =
+        std::max({normal.dot(corners[0]), normal.dot(corners[1]), normal.dot(corners[2])});
     beam_planes_.push_back({normal, offset + 1e-9 * scale});
   };
   for (std::size_t e = 0; e < 3; ++e) {
@@ -459,8 +461,8 @@ std::optional<SupportInterval> triangle_support_interval(const RefractedLight& l
                      -plane.normal.dot(segment.direction), lo, hi);
     }
     if (!(lo <= hi)) return std::nullopt;
-    const double leaf = 0.5 * std::max({tri.edge1.norm(), tri.edge2.norm(),
-                                          (tri.edge2 - tri.edge1).norm()});
+    const double leaf =
+        0.5 * std::max({tri.edge1.norm(), tri.edge2.norm(), (tri.edge2 - tri.edge1).norm()});
     const auto first = extreme_surviving_x(lit, triangle, segment, lo, hi, leaf, true, 0, stats);
     if (!first) return std::nullopt;
     const auto last = extreme_surviving_x(lit, triangle, segment, lo, hi, leaf, false, 0, stats);

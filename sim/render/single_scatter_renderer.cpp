@@ -106,7 +106,8 @@ class Renderer {
         lights_(light_points(scene.light, scene.light_samples, mesh_center(scene.mesh))) {
     if (settings.method == RenderMethod::holzschuch) {
       lit_.reserve(lights_.size());
-      for (const LightPoint& light : lights_) lit_.emplace_back(solver_, Light::point(light.position));
+      for (const LightPoint& light : lights_)
+        lit_.emplace_back(solver_, Light::point(light.position));
     }
   }
 

@@ -241,12 +241,10 @@ TEST(SupportInterval, RejectsBadSegments) {
   SupportStats stats;
   const Light light = Light::point(Vec3(0, 0, 3));
   const RefractedLight lit(solver, light);
-  EXPECT_THROW(
-      find_segment_supports(lit, {Vec3::Zero(), Vec3(2, 0, 0), 0.0, 0.5}, supports, stats),
-      InputError);
-  EXPECT_THROW(
-      find_segment_supports(lit, {Vec3::Zero(), Vec3::UnitX(), 0.5, 0.0}, supports, stats),
-      InputError);
+  EXPECT_THROW(find_segment_supports(lit, {Vec3::Zero(), Vec3(2, 0, 0), 0.0, 0.5}, supports, stats),
+               InputError);
+  EXPECT_THROW(find_segment_supports(lit, {Vec3::Zero(), Vec3::UnitX(), 0.5, 0.0}, supports, stats),
+               InputError);
 }
 
 }  // namespace
