@@ -328,30 +328,46 @@ RefractedLight::RefractedLight(const RefractiveSolver& solver, const Light& ligh
   static_assert(smooth_split_depth <= 2, "parts() holds levels 0 to 2: 1 + 4 + 16 cones");
   parts_per_triangle_ = smooth ? 21 : 1;
   parts_.assign(count * parts_per_triangle_, DirectionCone::everything());
-  beam_first_.reserve(count + 1);
-  beam_first_.push_back(0);
-  for (std::size_t t = 0; t < count; ++t) {
-    const RefractiveTriangle& tri = solver.triangle(t);
-    DirectionCone* out = &parts_[t * parts_per_triangle_];
-    const auto refracted = [&](const std::array<Vec2, 3>& ab) {
-      DirectionCone normal_cone, l_cone;
-      if (!part_cones(tri, ab, light, normal_cone, l_cone)) return DirectionCone::everything();
-      return refracted_cone(normal_cone, l_cone, eta);
-    };
-    out[0] = refracted(whole_triangle);
-    if (eta != 1.0) add_beam_planes(tri, out[0]);
-    beam_first_.push_back(beam_planes_.size());
-    if (parts_per_triangle_ == 1 || !tri.smooth) continue;
-    const auto level1 = quarters(whole_triangle);
-    for (std::size_t i = 0; i < 4; ++i) {
-      out[1 + i] = refracted(level1[i]);
-      const auto level2 = quarters(level1[i]);
-      for (std::size_t j = 0; j < 4; ++j) out[5 + 4 * i + j] = refracted(level2[j]);
+  // Triangles in contiguous chunks over the threads; each chunk's planes are kept apart and
+  // joined in triangle order afterwards, so the table does not depend on the thread count.
+  const std::size_t chunk_count = std::min<std::size_t>(count, 64);
+  std::vector<std::vector<BeamPlane>> chunk_planes(chunk_count);
+  std::vector<std::size_t> plane_counts(count, 0);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::size_t c = 0; c < chunk_count; ++c) {
+    for (std::size_t t = c * count / chunk_count; t < (c + 1) * count / chunk_count; ++t) {
+      const RefractiveTriangle& tri = solver.triangle(t);
+      DirectionCone* out = &parts_[t * parts_per_triangle_];
+      const auto refracted = [&](const std::array<Vec2, 3>& ab) {
+        DirectionCone normal_cone, l_cone;
+        if (!part_cones(tri, ab, light, normal_cone, l_cone)) return DirectionCone::everything();
+        return refracted_cone(normal_cone, l_cone, eta);
+      };
+      out[0] = refracted(whole_triangle);
+      if (eta != 1.0) {
+        const std::size_t before = chunk_planes[c].size();
+        add_beam_planes(tri, out[0], chunk_planes[c]);
+        plane_counts[t] = chunk_planes[c].size() - before;
+      }
+      if (parts_per_triangle_ == 1 || !tri.smooth) continue;
+      const auto level1 = quarters(whole_triangle);
+      for (std::size_t i = 0; i < 4; ++i) {
+        out[1 + i] = refracted(level1[i]);
+        const auto level2 = quarters(level1[i]);
+        for (std::size_t j = 0; j < 4; ++j) out[5 + 4 * i + j] = refracted(level2[j]);
+      }
     }
+  }
+  beam_first_.assign(count + 1, 0);
+  for (std::size_t t = 0; t < count; ++t) beam_first_[t + 1] = beam_first_[t] + plane_counts[t];
+  beam_planes_.reserve(beam_first_[count]);
+  for (const auto& planes : chunk_planes) {
+    beam_planes_.insert(beam_planes_.end(), planes.begin(), planes.end());
   }
 }
 
-void RefractedLight::add_beam_planes(const RefractiveTriangle& tri, const DirectionCone& cone) {
+void RefractedLight::add_beam_planes(const RefractiveTriangle& tri, const DirectionCone& cone,
+                                     std::vector<BeamPlane>& planes) {
   // The pyramid on the regular octagon circumscribing the cone's circle: half-angle gamma' with
   // tan gamma' = tan gamma / cos(pi / 8). Too wide a cone bounds nothing worth clipping by.
   constexpr int sides = 8;
@@ -386,7 +402,7 @@ void RefractedLight::add_beam_planes(const RefractiveTriangle& tri, const Direct
     }
     const double offset =
         std::max({normal.dot(corners[0]), normal.dot(corners[1]), normal.dot(corners[2])});
-    beam_planes_.push_back({normal, offset + 1e-9 * scale});
+    planes.push_back({normal, offset + 1e-9 * scale});
   };
   for (std::size_t e = 0; e < 3; ++e) {
     const Vec3 edge = corners[(e + 1) % 3] - corners[e];

@@ -121,7 +121,9 @@ class RefractedLight {
   }
 
  private:
-  void add_beam_planes(const RefractiveTriangle& tri, const DirectionCone& cone);
+  // Appends the planes of the beam of light refracted through tri within `cone`.
+  static void add_beam_planes(const RefractiveTriangle& tri, const DirectionCone& cone,
+                              std::vector<BeamPlane>& planes);
 
   const RefractiveSolver* solver_;
   Light light_;
