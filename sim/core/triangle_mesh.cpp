@@ -20,6 +20,16 @@ Vec3 TriangleMesh::geometric_normal(std::size_t triangle) const {
   return length > 0.0 ? Vec3(n / length) : Vec3::Zero();
 }
 
+BoundingBox TriangleMesh::bounds() const {
+  if (positions.empty()) return {};
+  BoundingBox box{positions.front(), positions.front()};
+  for (const Vec3& p : positions) {
+    box.lo = box.lo.cwiseMin(p);
+    box.hi = box.hi.cwiseMax(p);
+  }
+  return box;
+}
+
 double TriangleMesh::area(std::size_t triangle) const {
   return 0.5 * (vertex(triangle, 1) - vertex(triangle, 0))
                    .cross(vertex(triangle, 2) - vertex(triangle, 0))

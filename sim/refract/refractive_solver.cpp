@@ -15,12 +15,7 @@ RefractiveSolver::RefractiveSolver(const TriangleMesh& mesh, double eta, Refract
   }
   mesh.validate();
   triangles_.reserve(mesh.triangle_count());
-  Vec3 lo = mesh.positions.front(), hi = lo;
-  for (const Vec3& p : mesh.positions) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  merge_distance_ = 1e-9 * std::max((hi - lo).norm(), 1e-300);
+  merge_distance_ = 1e-9 * std::max(mesh.bounds().diagonal(), 1e-300);
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
     triangles_.push_back(RefractiveTriangle::from_mesh(mesh, t));
   }

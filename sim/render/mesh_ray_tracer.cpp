@@ -50,11 +50,8 @@ MeshRayTracer::MeshRayTracer(const TriangleMesh& mesh) : impl_(std::make_unique<
     rtcReleaseGeometry(geometry);
     throw std::runtime_error("Embree: cannot allocate the mesh buffers");
   }
-  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
   for (std::size_t k = 0; k < mesh.positions.size(); ++k) {
     const Vec3& p = mesh.positions[k];
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
     for (int c = 0; c < 3; ++c)
       vertices[3 * k + static_cast<std::size_t>(c)] = static_cast<float>(p[c]);
   }
@@ -65,7 +62,7 @@ MeshRayTracer::MeshRayTracer(const TriangleMesh& mesh) : impl_(std::make_unique<
   rtcAttachGeometry(impl_->scene, geometry);
   rtcReleaseGeometry(geometry);
   rtcCommitScene(impl_->scene);
-  epsilon_ = 1e-5 * std::max((hi - lo).norm(), 1e-300);
+  epsilon_ = 1e-5 * std::max(mesh.bounds().diagonal(), 1e-300);
 }
 
 MeshRayTracer::~MeshRayTracer() = default;

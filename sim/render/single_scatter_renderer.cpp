@@ -68,16 +68,6 @@ std::vector<LightPoint> light_points(const RenderLight& light, int count, const 
   return points;
 }
 
-// Centre of the mesh's bounding box.
-Vec3 mesh_center(const TriangleMesh& mesh) {
-  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
-  for (const Vec3& p : mesh.positions) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  return 0.5 * (lo + hi);
-}
-
 // Distances along [a, b] with density proportional to exp(-sigma_t x): x(u) inverts the CDF.
 struct TransmittanceSampler {
   double a, sigma_t, mass;  // mass = int_a^b exp(-sigma_t x) dx
@@ -103,7 +93,7 @@ class Renderer {
         tracer_(scene.mesh),
         solver_(scene.mesh, scene.eta),
         phase_{scene.medium.g},
-        lights_(light_points(scene.light, scene.light_samples, mesh_center(scene.mesh))) {
+        lights_(light_points(scene.light, scene.light_samples, scene.mesh.bounds().center())) {
     if (settings.method == RenderMethod::holzschuch) {
       lit_.reserve(lights_.size());
       for (const LightPoint& light : lights_)

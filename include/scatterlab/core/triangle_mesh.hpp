@@ -16,6 +16,14 @@
 
 namespace scatterlab {
 
+// An axis-aligned box.
+struct BoundingBox {
+  Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
+
+  Vec3 center() const { return 0.5 * (lo + hi); }
+  double diagonal() const { return (hi - lo).norm(); }
+};
+
 struct TriangleMesh {
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;  // empty (flat facets), or one unit normal per position
@@ -32,6 +40,8 @@ struct TriangleMesh {
   // Unit outward geometric normal (zero vector for a degenerate triangle).
   Vec3 geometric_normal(std::size_t triangle) const;
   double area(std::size_t triangle) const;
+  // The box of the positions (a zero box for an empty mesh).
+  BoundingBox bounds() const;
 
   // Throws InputError naming the field: indices out of range, non-finite positions, normals
   // neither empty nor one per position, or normals that are not unit length.
