@@ -35,15 +35,22 @@ bool cones_may_connect(const DirectionCone& normals, const DirectionCone& v_cone
   return cones_admit_path(normals, v_cone, l_cone, eta);
 }
 
-// The normal and light cones of the sub-triangle with barycentric corners ab. n(a, b) is linear,
-// so inside the sub-triangle it is a non-negative combination of the corners' n: its direction
-// lies in their cone. False when a corner is at the light.
-bool part_cones(const RefractiveTriangle& tri, const std::array<Vec2, 3>& ab, const Light& light,
-                DirectionCone& normal_cone, DirectionCone& l_cone) {
+// The positions of the sub-triangle with barycentric corners ab.
+std::array<Vec3, 3> part_corners(const RefractiveTriangle& tri, const std::array<Vec2, 3>& ab) {
+  return {tri.point(ab[0].x(), ab[0].y()), tri.point(ab[1].x(), ab[1].y()),
+          tri.point(ab[2].x(), ab[2].y())};
+}
+
+// The normal and light cones of the sub-triangle with barycentric corners ab (at `corners`).
+// n(a, b) is linear, so inside the sub-triangle it is a non-negative combination of the
+// corners' n: its direction lies in their cone. False when a corner is at the light.
+bool part_cones(const RefractiveTriangle& tri, const std::array<Vec2, 3>& ab,
+                const std::array<Vec3, 3>& corners, const Light& light, DirectionCone& normal_cone,
+                DirectionCone& l_cone) {
   std::array<Vec3, 3> to_l, normals;
   for (std::size_t i = 0; i < 3; ++i) {
     if (!light.at_infinity) {
-      const Vec3 dl = light.position - tri.point(ab[i].x(), ab[i].y());
+      const Vec3 dl = light.position - corners[i];
       if (!(dl.norm() > 0.0)) return false;
       to_l[i] = dl.normalized();
     }
@@ -76,10 +83,10 @@ bool subtriangle_may_contribute(const RefractedLight& lit, const RefractiveTrian
   // Directions from the triangle to the segment: V - P ranges over a convex polytope whose
   // vertices are the six corner-to-end differences, so a cone (< 90 degrees) holding their
   // directions holds all (as Walter §3.3.1 argues for sub-triangles).
+  const std::array<Vec3, 3> corners = part_corners(tri, ab);
   std::array<Vec3, 6> to_v;
   for (std::size_t i = 0; i < 3; ++i) {
-    const Vec3 corner = tri.point(ab[i].x(), ab[i].y());
-    const Vec3 da = va - corner, db = vb - corner;
+    const Vec3 da = va - corners[i], db = vb - corners[i];
     if (!(da.norm() > 0.0 && db.norm() > 0.0)) return true;
     to_v[2 * i] = da.normalized();
     to_v[2 * i + 1] = db.normalized();
@@ -88,7 +95,7 @@ bool subtriangle_may_contribute(const RefractedLight& lit, const RefractiveTrian
   const double eta = lit.solver().eta();
   if (eta != 1.0 && !overlap(v_cone, refracted[part])) return false;
   DirectionCone normal_cone, l_cone;
-  if (!part_cones(tri, ab, lit.light(), normal_cone, l_cone)) return true;
+  if (!part_cones(tri, ab, corners, lit.light(), normal_cone, l_cone)) return true;
   if (!cones_may_connect(normal_cone, v_cone, l_cone, eta)) return false;
   if (splits == 0) return true;
   const auto parts = quarters(ab);
@@ -314,13 +321,14 @@ RefractedLight::RefractedLight(const RefractiveSolver& solver, const Light& ligh
     : solver_(&solver), light_(light) {
   const double eta = solver.eta();
   const auto& tree_nodes = solver.tree().nodes();
+  node_light_.reserve(tree_nodes.size());
   nodes_.reserve(tree_nodes.size());
   for (const PositionNormalTree::Node& node : tree_nodes) {
     const Vec3 center = 0.5 * (node.lo + node.hi);
     const double radius = 0.5 * (node.hi - node.lo).norm();
-    const DirectionCone l_cone = light.at_infinity ? DirectionCone{light.direction_to_light, 0.0}
-                                                   : cone_towards(center, radius, light.position);
-    nodes_.push_back(refracted_cone(node.normals, l_cone, eta));
+    node_light_.push_back(light.at_infinity ? DirectionCone{light.direction_to_light, 0.0}
+                                            : cone_towards(center, radius, light.position));
+    nodes_.push_back(refracted_cone(node.normals, node_light_.back(), eta));
   }
   const std::size_t count = solver.triangle_count();
   bool smooth = false;
@@ -340,7 +348,9 @@ RefractedLight::RefractedLight(const RefractiveSolver& solver, const Light& ligh
       DirectionCone* out = &parts_[t * parts_per_triangle_];
       const auto refracted = [&](const std::array<Vec2, 3>& ab) {
         DirectionCone normal_cone, l_cone;
-        if (!part_cones(tri, ab, light, normal_cone, l_cone)) return DirectionCone::everything();
+        if (!part_cones(tri, ab, part_corners(tri, ab), light, normal_cone, l_cone)) {
+          return DirectionCone::everything();
+        }
         return refracted_cone(normal_cone, l_cone, eta);
       };
       out[0] = refracted(whole_triangle);
@@ -424,7 +434,6 @@ bool triangle_may_contribute(const RefractedLight& lit, std::uint32_t triangle, 
 bool node_may_contribute(const RefractedLight& lit, std::uint32_t index, const Vec3& va,
                          const Vec3& vb) {
   const PositionNormalTree::Node& node = lit.solver().tree().nodes()[index];
-  const Light& light = lit.light();
   const double eta = lit.solver().eta();
   const Vec3 center = 0.5 * (node.lo + node.hi);
   const double radius = 0.5 * (node.hi - node.lo).norm();
@@ -443,9 +452,7 @@ bool node_may_contribute(const RefractedLight& lit, std::uint32_t index, const V
     if (v_cone.half_angle >= 0.5 * pi) v_cone = DirectionCone::everything();
   }
   if (eta != 1.0 && !overlap(v_cone, lit.node(index))) return false;
-  const DirectionCone l_cone = light.at_infinity ? DirectionCone{light.direction_to_light, 0.0}
-                                                 : cone_towards(center, radius, light.position);
-  return cones_may_connect(node.normals, v_cone, l_cone, eta);
+  return cones_may_connect(node.normals, v_cone, lit.node_light(index), eta);
 }
 
 std::optional<SupportInterval> triangle_support_interval(const RefractedLight& lit,

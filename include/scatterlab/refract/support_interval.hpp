@@ -94,7 +94,7 @@ struct SupportStats {
 // planes before any cone test: most triangles near a ray send it no light and end there.
 //
 // Memory: 21 cones (672 bytes) per triangle with interpolated normals, one per flat triangle,
-// one per tree node, and up to 33 planes (32 bytes each) per triangle (7 on average for the
+// two per tree node, and up to 33 planes (32 bytes each) per triangle (7 on average for the
 // bumpy sphere).
 class RefractedLight {
  public:
@@ -102,6 +102,8 @@ class RefractedLight {
 
   const RefractiveSolver& solver() const { return *solver_; }
   const Light& light() const { return light_; }
+  // A tree node's cones: of the directions to the light from its ball, and of the refracted ones.
+  const DirectionCone& node_light(std::uint32_t index) const { return node_light_[index]; }
   const DirectionCone& node(std::uint32_t index) const { return nodes_[index]; }
   // The cones of a triangle's parts: [0] the whole, [1 + i] quarter i, [5 + 4 i + j] quarter j of
   // quarter i (interpolated normals only).
@@ -128,6 +130,7 @@ class RefractedLight {
   const RefractiveSolver* solver_;
   Light light_;
   std::size_t parts_per_triangle_ = 1;
+  std::vector<DirectionCone> node_light_;
   std::vector<DirectionCone> nodes_;
   std::vector<DirectionCone> parts_;
   std::vector<BeamPlane> beam_planes_;
