@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "long_run.hpp"
 #include "progress_bar.hpp"
+#include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/io/scene.hpp"
@@ -22,11 +23,8 @@ namespace {
 
 struct SearchlightOptions {
   std::string scene, out;
-  double albedo = 0, g = 0, eta = 0, incidence = 0, escape_radius = 0;
-  double photons = 0;  // a double, so that 1e7 reads as it does in scene files
-  std::uint64_t seed = 0;
-  std::uint32_t batches = 0;
-  int threads = 0;
+  double albedo = 0, g = 0, eta = 0, incidence = 0;
+  RunOptions run;  // --photons, --batches, --seed, --threads, --escape-radius
   double r_max = 0, z_max = 0;
   int r_bins = 0, z_bins = 0, theta_bins = 0;
   bool no_fluence = false;
@@ -96,11 +94,7 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
   if (given("--g")) spec.medium.g = o.g;
   if (given("--eta")) spec.eta = o.eta;
   if (given("--incidence")) spec.incidence_deg = o.incidence;
-  if (given("--photons")) spec.run.photons = photon_count(o.photons);
-  if (given("--batches")) spec.run.batches = o.batches;
-  if (given("--seed")) spec.run.seed = o.seed;
-  if (given("--threads")) spec.run.threads = o.threads;
-  if (given("--escape-radius")) spec.run.escape_radius = o.escape_radius;
+  apply_run_options(command, o.run, spec.run);
   if (given("--r-max")) spec.grid.r.max = o.r_max;
   if (given("--r-bins")) spec.grid.r.bins = o.r_bins;
   if (given("--z-max")) spec.grid.z.max = o.z_max;
@@ -159,12 +153,7 @@ Action add_searchlight_command(CLI::App& app, const std::string& command_line, W
                       "Relative index n_medium / n_outside, > 0; 1 for no interface [1.3]");
   command->add_option("--incidence", o->incidence,
                       "Beam angle from the surface normal, degrees in [0, 90) [0]");
-  command->add_option("--photons", o->photons, "Number of photons [1e7]");
-  command->add_option("--batches", o->batches, "Batches for the standard error, >= 2 [64]");
-  command->add_option("--seed", o->seed, "Random seed [1]");
-  command->add_option("--threads", o->threads, "Threads; 0 uses all cores [0]");
-  command->add_option("--escape-radius", o->escape_radius,
-                      "Stop photons beyond this distance (mfp); needed for albedo 1 [inf]");
+  add_run_options(*command, o->run, "1e7");
   command->add_option("--r-max", o->r_max, "Radial grid extent, mfp [10]");
   command->add_option("--r-bins", o->r_bins, "Radial bins [200]");
   command->add_option("--z-max", o->z_max, "Depth grid extent of the fluence, mfp [10]");

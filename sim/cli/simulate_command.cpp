@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "long_run.hpp"
 #include "progress_bar.hpp"
+#include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/io/scene.hpp"
@@ -24,11 +25,8 @@ namespace {
 // Every flag, as given on the command line; only those given override the scene.
 struct SimulateOptions {
   std::string scene, out, out_dir, source, estimator, tallies;
-  double albedo = 0, g = 0, sigma_t = 0, escape_radius = 0;
-  double photons = 0;  // a double, so that 1e8 reads as it does in scene files
-  std::uint64_t seed = 0;
-  std::uint32_t batches = 0;
-  int threads = 0;
+  double albedo = 0, g = 0, sigma_t = 0;
+  RunOptions run;  // --photons, --batches, --seed, --threads, --escape-radius
   double r_max = 0, z_min = 0, z_max = 0, rho_max = 0;
   int r_bins = 0, z_bins = 0, theta_bins = 0, phi_bins = 0, rho_bins = 0;
   bool fold_phi = false, split_orders = false;
@@ -106,11 +104,7 @@ void apply_flags(CLI::App& command, const SimulateOptions& o, SimulationSpec& sp
   }
   if (given("--tallies")) apply_tally_list(o.tallies, spec.tallies);
   if (given("--split-orders")) spec.tallies.split_by_order = o.split_orders;
-  if (given("--photons")) spec.run.photons = photon_count(o.photons);
-  if (given("--batches")) spec.run.batches = o.batches;
-  if (given("--seed")) spec.run.seed = o.seed;
-  if (given("--threads")) spec.run.threads = o.threads;
-  if (given("--escape-radius")) spec.run.escape_radius = o.escape_radius;
+  apply_run_options(command, o.run, spec.run);
   Grid& grid = spec.grid;
   if (given("--r-max")) grid.r.max = o.r_max;
   if (given("--r-bins")) grid.r.bins = o.r_bins;
@@ -276,12 +270,7 @@ Action add_simulate_command(CLI::App& app, const std::string& command_line, Worl
                       "[radiance,fluence,flux]");
   command->add_flag("--split-orders{true}", o->split_orders,
                     "Also tally unscattered, once- and multiply-scattered light apart");
-  command->add_option("--photons", o->photons, "Number of photons [1e8]");
-  command->add_option("--batches", o->batches, "Batches for the standard error, >= 2 [64]");
-  command->add_option("--seed", o->seed, "Random seed [1]");
-  command->add_option("--threads", o->threads, "Threads; 0 uses all cores [0]");
-  command->add_option("--escape-radius", o->escape_radius,
-                      "Stop photons beyond this distance (mfp); needed for albedo 1 [inf]");
+  add_run_options(*command, o->run, "1e8");
   command->add_option("--r-max", o->r_max, "Radial grid extent, mfp [1.5]");
   command->add_option("--r-bins", o->r_bins, "Radial bins [15]");
   command->add_option("--z-min", o->z_min, "Axial grid start, mfp [-1]");

@@ -1,0 +1,27 @@
+#pragma once
+// The batch-run flags every transport command shares (--photons, --batches, --seed, --threads,
+// --escape-radius): registered once, and laid over the scene's RunSettings where given.
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <string>
+
+#include "scatterlab/transport/run_settings.hpp"
+
+namespace scatterlab::cli {
+
+struct RunOptions {
+  double photons = 0;  // a double, so that 1e8 reads as it does in scene files
+  std::uint32_t batches = 0;
+  std::uint64_t seed = 0;
+  int threads = 0;
+  double escape_radius = 0;
+};
+
+// Registers the flags, read into `options`; `default_photons` is the help text's default ("1e8").
+void add_run_options(CLI::App& command, RunOptions& options, const std::string& default_photons);
+
+// The flags given on the command line override `run`; throws InputError for a bad photon count.
+void apply_run_options(const CLI::App& command, const RunOptions& options, RunSettings& run);
+
+}  // namespace scatterlab::cli
