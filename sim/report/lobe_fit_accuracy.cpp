@@ -6,13 +6,12 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/Geometry>
-
 #include <chrono>
 #include <cmath>
 #include <numbers>
 #include <vector>
 
+#include "scatterlab/core/frame.hpp"
 #include "scatterlab/fit/lobe_fit.hpp"
 #include "scatterlab/report/suites.hpp"
 #include "scatterlab/tally/axis.hpp"
@@ -45,7 +44,7 @@ fit::LobeParameters parameters(const Eigen::Vector3d& axis, std::array<double, 4
 // angle.
 double parameter_error(const fit::LobeParameters& fitted, const fit::LobeParameters& truth,
                        int shape_count) {
-  double worst = std::atan2(fitted.axis.cross(truth.axis).norm(), fitted.axis.dot(truth.axis));
+  double worst = angle_between(fitted.axis, truth.axis);
   for (int k = 0; k < shape_count; ++k) {
     const double scale = std::max(1.0, std::abs(truth.shape[static_cast<std::size_t>(k)]));
     worst = std::max(worst, std::abs(fitted.shape[static_cast<std::size_t>(k)] -

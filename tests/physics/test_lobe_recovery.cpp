@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "lobe_fixtures.hpp"
+#include "scatterlab/core/frame.hpp"
 
 namespace scatterlab {
 namespace {
@@ -38,10 +39,6 @@ Fitted fit_synthetic(LobeModel model, const fit::LobeGrid& grid, const testing::
   result.fit = fit::fit_lobe(model, grid, lobe.data(), o, result.start);
   EXPECT_TRUE(fit::usable(result.fit.status)) << result.fit.message;
   return result;
-}
-
-double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b));
 }
 
 // Axes: both poles, the equator in and across the plane of symmetry, and a generic direction.

@@ -9,6 +9,11 @@ namespace scatterlab {
 
 using Vec3 = Eigen::Vector3d;
 
+// Angle between two (not necessarily unit) vectors, accurate near 0 and pi.
+inline double angle_between(const Vec3& a, const Vec3& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
 // A right-handed orthonormal basis (tangent, bitangent, n) around a unit vector n, following
 // Duff et al. 2017, "Building an Orthonormal Basis, Revisited": branch-free apart from the sign
 // of n.z, and continuous everywhere except across the plane z = 0, with no loss of precision at

@@ -12,11 +12,6 @@
 
 namespace scatterlab {
 
-// Angle between two (not necessarily unit) vectors, accurate near 0 and pi.
-inline double angle_between(const Vec3& a, const Vec3& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b));
-}
-
 // Choosing the widest direction by its cosine can miss by a rounding tie: cosines equal to 1e-16
 // differ in angle by at most about 1e-8 (at angle 0), which this slack covers.
 constexpr double cosine_tie_slack = 2e-8;
