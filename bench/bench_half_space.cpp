@@ -11,9 +11,10 @@
 
 #include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/core/phase_function.hpp"
-#include "scatterlab/tally/half_space_layout.hpp"
-#include "scatterlab/tally/half_space_scorer.hpp"
-#include "scatterlab/transport/half_space_walk.hpp"
+#include "scatterlab/tally/scorer.hpp"
+#include "scatterlab/tally/tally_book.hpp"
+#include "scatterlab/transport/half_space.hpp"
+#include "scatterlab/transport/random_walk.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 
 namespace scatterlab {
@@ -30,11 +31,16 @@ SearchlightSpec half_space(double albedo, double g, double eta, bool fluence) {
 
 template <class Phase, bool fresnel, bool fluence>
 void run_walk(benchmark::State& state, const Phase& phase, const SearchlightSpec& spec) {
-  const HalfSpaceLayout layout(spec);
-  const HalfSpaceScorer scorer(spec, layout);
-  const HalfSpaceWalk<Phase, fresnel, fluence> walk(spec, phase, scorer, Vec3::UnitZ());
+  const TransportProblem problem = transport_problem(spec);
+  const TallyBook book(problem.tallies, problem.split_by_order);
+  const Scorer scorer(problem.axes, book);
+  constexpr VolumeEstimator estimator =
+      fluence ? VolumeEstimator::collision : VolumeEstimator::none;
+  const RandomWalk<HalfSpace<fresnel>, Phase, estimator> walk(
+      HalfSpace<fresnel>(spec.eta), phase, problem.source, scorer, problem.albedo,
+      problem.run.escape_radius, problem.run.seed);
   auto scratch = walk.make_scratch();
-  std::vector<double> buffer(layout.size, 0.0);
+  std::vector<double> buffer(book.size(), 0.0);
   std::uint64_t photon = 0, scatterings = 0;
   for (auto _ : state) {
     scatterings += walk.run(photon, photon + 1000, buffer.data(), scratch);
@@ -50,7 +56,7 @@ void run_walk(benchmark::State& state, const Phase& phase, const SearchlightSpec
       static_cast<double>(scatterings) / static_cast<double>(photon);
 }
 
-// Picks the kernel the scene needs, as run_searchlight does, outside the timed loop.
+// Picks the kernel the scene needs, as the engine does, outside the timed loop.
 template <class Phase>
 void HalfSpace(benchmark::State& state, Phase phase, SearchlightSpec spec) {
   const bool fresnel = spec.eta != 1.0;

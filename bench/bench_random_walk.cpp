@@ -13,6 +13,8 @@
 #include "scatterlab/core/phase_function.hpp"
 #include "scatterlab/core/random.hpp"
 #include "scatterlab/tally/scorer.hpp"
+#include "scatterlab/tally/tally_book.hpp"
+#include "scatterlab/transport/infinite_medium.hpp"
 #include "scatterlab/transport/random_walk.hpp"
 #include "scatterlab/transport/simulate.hpp"
 
@@ -31,9 +33,9 @@ SimulationSpec scene(double g, double albedo, bool radiance, Estimator estimator
 void report(benchmark::State& state, std::uint64_t photons, std::uint64_t scatterings) {
   state.counters["photons/s"] =
       benchmark::Counter(static_cast<double>(photons), benchmark::Counter::kIsRate);
-  state.counters["ns/scatter"] = benchmark::Counter(
-      static_cast<double>(scatterings) * 1e-9,
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["ns/scatter"] =
+      benchmark::Counter(static_cast<double>(scatterings) * 1e-9,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 // The ceiling: per event one Philox call, a free path, an HG cosine, an azimuth and a frame
@@ -64,19 +66,22 @@ void BareLoop(benchmark::State& state, Phase phase, double albedo) {
 
 template <class Phase>
 void Walk(benchmark::State& state, Phase phase, SimulationSpec spec) {
-  const TallyLayout layout(spec);
-  const Scorer scorer(spec, layout);
-  std::vector<double> buffer(layout.size, 0.0);
+  const TransportProblem problem = transport_problem(spec);
+  const TallyBook book(problem.tallies, problem.split_by_order);
+  const Scorer scorer(problem.axes, book);
+  std::vector<double> buffer(book.size(), 0.0);
   std::vector<double> crossings = scorer.make_crossing_scratch();
+  const RandomWalk<InfiniteMedium, Phase, VolumeEstimator::collision> collision(
+      InfiniteMedium{}, phase, problem.source, scorer, problem.albedo, problem.run.escape_radius,
+      problem.run.seed);
+  const RandomWalk<InfiniteMedium, Phase, VolumeEstimator::track_length> track_length(
+      InfiniteMedium{}, phase, problem.source, scorer, problem.albedo, problem.run.escape_radius,
+      problem.run.seed);
   std::uint64_t photon = 0, scatterings = 0;
   for (auto _ : state) {
-    if (spec.tallies.estimator == Estimator::collision) {
-      const RandomWalk<Phase, Estimator::collision> walk(spec, phase, scorer);
-      scatterings += walk.run(photon, photon + 1000, buffer.data(), crossings);
-    } else {
-      const RandomWalk<Phase, Estimator::track_length> walk(spec, phase, scorer);
-      scatterings += walk.run(photon, photon + 1000, buffer.data(), crossings);
-    }
+    scatterings += spec.tallies.estimator == Estimator::collision
+                       ? collision.run(photon, photon + 1000, buffer.data(), crossings)
+                       : track_length.run(photon, photon + 1000, buffer.data(), crossings);
     photon += 1000;
   }
   benchmark::DoNotOptimize(buffer.data());
@@ -99,14 +104,20 @@ void WholeRun(benchmark::State& state) {
 const HenyeyGreenstein forward{0.9};
 const IsotropicPhase isotropic{};
 
-BENCHMARK_CAPTURE(BareLoop, hg_g0.9_albedo0.5, forward, 0.5);
-BENCHMARK_CAPTURE(BareLoop, iso_albedo0.99, isotropic, 0.99);
-BENCHMARK_CAPTURE(Walk, fluence_hg_g0.9_albedo0.5, forward, scene(0.9, 0.5, false, Estimator::collision));
-BENCHMARK_CAPTURE(Walk, radiance_hg_g0.9_albedo0.5, forward, scene(0.9, 0.5, true, Estimator::collision));
-BENCHMARK_CAPTURE(Walk, fluence_iso_albedo0.99, isotropic, scene(0.0, 0.99, false, Estimator::collision));
-BENCHMARK_CAPTURE(Walk, radiance_iso_albedo0.99, isotropic, scene(0.0, 0.99, true, Estimator::collision));
-BENCHMARK_CAPTURE(Walk, track_fluence_hg_g0.9_albedo0.5, forward, scene(0.9, 0.5, false, Estimator::track_length));
-BENCHMARK_CAPTURE(Walk, track_radiance_hg_g0.9_albedo0.5, forward, scene(0.9, 0.5, true, Estimator::track_length));
+BENCHMARK_CAPTURE(BareLoop, hg_g0 .9_albedo0.5, forward, 0.5);
+BENCHMARK_CAPTURE(BareLoop, iso_albedo0 .99, isotropic, 0.99);
+BENCHMARK_CAPTURE(Walk, fluence_hg_g0 .9_albedo0.5, forward,
+                  scene(0.9, 0.5, false, Estimator::collision));
+BENCHMARK_CAPTURE(Walk, radiance_hg_g0 .9_albedo0.5, forward,
+                  scene(0.9, 0.5, true, Estimator::collision));
+BENCHMARK_CAPTURE(Walk, fluence_iso_albedo0 .99, isotropic,
+                  scene(0.0, 0.99, false, Estimator::collision));
+BENCHMARK_CAPTURE(Walk, radiance_iso_albedo0 .99, isotropic,
+                  scene(0.0, 0.99, true, Estimator::collision));
+BENCHMARK_CAPTURE(Walk, track_fluence_hg_g0 .9_albedo0.5, forward,
+                  scene(0.9, 0.5, false, Estimator::track_length));
+BENCHMARK_CAPTURE(Walk, track_radiance_hg_g0 .9_albedo0.5, forward,
+                  scene(0.9, 0.5, true, Estimator::track_length));
 BENCHMARK(WholeRun)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

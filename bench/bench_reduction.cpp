@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "scatterlab/tally/batch_statistics.hpp"
-#include "scatterlab/tally/tally_layout.hpp"
-#include "scatterlab/transport/simulation.hpp"
+#include "scatterlab/tally/tally_book.hpp"
+#include "scatterlab/transport/simulate.hpp"
 
 namespace {
 
@@ -22,7 +22,8 @@ std::size_t cells_of(int grid) {
     spec.grid.theta.bins = 36;
     spec.grid.phi.bins = 72;
   }
-  return scatterlab::TallyLayout(spec).size;
+  const scatterlab::TransportProblem problem = scatterlab::transport_problem(spec);
+  return scatterlab::TallyBook(problem.tallies, problem.split_by_order).size();
 }
 
 // One batch folded into every cell: the work the folding side does per batch.

@@ -11,12 +11,12 @@
 #include <cmath>
 #include <vector>
 
+#include "scatterlab/core/frame.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
 #include "scatterlab/core/random.hpp"
 #include "scatterlab/refract/path_contribution.hpp"
 #include "scatterlab/refract/refractive_solver.hpp"
 #include "scatterlab/report/suites.hpp"
-#include "scatterlab/transport/random_walk.hpp"
 
 namespace scatterlab::report {
 namespace {

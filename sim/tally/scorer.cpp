@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 namespace scatterlab {
 namespace {
@@ -69,33 +70,58 @@ void close_span(std::vector<double>& crossings, double t_lo, double t_hi) {
 
 }  // namespace
 
-Scorer::Scorer(const SimulationSpec& spec, const TallyLayout& layout)
-    : grid_(spec.grid), layout_(layout), theta_binning_(spec.grid.theta) {
-  phi_bins_ = grid_.phi.bins;
-  const UniformAxis half_turn{0.0, std::numbers::pi, grid_.fold_phi ? phi_bins_ : phi_bins_ / 2};
-  phi_binning_ = CosineBinning(half_turn);
-  for (int k = 1; k < half_turn.bins; ++k) {
-    phi_cotangents_.push_back(1.0 / std::tan(half_turn.edge(k)));
+Scorer::Scorer(const TallyAxes& axes, const TallyBook& book)
+    : axes_(axes),
+      book_(book),
+      split_(book.split_by_order()),
+      fluence_(book.offset(Score::fluence)),
+      flux_(book.offset(Score::flux)),
+      radiance_(book.offset(Score::radiance)),
+      fluence_spherical_(book.offset(Score::fluence_spherical)),
+      exit_(book.offset(Score::exit)),
+      exit_by_radius_(book.offset(Score::exit_by_radius)),
+      exit_radiance_(book.offset(Score::exit_radiance)),
+      absorbed_(book.offset(Score::absorbed)),
+      absorbed_in_grid_(book.offset(Score::absorbed_in_grid)),
+      absorbed_outside_grid_(book.offset(Score::absorbed_outside_grid)),
+      absorption_depth_(book.offset(Score::absorption_depth)),
+      escaped_(book.offset(Score::escaped)),
+      z_bins_(static_cast<std::size_t>(axes.z.bins)),
+      theta_bins_(static_cast<std::size_t>(axes.theta.bins)),
+      theta_o_bins_(static_cast<std::size_t>(axes.theta_o.bins)) {
+  if ((absorbed_in_grid_ == absent) != (absorbed_outside_grid_ == absent)) {
+    throw std::invalid_argument("Scorer: absorbed_in_grid and absorbed_outside_grid go together");
   }
+  fluence_only_ = fluence_ != absent && flux_ == absent && radiance_ == absent &&
+                  fluence_spherical_ == absent;
+  if (radiance_ != absent) {
+    theta_binning_ = CosineBinning(axes.theta);
+    phi_bins_ = axes.phi.bins;
+    const UniformAxis half_turn{0.0, std::numbers::pi, axes.fold_phi ? phi_bins_ : phi_bins_ / 2};
+    phi_binning_ = CosineBinning(half_turn);
+    for (int k = 1; k < half_turn.bins; ++k) {
+      phi_cotangents_.push_back(1.0 / std::tan(half_turn.edge(k)));
+    }
+  }
+  if (exit_radiance_ != absent) exit_binning_ = CosineBinning(axes.theta_o);
 }
 
 std::vector<double> Scorer::make_crossing_scratch() const {
   std::vector<double> scratch;
-  const std::size_t most = 2 * static_cast<std::size_t>(grid_.r.bins) +
-                           static_cast<std::size_t>(grid_.z.bins) + phi_cotangents_.size() +
-                           2 * static_cast<std::size_t>(grid_.rho.bins) + 8;
+  const std::size_t most = 2 * static_cast<std::size_t>(axes_.r.bins) +
+                           static_cast<std::size_t>(axes_.z.bins) + phi_cotangents_.size() +
+                           2 * static_cast<std::size_t>(axes_.rho.bins) + 8;
   scratch.reserve(most);
   return scratch;
 }
 
 void Scorer::flight(double* buffer, std::vector<double>& crossings, const Vec3& start,
                     const Vec3& direction, double length, int order) const {
-  const std::size_t block = layout_.split_by_order ? layout_.order_block(order) : 0;
-  if (layout_.fluence_spherical != TallyLayout::absent) {
+  const std::size_t block = split_ ? book_.order_block(order) : 0;
+  if (fluence_spherical_ != absent) {
     flight_spherical(buffer, crossings, start, direction, length, block);
   }
-  if (layout_.fluence != TallyLayout::absent || layout_.flux != TallyLayout::absent ||
-      layout_.radiance != TallyLayout::absent) {
+  if (fluence_ != absent || flux_ != absent || radiance_ != absent) {
     flight_cylindrical(buffer, crossings, start, direction, length, block);
   }
 }
@@ -104,31 +130,30 @@ void Scorer::flight_spherical(double* buffer, std::vector<double>& crossings, co
                               const Vec3& direction, double length, std::size_t block) const {
   const RadialLine line{start.dot(direction), 1.0, start.cross(direction).norm()};
   double t_lo = 0.0, t_hi = length;
-  if (!line.clip_inside(grid_.rho.max, t_lo, t_hi)) return;
+  if (!line.clip_inside(axes_.rho.max, t_lo, t_hi)) return;
 
   crossings.clear();
-  append_radial_crossings(line, grid_.rho, t_lo, t_hi, crossings);
+  append_radial_crossings(line, axes_.rho, t_lo, t_hi, crossings);
   close_span(crossings, t_lo, t_hi);
   for (std::size_t i = 0; i + 1 < crossings.size(); ++i) {
     const double a = crossings[i], b = crossings[i + 1];
     if (!(b > a)) continue;
-    const int shell = clamped_index(grid_.rho, line.radius(0.5 * (a + b)));
-    add(buffer, layout_.fluence_spherical + static_cast<std::size_t>(shell), block, b - a);
+    const int shell = clamped_index(axes_.rho, line.radius(0.5 * (a + b)));
+    add(buffer, fluence_spherical_ + static_cast<std::size_t>(shell), block, b - a);
   }
 }
 
-void Scorer::flight_cylindrical(double* buffer, std::vector<double>& crossings,
-                                const Vec3& start, const Vec3& direction, double length,
-                                std::size_t block) const {
+void Scorer::flight_cylindrical(double* buffer, std::vector<double>& crossings, const Vec3& start,
+                                const Vec3& direction, double length, std::size_t block) const {
   double t_lo = 0.0, t_hi = length;
 
   // Clip to the slab z_min <= z < z_max.
   if (direction.z() != 0.0) {
-    const double ta = (grid_.z.min - start.z()) / direction.z();
-    const double tb = (grid_.z.max - start.z()) / direction.z();
+    const double ta = (axes_.z.min - start.z()) / direction.z();
+    const double tb = (axes_.z.max - start.z()) / direction.z();
     t_lo = std::max(t_lo, std::min(ta, tb));
     t_hi = std::min(t_hi, std::max(ta, tb));
-  } else if (grid_.z.index(start.z()) < 0) {
+  } else if (axes_.z.index(start.z()) < 0) {
     return;
   }
 
@@ -145,8 +170,8 @@ void Scorer::flight_cylindrical(double* buffer, std::vector<double>& crossings,
     if (std::abs(angular_momentum) <= 1e-12 * line.d * speed) angular_momentum = 0.0;
     line = RadialLine{(start.x() * direction.x() + start.y() * direction.y()) / speed, speed,
                       std::abs(angular_momentum) / speed};
-    if (!line.clip_inside(grid_.r.max, t_lo, t_hi)) return;
-  } else if (grid_.r.index(line.d) < 0) {
+    if (!line.clip_inside(axes_.r.max, t_lo, t_hi)) return;
+  } else if (axes_.r.index(line.d) < 0) {
     return;
   }
   if (!(t_hi > t_lo)) return;
@@ -154,16 +179,16 @@ void Scorer::flight_cylindrical(double* buffer, std::vector<double>& crossings,
   crossings.clear();
   if (direction.z() != 0.0) {
     const double za = start.z() + t_lo * direction.z(), zb = start.z() + t_hi * direction.z();
-    const int first = clamped_index(grid_.z, std::min(za, zb)) + 1;
-    const int last = clamped_index(grid_.z, std::max(za, zb));
+    const int first = clamped_index(axes_.z, std::min(za, zb)) + 1;
+    const int last = clamped_index(axes_.z, std::max(za, zb));
     for (int k = first; k <= last; ++k) {
-      const double t = (grid_.z.edge(k) - start.z()) / direction.z();
+      const double t = (axes_.z.edge(k) - start.z()) / direction.z();
       if (t > t_lo && t < t_hi) crossings.push_back(t);
     }
   }
-  const bool radiance = layout_.radiance != TallyLayout::absent;
+  const bool radiance = radiance_ != absent;
   if (moves_across) {
-    append_radial_crossings(line, grid_.r, t_lo, t_hi, crossings);
+    append_radial_crossings(line, axes_.r, t_lo, t_hi, crossings);
     if (radiance) {
       // phi along a straight line: cos phi = w / sqrt(w^2 + d^2), so the edge at angle phi_k is
       // crossed where w = d cot(phi_k); when d = 0 the line passes through the axis, where phi
@@ -181,9 +206,11 @@ void Scorer::flight_cylindrical(double* buffer, std::vector<double>& crossings,
   }
   close_span(crossings, t_lo, t_hi);
 
-  const std::size_t angles = layout_.theta_bins * layout_.phi_bins;
+  const std::size_t angles = theta_bins_ * static_cast<std::size_t>(phi_bins_);
   const std::size_t theta_offset =
-      radiance ? static_cast<std::size_t>(theta_binning_.bin(direction.z())) * layout_.phi_bins : 0;
+      radiance ? static_cast<std::size_t>(theta_binning_.bin(direction.z())) *
+                     static_cast<std::size_t>(phi_bins_)
+               : 0;
   double r_previous = line.radius(t_lo);
   for (std::size_t i = 0; i + 1 < crossings.size(); ++i) {
     const double a = crossings[i], b = crossings[i + 1];
@@ -193,20 +220,20 @@ void Scorer::flight_cylindrical(double* buffer, std::vector<double>& crossings,
     if (!(b > a)) continue;
     const double mid = 0.5 * (a + b);
     const double r_mid = line.radius(mid);
-    const int ir = clamped_index(grid_.r, r_mid);
-    const int iz = clamped_index(grid_.z, start.z() + mid * direction.z());
-    const std::size_t cell = static_cast<std::size_t>(ir) * layout_.z_bins + static_cast<std::size_t>(iz);
+    const int ir = clamped_index(axes_.r, r_mid);
+    const int iz = clamped_index(axes_.z, start.z() + mid * direction.z());
+    const std::size_t cell = static_cast<std::size_t>(ir) * z_bins_ + static_cast<std::size_t>(iz);
     const double span = b - a;
-    if (layout_.fluence != TallyLayout::absent) add(buffer, layout_.fluence + cell, block, span);
-    if (layout_.flux != TallyLayout::absent) {
+    if (fluence_ != absent) add(buffer, fluence_ + cell, block, span);
+    if (flux_ != absent) {
       // The integral of omega . e_r along the path is the change in r: d r / dt = omega . e_r.
-      add(buffer, layout_.flux + 2 * cell, block, dr);
-      add(buffer, layout_.flux + 2 * cell + 1, block, span * direction.z());
+      add(buffer, flux_ + 2 * cell, block, dr);
+      add(buffer, flux_ + 2 * cell + 1, block, span * direction.z());
     }
     if (radiance) {
       const double w_mid = line.w0 + line.speed * mid;
       const double cos_phi = (moves_across && r_mid > 0.0) ? w_mid / r_mid : 1.0;
-      add_radiance(buffer, layout_.radiance + cell * angles + theta_offset, block, cos_phi,
+      add_radiance(buffer, radiance_ + cell * angles + theta_offset, block, cos_phi,
                    angular_momentum, span);
     }
   }

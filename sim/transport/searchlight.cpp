@@ -2,15 +2,11 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <cmath>
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/fresnel.hpp"
-#include "scatterlab/core/phase_function.hpp"
-#include "scatterlab/tally/half_space_layout.hpp"
-#include "scatterlab/tally/half_space_scorer.hpp"
-#include "scatterlab/transport/half_space_walk.hpp"
+#include "scatterlab/tally/filter.hpp"
 
 namespace scatterlab {
 namespace {
@@ -68,39 +64,62 @@ Vec3 incident_direction(double incidence_deg) {
   return {std::sin(theta), 0.0, std::cos(theta)};
 }
 
-template <class Phase, bool fresnel, bool fluence>
-SearchlightOutput run_kernel(const SearchlightSpec& spec, const Phase& phase,
-                             const Vec3& entry_direction, const EntryPower& entry,
-                             const ProgressCallback& progress, const RunControl& control) {
-  const HalfSpaceLayout layout(spec);
-  const HalfSpaceScorer scorer(spec, layout);
-  const HalfSpaceWalk<Phase, fresnel, fluence> walk(spec, phase, scorer, entry_direction);
-  const BatchOutcome outcome = run_batches(spec.run, layout.size, walk, progress, control);
-  SearchlightOutput output;
-  if (!outcome.mean.empty()) {  // the root's; other ranks fold only their slice
-    output.tallies =
-        finalize_half_space_tallies(spec, layout, entry, outcome.mean, outcome.standard_error);
+// The half-space's tallies, each declared once. Unscattered light only travels deeper: it never
+// leaves a half-space, so the unscattered surface tallies are zero by construction; they are
+// written so that every order sums.
+std::vector<TallyDeclaration> declare_tallies(const SearchlightSpec& spec, double specular) {
+  const SearchlightGrid& grid = spec.grid;
+  const Filter r = radius_filter(grid.r);
+  std::vector<TallyDeclaration> tallies;
+  tallies.push_back({"reflectance",
+                     Score::exit_by_radius,
+                     {r},
+                     "W mfp^-2 per W incident",
+                     "diffuse reflectance R_d(r): power leaving the surface per unit area, ring "
+                     "average",
+                     true});
+  tallies.push_back({"exitant_radiance",
+                     Score::exit_radiance,
+                     {r, exit_angle_filter(grid.theta_o)},
+                     "W mfp^-2 sr^-1 per W incident",
+                     "radiance leaving the surface outside the medium, L(r, theta_o) with theta_o "
+                     "from the outward normal: power / (ring area x projected solid angle) of the "
+                     "bin",
+                     true});
+  if (spec.tallies.fluence) {
+    tallies.push_back({"fluence",
+                       Score::fluence,
+                       {r, length_filter("z", grid.z)},
+                       "W mfp^-2 per W incident",
+                       "fluence phi(r, z) inside the medium, bin average, collision estimator",
+                       true});
   }
-  output.photons = outcome.photons_done;
-  output.batches_done = outcome.batches_done;
-  output.ranks = outcome.ranks;
-  output.threads = outcome.threads;
-  output.scattering_events = outcome.scattering_events;
-  return output;
-}
-
-// Picks the one specialised kernel the scene needs: fresnel x fluence for a given phase.
-template <class Phase>
-SearchlightOutput run_with(const SearchlightSpec& spec, const Phase& phase,
-                           const Vec3& entry_direction, const EntryPower& entry,
-                           const ProgressCallback& progress, const RunControl& control) {
-  const bool fresnel = spec.eta != 1.0;
-  const bool fluence = spec.tallies.fluence;
-  if (fresnel && fluence)
-    return run_kernel<Phase, true, true>(spec, phase, entry_direction, entry, progress, control);
-  if (fresnel) return run_kernel<Phase, true, false>(spec, phase, entry_direction, entry, progress, control);
-  if (fluence) return run_kernel<Phase, false, true>(spec, phase, entry_direction, entry, progress, control);
-  return run_kernel<Phase, false, false>(spec, phase, entry_direction, entry, progress, control);
+  tallies.push_back({"diffuse_reflectance",
+                     Score::exit,
+                     {},
+                     "W per W incident",
+                     "total power leaving the surface after scattering (all radii and angles)",
+                     true});
+  tallies.push_back({"specular_reflectance",
+                     Score::exact,
+                     {},
+                     "W per W incident",
+                     "Fresnel reflection of the beam at entry (exact: no standard error)",
+                     false,
+                     specular});
+  tallies.push_back({"absorbed",
+                     Score::absorbed,
+                     {},
+                     "W per W incident",
+                     "power absorbed anywhere in the medium"});
+  if (std::isfinite(spec.run.escape_radius)) {
+    tallies.push_back({"escaped",
+                       Score::escaped,
+                       {},
+                       "W per W incident",
+                       "power carried past the escape radius (see /parameters escape_radius)"});
+  }
+  return tallies;
 }
 
 }  // namespace
@@ -124,7 +143,9 @@ void SearchlightSpec::validate() const {
 }
 
 std::string fingerprint(const SearchlightSpec& spec) {
-  auto axis = [](const UniformAxis& a) { return fmt::format("{:a},{:a},{};", a.min, a.max, a.bins); };
+  auto axis = [](const UniformAxis& a) {
+    return fmt::format("{:a},{:a},{};", a.min, a.max, a.bins);
+  };
   const Medium& m = spec.medium;
   return fingerprint_of(fmt::format(
       "half_space|medium {:a} {:a} {:a} {}|eta {:a}|incidence {:a}|grid {}{}{}|fluence {}|run {} "
@@ -134,28 +155,34 @@ std::string fingerprint(const SearchlightSpec& spec) {
       spec.run.batches, spec.run.seed, spec.run.escape_radius));
 }
 
-SearchlightOutput run_searchlight(const SearchlightSpec& spec, const ProgressCallback& progress,
-                                  const RunControl& control) {
-  spec.validate();
-  const auto start = std::chrono::steady_clock::now();
-
+TransportProblem transport_problem(const SearchlightSpec& spec) {
   // Entry (Bitterli §2.3): the specular part F(theta_i) is reflected, 1 - F enters along the
   // refracted ray. Beyond the critical angle of an eta < 1 medium nothing enters; the walk then
   // runs on a dummy direction and every tally is scaled by the transmitted power, 0.
   const Vec3 incident = incident_direction(spec.incidence_deg);
-  const FresnelDielectric at_entry = fresnel_dielectric_terms(incident.z(), spec.eta);
-  const EntryPower entry{at_entry.reflectance(), 1.0 - at_entry.reflectance()};
-  Vec3 entry_direction = Vec3::UnitZ();
-  refract(incident, -Vec3::UnitZ(), spec.eta, entry_direction);
+  const double specular = fresnel_dielectric_terms(incident.z(), spec.eta).reflectance();
+  TransportProblem problem;
+  problem.albedo = spec.medium.albedo;
+  problem.g = spec.medium.g;
+  problem.geometry = GeometryKind::half_space;
+  problem.eta = spec.eta;
+  problem.source.direction = Vec3::UnitZ();
+  refract(incident, -Vec3::UnitZ(), spec.eta, problem.source.direction);
+  problem.axes.r = spec.grid.r;
+  problem.axes.z = spec.grid.z;
+  problem.axes.theta_o = spec.grid.theta_o;
+  problem.tallies = declare_tallies(spec, specular);
+  problem.split_by_order = true;
+  problem.estimator = Estimator::collision;
+  problem.photon_power = 1.0 - specular;
+  problem.run = spec.run;
+  return problem;
+}
 
-  // g = 0 samples isotropically: no HG arithmetic where the scene does not need it.
-  SearchlightOutput output =
-      spec.medium.g == 0.0
-          ? run_with(spec, IsotropicPhase{}, entry_direction, entry, progress, control)
-          : run_with(spec, HenyeyGreenstein{spec.medium.g}, entry_direction, entry, progress, control);
-  output.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return output;
+SearchlightOutput run_searchlight(const SearchlightSpec& spec, const ProgressCallback& progress,
+                                  const RunControl& control) {
+  spec.validate();
+  return transport(transport_problem(spec), progress, control);
 }
 
 }  // namespace scatterlab

@@ -1,54 +1,101 @@
 #include "scatterlab/transport/simulate.hpp"
 
-#include <chrono>
+#include <cmath>
 
-#include "scatterlab/core/phase_function.hpp"
-#include "scatterlab/tally/scorer.hpp"
-#include "scatterlab/transport/random_walk.hpp"
+#include "scatterlab/tally/filter.hpp"
 
 namespace scatterlab {
 namespace {
 
-SimulationOutput collect(const SimulationSpec& spec, const TallyLayout& layout,
-                         const BatchOutcome& outcome) {
-  SimulationOutput output;
-  if (!outcome.mean.empty()) {
-    output.tallies = finalize_tallies(spec, layout, outcome.mean, outcome.standard_error);
+// The infinite medium's tallies, each declared once: score, filters, units, meaning.
+std::vector<TallyDeclaration> declare_tallies(const SimulationSpec& spec) {
+  const Grid& grid = spec.grid;
+  const TallyRequest& want = spec.tallies;
+  const std::string estimator =
+      want.estimator == Estimator::collision ? "collision estimator" : "track-length estimator";
+  const Filter r = radius_filter(grid.r), z = length_filter("z", grid.z);
+  std::vector<TallyDeclaration> tallies;
+  if (want.radiance) {
+    tallies.push_back({"radiance",
+                       Score::radiance,
+                       {r, z, direction_filter(grid.theta, grid.phi, grid.fold_phi)},
+                       "W mfp^-2 sr^-1 per W incident",
+                       "radiance L(r, z, theta, phi), bin average, " + estimator,
+                       true});
   }
-  output.photons = outcome.photons_done;
-  output.batches_done = outcome.batches_done;
-  output.threads = outcome.threads;
-  output.ranks = outcome.ranks;
-  output.scattering_events = outcome.scattering_events;
-  return output;
-}
-
-template <class Phase>
-SimulationOutput simulate_with(const SimulationSpec& spec, const Phase& phase,
-                               const ProgressCallback& progress, const RunControl& control) {
-  const TallyLayout layout(spec);
-  const Scorer scorer(spec, layout);
-  if (spec.tallies.estimator == Estimator::collision) {
-    const RandomWalk<Phase, Estimator::collision> walk(spec, phase, scorer);
-    return collect(spec, layout, run_batches(spec.run, layout.size, walk, progress, control));
+  if (want.fluence) {
+    tallies.push_back({"fluence",
+                       Score::fluence,
+                       {r, z},
+                       "W mfp^-2 per W incident",
+                       "fluence phi(r, z), bin average, " + estimator,
+                       true});
   }
-  const RandomWalk<Phase, Estimator::track_length> walk(spec, phase, scorer);
-  return collect(spec, layout, run_batches(spec.run, layout.size, walk, progress, control));
+  if (want.flux) {
+    tallies.push_back(
+        {"flux",
+         Score::flux,
+         {r, z, component_filter(2)},
+         "W mfp^-2 per W incident",
+         "vector irradiance E = integral of L omega d omega: components (E_r, E_z), " + estimator,
+         true});
+  }
+  if (want.fluence_spherical) {
+    tallies.push_back(
+        {"fluence_spherical",
+         Score::fluence_spherical,
+         {shell_filter(grid.rho)},
+         "W mfp^-2 per W incident",
+         "fluence phi(rho) on spherical shells about the source, shell average, " + estimator,
+         true});
+  }
+  tallies.push_back({"absorbed",
+                     Score::absorbed_in_grid,
+                     {},
+                     "W per W incident",
+                     "power absorbed inside the (r, z) grid"});
+  tallies.push_back({"absorbed_outside_grid",
+                     Score::absorbed_outside_grid,
+                     {},
+                     "W per W incident",
+                     "power absorbed outside the (r, z) grid"});
+  if (std::isfinite(spec.run.escape_radius)) {
+    tallies.push_back({"escaped",
+                       Score::escaped,
+                       {},
+                       "W per W incident",
+                       "power carried past the escape radius (see /parameters escape_radius)"});
+  }
+  tallies.push_back({"absorbed_mean_depth",
+                     Score::absorption_depth,
+                     {},
+                     "mfp",
+                     "first moment of absorbed power along the beam axis, integral of z dA; the "
+                     "mean absorption depth when nothing escapes"});
+  return tallies;
 }
 
 }  // namespace
 
+TransportProblem transport_problem(const SimulationSpec& spec) {
+  TransportProblem problem;
+  problem.albedo = spec.medium.albedo;
+  problem.g = spec.medium.g;
+  problem.geometry = GeometryKind::infinite;
+  problem.source.isotropic = spec.source == SourceKind::point;
+  const Grid& grid = spec.grid;
+  problem.axes = TallyAxes{grid.r, grid.z, grid.theta, grid.phi, grid.fold_phi, grid.rho, {}};
+  problem.tallies = declare_tallies(spec);
+  problem.split_by_order = spec.tallies.split_by_order;
+  problem.estimator = spec.tallies.estimator;
+  problem.run = spec.run;
+  return problem;
+}
+
 SimulationOutput simulate(const SimulationSpec& spec, const ProgressCallback& progress,
                           const RunControl& control) {
   spec.validate();
-  const auto start = std::chrono::steady_clock::now();
-  // g = 0 samples isotropically: no HG arithmetic where the scene does not need it.
-  SimulationOutput output = spec.medium.g == 0.0
-                                ? simulate_with(spec, IsotropicPhase{}, progress, control)
-                                : simulate_with(spec, HenyeyGreenstein{spec.medium.g}, progress, control);
-  output.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return output;
+  return transport(transport_problem(spec), progress, control);
 }
 
 }  // namespace scatterlab

@@ -8,7 +8,6 @@
 #include "scatterlab/core/constants.hpp"
 #include "scatterlab/core/frame.hpp"
 #include "scatterlab/core/random.hpp"
-#include "scatterlab/transport/random_walk.hpp"
 
 namespace scatterlab {
 namespace {

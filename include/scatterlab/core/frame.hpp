@@ -3,11 +3,22 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+
+#include "scatterlab/core/azimuth.hpp"
 
 namespace scatterlab {
 
 using Vec3 = Eigen::Vector3d;
+
+// A direction uniform on the unit sphere from two uniforms in (0, 1): cos theta = 2 u - 1.
+inline Vec3 isotropic_direction(double u_cos, double u_phi) {
+  const double z = 2.0 * u_cos - 1.0;
+  const double s = std::sqrt(std::max(0.0, (1.0 - z) * (1.0 + z)));
+  const UnitCircle phi = azimuth(u_phi);
+  return {s * phi.cos, s * phi.sin, z};
+}
 
 // Angle between two (not necessarily unit) vectors, accurate near 0 and pi.
 inline double angle_between(const Vec3& a, const Vec3& b) {

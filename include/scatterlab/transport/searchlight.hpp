@@ -6,15 +6,12 @@
 // Lengths are in mean free paths (sigma_t = 1). Every tally is per unit incident power: the
 // specular reflection at entry is reported apart and the transmitted power 1 - F enters.
 
-#include <cstdint>
 #include <numbers>
 #include <string>
-#include <vector>
 
 #include "scatterlab/core/medium.hpp"
 #include "scatterlab/tally/axis.hpp"
-#include "scatterlab/tally/tally_result.hpp"
-#include "scatterlab/transport/batch_runner.hpp"
+#include "scatterlab/transport/engine.hpp"
 #include "scatterlab/transport/run_settings.hpp"
 
 namespace scatterlab {
@@ -53,18 +50,15 @@ struct SearchlightSpec {
 // resumption, different for any other run (run_settings.hpp, fingerprint_of).
 std::string fingerprint(const SearchlightSpec& spec);
 
-struct SearchlightOutput {
-  std::vector<TallyResult> tallies;
-  double wall_seconds = 0.0;
-  std::uint64_t photons = 0;            // photons run (fewer when stopped early)
-  std::uint64_t scattering_events = 0;
-  std::uint64_t batches_done = 0;       // spec.run.batches unless stopped early
-  int threads = 1;
-  int ranks = 1;
-};
+using SearchlightOutput = TransportOutput;
 
-// Bitwise identical for any number of threads and ranks, and when resumed (batch_runner.hpp);
-// `control` carries the ranks, checkpoints and stop requests. Only the root rank gets tallies.
+// The engine's problem for this spec: the half-space geometry, the refracted beam, the declared
+// tallies (per unit incident power: scaled by the power that entered) and the run.
+TransportProblem transport_problem(const SearchlightSpec& spec);
+
+// Runs the spec on the transport engine. Bitwise identical for any number of threads and ranks, and
+// when resumed (batch_runner.hpp); `control` carries the ranks, checkpoints and stop requests. Only
+// the root rank gets tallies.
 SearchlightOutput run_searchlight(const SearchlightSpec& spec,
                                   const ProgressCallback& progress = {},
                                   const RunControl& control = {});

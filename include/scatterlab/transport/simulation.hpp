@@ -9,6 +9,7 @@
 
 #include "scatterlab/core/medium.hpp"
 #include "scatterlab/tally/axis.hpp"
+#include "scatterlab/transport/estimator.hpp"
 #include "scatterlab/transport/run_settings.hpp"
 
 namespace scatterlab {
@@ -16,11 +17,6 @@ namespace scatterlab {
 enum class SourceKind {
   pencil_beam,  // at the origin, travelling along +z (Vavassori §4.1)
   point,        // isotropic point source at the origin (d'Eon & Irving 2011 fluence curves)
-};
-
-enum class Estimator {
-  collision,     // score at each collision, weight 1 / sigma_t (the paper's estimator)
-  track_length,  // score the length of every flight inside each bin
 };
 
 // The paper's grid (Vavassori §4.1): r in [0, 1.5], z in [-1, 3] mfp, theta in [0, pi],
@@ -31,7 +27,7 @@ struct Grid {
   UniformAxis theta{0.0, std::numbers::pi, 18};
   UniformAxis phi{0.0, 2.0 * std::numbers::pi, 36};  // max is pi when fold_phi
   bool fold_phi = false;                             // L(phi) = L(-phi): fold onto [0, pi]
-  UniformAxis rho{0.0, 10.0, 200};                    // spherical shells (point source)
+  UniformAxis rho{0.0, 10.0, 200};                   // spherical shells (point source)
 
   // Folding halves the phi axis: [0, pi] folded, [0, 2 pi] not.
   void set_fold_phi(bool fold) {
@@ -74,6 +70,5 @@ struct SimulationSpec {
 std::string fingerprint(const SimulationSpec& spec);
 
 std::string to_string(SourceKind source);
-std::string to_string(Estimator estimator);
 
 }  // namespace scatterlab

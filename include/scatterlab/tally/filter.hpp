@@ -1,0 +1,42 @@
+#pragma once
+// A filter says in which bin an event falls along one or two of its coordinates (OpenMC's
+// filters): r about the beam axis, depth z, direction (theta, phi), shell rho, exit angle
+// theta_o, the two components of a vector. A tally is a score times a list of filters; its cells
+// are the product of the filters' bins, row-major in the order listed.
+//
+// Each filter also carries the measure of each of its bins (an area, a length, a solid angle):
+// the finished tally divides a cell's raw sum by the product of its filters' measures, taken left
+// to right, which turns a per-bin sum into a bin-averaged density.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "scatterlab/tally/axis.hpp"
+
+namespace scatterlab {
+
+struct Filter {
+  std::vector<std::string> dims;   // the file's dimension names, e.g. {"theta", "phi"}
+  std::vector<std::size_t> shape;  // extent per dimension
+  std::vector<double> measures;    // one per bin of this filter, row-major over its dims
+
+  std::size_t bins() const { return measures.size(); }
+};
+
+// r about the beam axis, by the area of each ring: pi (r1^2 - r0^2), in mfp^2.
+Filter radius_filter(const UniformAxis& r);
+// A Cartesian coordinate (depth z), by its bin width, in mfp.
+Filter length_filter(const std::string& name, const UniformAxis& axis);
+// Direction (theta from +z, phi from e_r), by each bin's solid angle in sr: a folded phi bin
+// stands for phi and -phi together, so it counts twice.
+Filter direction_filter(const UniformAxis& theta, const UniformAxis& phi, bool fold_phi);
+// rho from the source, by the volume of each spherical shell, in mfp^3.
+Filter shell_filter(const UniformAxis& rho);
+// Exit angle theta_o from the outward normal, by projected solid angle over all azimuths:
+// integral of cos theta dw = pi (sin^2 theta1 - sin^2 theta0), in sr.
+Filter exit_angle_filter(const UniformAxis& theta_o);
+// The components of a vector (E_r, E_z): measure 1.
+Filter component_filter(std::size_t components);
+
+}  // namespace scatterlab

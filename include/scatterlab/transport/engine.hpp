@@ -1,0 +1,37 @@
+#pragma once
+// The transport engine: runs a TransportProblem in batches over threads and ranks
+// (batch_runner.hpp) with the one random walk specialised for its geometry, phase function and
+// estimator (random_walk.hpp), and finishes its declared tallies (tally_book.hpp).
+
+#include <cstdint>
+#include <vector>
+
+#include "scatterlab/tally/tally_result.hpp"
+#include "scatterlab/transport/batch_runner.hpp"
+#include "scatterlab/transport/transport_problem.hpp"
+
+namespace scatterlab {
+
+struct TransportOutput {
+  std::vector<TallyResult> tallies;  // on the root rank; empty on the others
+  double wall_seconds = 0.0;
+  std::uint64_t photons = 0;       // in the batches done
+  std::uint64_t batches_done = 0;  // run.batches unless stopped early
+  std::uint64_t scattering_events = 0;
+  int threads = 1;  // per rank
+  int ranks = 1;
+
+  // Whether every batch of `spec` (anything with a RunSettings `run`) ran.
+  template <class Spec>
+  bool complete(const Spec& spec) const {
+    return batches_done == spec.run.batches;
+  }
+};
+
+// Bitwise identical for any thread and rank count, and when resumed (batch_runner.hpp).
+// Throws std::invalid_argument for a problem no kernel runs (the track-length estimator in a
+// geometry with a surface); specs validate their fields before they get here.
+TransportOutput transport(const TransportProblem& problem, const ProgressCallback& progress = {},
+                          const RunControl& control = {});
+
+}  // namespace scatterlab

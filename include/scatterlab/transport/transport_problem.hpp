@@ -1,0 +1,38 @@
+#pragma once
+// What the transport engine runs: one medium in one geometry, a source, the declared tallies
+// and how many photons. Every command's spec (the infinite medium's SimulationSpec, the
+// searchlight's SearchlightSpec) becomes one of these; the engine picks the one compiled kernel
+// it needs (engine.hpp). Lengths are in mean free paths (sigma_t = 1).
+
+#include <cstdint>
+#include <vector>
+
+#include "scatterlab/tally/tally_axes.hpp"
+#include "scatterlab/tally/tally_declaration.hpp"
+#include "scatterlab/transport/estimator.hpp"
+#include "scatterlab/transport/run_settings.hpp"
+#include "scatterlab/transport/source.hpp"
+
+namespace scatterlab {
+
+enum class GeometryKind {
+  infinite,    // no surface (infinite_medium.hpp)
+  half_space,  // z > 0 behind a smooth interface at z = 0 (half_space.hpp)
+};
+
+struct TransportProblem {
+  double albedo = 0.5;
+  double g = 0.0;  // Henyey-Greenstein mean cosine; 0 samples isotropically
+  GeometryKind geometry = GeometryKind::infinite;
+  double eta = 1.0;  // n_medium / n_outside at the surface, where there is one
+  Source source;
+  TallyAxes axes;
+  std::vector<TallyDeclaration> tallies;
+  bool split_by_order = false;
+  Estimator estimator = Estimator::collision;  // of the volume tallies
+  // The power each photon carries, per unit incident power: what entered through the surface.
+  double photon_power = 1.0;
+  RunSettings run;
+};
+
+}  // namespace scatterlab

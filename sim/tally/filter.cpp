@@ -1,0 +1,61 @@
+#include "scatterlab/tally/filter.hpp"
+
+#include <cmath>
+
+#include "scatterlab/core/constants.hpp"
+
+namespace scatterlab {
+namespace {
+
+std::size_t count(const UniformAxis& axis) {
+  return static_cast<std::size_t>(axis.bins);
+}
+
+template <class Measure>
+std::vector<double> per_bin(const UniformAxis& axis, Measure&& measure) {
+  std::vector<double> m(count(axis));
+  for (int i = 0; i < axis.bins; ++i)
+    m[static_cast<std::size_t>(i)] = measure(axis.edge(i), axis.edge(i + 1));
+  return m;
+}
+
+}  // namespace
+
+Filter radius_filter(const UniformAxis& r) {
+  return {
+      {"r"}, {count(r)}, per_bin(r, [](double r0, double r1) { return pi * (r1 * r1 - r0 * r0); })};
+}
+
+Filter length_filter(const std::string& name, const UniformAxis& axis) {
+  return {{name}, {count(axis)}, std::vector<double>(count(axis), axis.width())};
+}
+
+Filter direction_filter(const UniformAxis& theta, const UniformAxis& phi, bool fold_phi) {
+  Filter f{{"theta", "phi"}, {count(theta), count(phi)}, {}};
+  f.measures.reserve(count(theta) * count(phi));
+  for (int k = 0; k < theta.bins; ++k) {
+    const double band = std::cos(theta.edge(k)) - std::cos(theta.edge(k + 1));
+    const double solid_angle = band * phi.width() * (fold_phi ? 2.0 : 1.0);
+    f.measures.insert(f.measures.end(), count(phi), solid_angle);
+  }
+  return f;
+}
+
+Filter shell_filter(const UniformAxis& rho) {
+  return {{"rho"}, {count(rho)}, per_bin(rho, [](double a, double b) {
+            return 4.0 / 3.0 * pi * (b * b * b - a * a * a);
+          })};
+}
+
+Filter exit_angle_filter(const UniformAxis& theta_o) {
+  return {{"theta_o"}, {count(theta_o)}, per_bin(theta_o, [](double t0, double t1) {
+            const double s0 = std::sin(t0), s1 = std::sin(t1);
+            return pi * (s1 * s1 - s0 * s0);
+          })};
+}
+
+Filter component_filter(std::size_t components) {
+  return {{"component"}, {components}, std::vector<double>(components, 1.0)};
+}
+
+}  // namespace scatterlab

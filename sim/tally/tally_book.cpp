@@ -1,0 +1,107 @@
+#include "scatterlab/tally/tally_book.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace scatterlab {
+namespace {
+
+std::size_t cells_of(const TallyDeclaration& d) {
+  if (d.score == Score::exact) return 0;
+  std::size_t cells = 1;
+  for (const Filter& f : d.filters) cells *= f.bins();
+  return cells;
+}
+
+// Names and descriptions of the per-order siblings, block by block.
+constexpr const char* order_suffix[] = {"", "_unscattered", "_single", "_multiple"};
+constexpr const char* order_scope[] = {"", " (unscattered light only)",
+                                       " (light scattered exactly once)",
+                                       " (light scattered twice or more)"};
+
+// The declaration's dims, shape and measure of each cell (product of its filters' measures,
+// left to right).
+TallyResult shaped(const TallyDeclaration& d, const std::string& name,
+                   const std::string& description, std::vector<double>& measure) {
+  TallyResult t{name, {}, {}, d.units, description, {}, {}};
+  measure.assign(1, 1.0);
+  bool first = true;
+  for (const Filter& f : d.filters) {
+    t.dims.insert(t.dims.end(), f.dims.begin(), f.dims.end());
+    t.shape.insert(t.shape.end(), f.shape.begin(), f.shape.end());
+    std::vector<double> next;
+    next.reserve(measure.size() * f.bins());
+    for (const double m : measure) {
+      for (const double b : f.measures) next.push_back(first ? b : m * b);
+    }
+    measure = std::move(next);
+    first = false;
+  }
+  return t;
+}
+
+}  // namespace
+
+TallyBook::TallyBook(std::vector<TallyDeclaration> declarations, bool split_by_order)
+    : declarations_(std::move(declarations)), split_by_order_(split_by_order) {
+  offsets_.fill(absent);
+  std::size_t next = 0;
+  auto place = [&](bool by_order) {
+    for (const TallyDeclaration& d : declarations_) {
+      if (d.by_order != by_order || d.score == Score::exact) continue;
+      std::size_t& at = offsets_[static_cast<std::size_t>(d.score)];
+      if (at != absent)
+        throw std::invalid_argument("TallyBook: two tallies of one score: " + d.name);
+      at = next;
+      next += cells_of(d);
+    }
+  };
+  place(true);
+  block_size_ = next;
+  next = block_size_ * (split_by_order_ ? 4 : 1);
+  place(false);
+  size_ = next;
+}
+
+bool TallyBook::scores_volume() const {
+  for (const TallyDeclaration& d : declarations_) {
+    if (is_volume_score(d.score)) return true;
+  }
+  return false;
+}
+
+std::vector<TallyResult> TallyBook::finish(const std::vector<double>& raw_mean,
+                                           const std::vector<double>& raw_stderr,
+                                           double scale) const {
+  std::vector<TallyResult> results;
+  std::vector<double> measure;
+  auto add = [&](const TallyDeclaration& d, std::size_t block) {
+    TallyResult t =
+        shaped(d, d.name + order_suffix[block], d.description + order_scope[block], measure);
+    if (d.score == Score::exact) {
+      t.mean = {d.exact_value};
+      t.stderr_of_mean = {0.0};
+    } else {
+      const std::size_t at = offset(d.score) + block * block_size_;
+      t.mean.resize(measure.size());
+      t.stderr_of_mean.resize(measure.size());
+      for (std::size_t i = 0; i < measure.size(); ++i) {
+        t.mean[i] = raw_mean[at + i] / measure[i] * scale;
+        t.stderr_of_mean[i] = raw_stderr[at + i] / measure[i] * scale;
+      }
+    }
+    results.push_back(std::move(t));
+  };
+  const std::size_t blocks = split_by_order_ ? 4 : 1;
+  for (std::size_t block = 0; block < blocks; ++block) {
+    for (const TallyDeclaration& d : declarations_) {
+      if (d.by_order) add(d, block);
+    }
+  }
+  for (const TallyDeclaration& d : declarations_) {
+    if (!d.by_order) add(d, 0);
+  }
+  return results;
+}
+
+}  // namespace scatterlab

@@ -1,0 +1,89 @@
+#include "scatterlab/transport/engine.hpp"
+
+#include <chrono>
+#include <stdexcept>
+
+#include "scatterlab/core/phase_function.hpp"
+#include "scatterlab/tally/scorer.hpp"
+#include "scatterlab/tally/tally_book.hpp"
+#include "scatterlab/transport/half_space.hpp"
+#include "scatterlab/transport/infinite_medium.hpp"
+#include "scatterlab/transport/random_walk.hpp"
+
+namespace scatterlab {
+namespace {
+
+// What every kernel shares: the problem, its tallies' buffer layout and scorer, and how to run.
+struct Kernel {
+  const TransportProblem& problem;
+  const TallyBook& book;
+  const Scorer& scorer;
+  const ProgressCallback& progress;
+  const RunControl& control;
+
+  template <class Geometry, class Phase, VolumeEstimator estimator>
+  BatchOutcome run(const Geometry& geometry, const Phase& phase) const {
+    const RandomWalk<Geometry, Phase, estimator> walk(geometry, phase, problem.source, scorer,
+                                                      problem.albedo, problem.run.escape_radius,
+                                                      problem.run.seed);
+    return run_batches(problem.run, book.size(), walk, progress, control);
+  }
+
+  // No volume tally: nothing is scored at collisions or along flights.
+  template <class Geometry, class Phase>
+  BatchOutcome with_estimator(const Geometry& geometry, const Phase& phase) const {
+    if (!book.scores_volume()) return run<Geometry, Phase, VolumeEstimator::none>(geometry, phase);
+    if (problem.estimator == Estimator::collision) {
+      return run<Geometry, Phase, VolumeEstimator::collision>(geometry, phase);
+    }
+    if constexpr (Geometry::has_surface) {
+      throw std::invalid_argument(
+          "transport: the track-length estimator runs only in the infinite medium");
+    } else {
+      return run<Geometry, Phase, VolumeEstimator::track_length>(geometry, phase);
+    }
+  }
+
+  // eta = 1: no Fresnel arithmetic and no extra random numbers at the surface.
+  template <class Phase>
+  BatchOutcome with_geometry(const Phase& phase) const {
+    switch (problem.geometry) {
+      case GeometryKind::infinite:
+        return with_estimator(InfiniteMedium{}, phase);
+      case GeometryKind::half_space:
+        if (problem.eta == 1.0) return with_estimator(HalfSpace<false>(problem.eta), phase);
+        return with_estimator(HalfSpace<true>(problem.eta), phase);
+    }
+    throw std::invalid_argument("transport: unknown geometry");
+  }
+
+  // g = 0 samples isotropically: no HG arithmetic where the scene does not need it.
+  BatchOutcome select() const {
+    return problem.g == 0.0 ? with_geometry(IsotropicPhase{})
+                            : with_geometry(HenyeyGreenstein{problem.g});
+  }
+};
+
+}  // namespace
+
+TransportOutput transport(const TransportProblem& problem, const ProgressCallback& progress,
+                          const RunControl& control) {
+  const auto start = std::chrono::steady_clock::now();
+  const TallyBook book(problem.tallies, problem.split_by_order);
+  const Scorer scorer(problem.axes, book);
+  const BatchOutcome outcome = Kernel{problem, book, scorer, progress, control}.select();
+  TransportOutput output;
+  if (!outcome.mean.empty()) {  // the root's; other ranks fold only their slice
+    output.tallies = book.finish(outcome.mean, outcome.standard_error, problem.photon_power);
+  }
+  output.photons = outcome.photons_done;
+  output.batches_done = outcome.batches_done;
+  output.threads = outcome.threads;
+  output.ranks = outcome.ranks;
+  output.scattering_events = outcome.scattering_events;
+  output.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return output;
+}
+
+}  // namespace scatterlab
