@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "scatterlab/core/error.hpp"
-#include "toml_reader.hpp"
+#include "scatterlab/io/toml_reader.hpp"
 
 namespace scatterlab {
 namespace {

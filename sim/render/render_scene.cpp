@@ -4,7 +4,7 @@
 #include <cmath>
 #include <map>
 
-#include "../io/toml_reader.hpp"
+#include "scatterlab/io/toml_reader.hpp"
 #include "scatterlab/core/constants.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
 #include "scatterlab/render/mesh_ray_tracer.hpp"

@@ -37,7 +37,7 @@
 #include <functional>
 #include <string>
 
-#include "scatterlab/render/image.hpp"
+#include "scatterlab/io/image_file.hpp"
 #include "scatterlab/render/render_scene.hpp"
 
 namespace scatterlab {

@@ -1,8 +1,9 @@
 #pragma once
 // Strict reading of TOML files (scene files of every command): unknown keys and tables with a
 // suggestion for typos, wrong types and out-of-range integers, each an InputError naming the
-// dotted key, what it got (with file:line:column) and what is accepted. Private to the library
-// (toml++ is not part of the public interface).
+// dotted key, what it got (with file:line:column) and what is accepted. Included only by .cpp
+// files that read TOML (io's scenes, render's scenes), which link toml++ privately: no other
+// header exposes it.
 
 #include <fmt/format.h>
 #include <toml++/toml.h>

@@ -1,4 +1,4 @@
-#include "scatterlab/render/image.hpp"
+#include "scatterlab/io/image_file.hpp"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
