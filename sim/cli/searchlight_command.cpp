@@ -75,8 +75,8 @@ void print_summary(const SearchlightSpec& spec, const SearchlightOutput& out,
     if (!m.shape.empty()) continue;
     double mc_error = 0.0;
     const double mc = scalar(out.tallies, m.name, &mc_error);
-    fmt::print("  {:<15} {:<27} {:.6f}   Monte Carlo {:.6f} ± {:.1e}", m.model, m.name,
-               m.values[0], mc, mc_error);
+    fmt::print("  {:<15} {:<27} {:.6f}   Monte Carlo {:.6f} ± {:.1e}", m.model, m.name, m.values[0],
+               mc, mc_error);
     if (mc_error > 0.0) fmt::print(" ({:+.1f} sigma)", (mc - m.values[0]) / mc_error);
     fmt::print("\n");
   }
@@ -84,11 +84,12 @@ void print_summary(const SearchlightSpec& spec, const SearchlightOutput& out,
 }
 
 int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
-                            const LongRunOptions& long_run_options,
-                            const std::string& command_line, World& world) {
+                            const LongRunOptions& long_run_options, const std::string& command_line,
+                            World& world) {
   auto given = [&command](const char* flag) { return command.get_option(flag)->count() > 0; };
   SearchlightScene scene;
-  if (given("--scene")) scene = load_searchlight_scene(o.scene);
+  // Flags first, validation after, so that a flag can mend the scene.
+  if (given("--scene")) scene = load_searchlight_scene(o.scene, Validation::by_caller);
   SearchlightSpec& spec = scene.spec;
   if (given("--albedo")) spec.medium.albedo = o.albedo;
   if (given("--g")) spec.medium.g = o.g;
@@ -120,8 +121,8 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
   bar.finish();
 
   if (root) {
-    const Provenance provenance{SCATTERLAB_VERSION, command_line,     iso8601_now(),
-                                out.wall_seconds,   out.photons,      out.scattering_events,
+    const Provenance provenance{SCATTERLAB_VERSION, command_line, iso8601_now(),
+                                out.wall_seconds,   out.photons,  out.scattering_events,
                                 out.batches_done,   out.ranks};
     spec.run.threads = out.threads;  // record what ran, not "all cores"
     double specular_error = 0.0;

@@ -48,11 +48,12 @@ void print_summary(const SimulationSpec& spec, const SimulationOutput& out,
              to_string(spec.tallies.estimator));
   const int workers = out.threads * out.ranks;
   const std::string ranks = out.ranks > 1 ? fmt::format("{} ranks x ", out.ranks) : "";
-  fmt::print("  {} photons in {} batches on {}{} thread{}: {:.2f} s ({:.3g} photons/s, {:.3g} "
-             "scattering events, {:.1f} ns per event per thread)\n",
-             out.photons, out.batches_done, ranks, out.threads, out.threads == 1 ? "" : "s",
-             out.wall_seconds, static_cast<double>(out.photons) / out.wall_seconds, events,
-             events > 0 ? out.wall_seconds * workers / events * 1e9 : 0.0);
+  fmt::print(
+      "  {} photons in {} batches on {}{} thread{}: {:.2f} s ({:.3g} photons/s, {:.3g} "
+      "scattering events, {:.1f} ns per event per thread)\n",
+      out.photons, out.batches_done, ranks, out.threads, out.threads == 1 ? "" : "s",
+      out.wall_seconds, static_cast<double>(out.photons) / out.wall_seconds, events,
+      events > 0 ? out.wall_seconds * workers / events * 1e9 : 0.0);
   std::string energy = "  energy per W incident:";
   double total = 0.0;
   for (const char* name : {"absorbed", "absorbed_outside_grid", "escaped"}) {
@@ -64,7 +65,8 @@ void print_summary(const SimulationSpec& spec, const SimulationOutput& out,
   fmt::print("{} total {:.6f}\n", energy, total);
   std::string written;
   for (const TallyResult& t : out.tallies) {
-    if (!t.shape.empty()) written += fmt::format("{}{} [{}]", written.empty() ? "" : ", ", t.name, shape_text(t));
+    if (!t.shape.empty())
+      written += fmt::format("{}{} [{}]", written.empty() ? "" : ", ", t.name, shape_text(t));
   }
   fmt::print("  wrote {}: {}\n", path, written);
 }
@@ -129,7 +131,8 @@ struct PlannedRun {
 std::vector<PlannedRun> plan_runs(CLI::App& command, const SimulateOptions& o,
                                   const LongRunOptions& long_run) {
   auto given = [&command](const char* flag) { return command.get_option(flag)->count() > 0; };
-  std::vector<SweepPoint> points = given("--scene") ? load_sweep(o.scene)
+  // Flags first, validation after (apply_flags), so that a flag can mend the scene.
+  std::vector<SweepPoint> points = given("--scene") ? load_sweep(o.scene, Validation::by_caller)
                                                     : std::vector<SweepPoint>{SweepPoint{}};
   const bool sweep = points.size() > 1 || !points.front().label.empty();
   if (sweep && given("--out")) {
@@ -195,8 +198,8 @@ int run_one(PlannedRun run, const LongRunOptions& options, const std::string& co
   bar.finish();
 
   if (root) {
-    const Provenance provenance{SCATTERLAB_VERSION, command_line,     iso8601_now(),
-                                out.wall_seconds,   out.photons,      out.scattering_events,
+    const Provenance provenance{SCATTERLAB_VERSION, command_line, iso8601_now(),
+                                out.wall_seconds,   out.photons,  out.scattering_events,
                                 out.batches_done,   out.ranks};
     run.spec.run.threads = out.threads;  // record what ran, not "all cores"
     write_simulation_file(run.output, run.spec, out.tallies, provenance);
@@ -223,7 +226,8 @@ int run_simulate(CLI::App& command, const SimulateOptions& o, const LongRunOptio
     const bool skip = !o.out_dir.empty() &&
                       world.communicator().broadcast_from_root(already_done(run) ? 1 : 0) != 0;
     if (skip) {
-      if (world.is_root()) fmt::print("skip {}: done already, same parameters\n", run.output.string());
+      if (world.is_root())
+        fmt::print("skip {}: done already, same parameters\n", run.output.string());
       continue;
     }
     const int status = run_one(run, long_run, command_line, world);

@@ -22,12 +22,18 @@ using namespace toml_reading;
 
 class SceneReader : public TomlReader {
  public:
-  explicit SceneReader(const std::string& origin) : TomlReader(origin) {}
+  SceneReader(const std::string& origin, Validation validation)
+      : TomlReader(origin), validation_(validation) {}
 
   Scene read(const toml::table& root) {
-    check_keys(root, "", {"medium", "source", "grid", "tallies", "run", "output"});
+    check_keys(root, "", {"geometry", "medium", "source", "grid", "tallies", "run", "output"});
     Scene scene;
     SimulationSpec& spec = scene.spec;
+    if (const auto* geometry = subtable(root, "geometry", "")) {
+      check_keys(*geometry, "geometry", {"type"});
+      read_geometry_type(*geometry, "infinite",
+                         "\"infinite\" (a half-space scene runs with scatterlab searchlight)");
+    }
     if (const auto* medium = subtable(root, "medium", "")) read_medium(*medium, spec.medium);
     if (const auto* source = subtable(root, "source", "")) read_source(*source, spec.source);
     if (const auto* grid = subtable(root, "grid", "")) read_grid(*grid, spec.grid);
@@ -35,21 +41,42 @@ class SceneReader : public TomlReader {
     if (const auto* tallies = subtable(root, "tallies", "")) read_tallies(*tallies, spec.tallies);
     if (const auto* run = subtable(root, "run", "")) read_run(*run, spec.run);
     scene.output_path = read_output(root);
-    spec.validate();
+    if (validation_ == Validation::on_read) spec.validate();
     return scene;
   }
 
   // The searchlight's scene (scene.hpp): the same tables where they mean the same, plus
-  // [surface] eta and [source] incidence_deg.
+  // [geometry] eta (or [surface] eta) and [source] incidence_deg.
   SearchlightScene read_searchlight(const toml::table& root) {
-    check_keys(root, "", {"medium", "surface", "source", "grid", "tallies", "run", "output"});
+    check_keys(root, "",
+               {"geometry", "medium", "surface", "source", "grid", "tallies", "run", "output"});
     SearchlightScene scene;
     SearchlightSpec& spec = scene.spec;
     if (const auto* medium = subtable(root, "medium", "")) read_medium(*medium, spec.medium);
+    const std::string_view eta_accepted = "a finite number > 0";
+    if (const auto* geometry = subtable(root, "geometry", "")) {
+      check_keys(*geometry, "geometry", {"type", "eta"});
+      read_geometry_type(*geometry, "half_space",
+                         "\"half_space\" (an infinite-medium scene runs with scatterlab simulate)");
+      if (const auto eta = number(*geometry, "eta", "geometry", eta_accepted)) {
+        if (!(*eta > 0.0)) {
+          throw InputError("geometry.eta", fmt::format("got {}", *eta) + at(*geometry->get("eta")),
+                           std::string(eta_accepted));
+        }
+        spec.eta = *eta;
+      }
+    }
     if (const auto* surface = subtable(root, "surface", "")) {
       check_keys(*surface, "surface", {"eta"});
-      const auto eta = number(*surface, "eta", "surface", "a finite number > 0");
-      if (eta) spec.eta = *eta;
+      if (const auto eta = number(*surface, "eta", "surface", eta_accepted)) {
+        if (const auto* geometry = subtable(root, "geometry", "");
+            geometry && geometry->get("eta")) {
+          throw InputError("surface.eta",
+                           "given together with geometry.eta" + at(*surface->get("eta")),
+                           "the index once: geometry.eta (or surface.eta, as older scenes say)");
+        }
+        spec.eta = *eta;
+      }
     }
     if (const auto* source = subtable(root, "source", "")) {
       check_keys(*source, "source", {"incidence_deg"});
@@ -68,11 +95,20 @@ class SceneReader : public TomlReader {
     }
     if (const auto* run = subtable(root, "run", "")) read_run(*run, spec.run);
     scene.output_path = read_output(root);
-    spec.validate();
+    if (validation_ == Validation::on_read) spec.validate();
     return scene;
   }
 
  private:
+  // [geometry] type: each command runs one geometry; a scene for the other is named as such.
+  void read_geometry_type(const toml::table& geometry, std::string_view expected,
+                          std::string_view accepted) const {
+    const auto type = string(geometry, "type", "geometry", accepted);
+    if (type && *type != expected) wrong_type(*geometry.get("type"), "geometry.type", accepted);
+  }
+
+  Validation validation_;
+
   std::optional<std::string> read_output(const toml::table& root) const {
     const auto* output = subtable(root, "output", "");
     if (output == nullptr) return std::nullopt;
@@ -208,7 +244,6 @@ class SceneReader : public TomlReader {
   }
 };
 
-
 // A key of the scene that holds a list of values to sweep over.
 struct SweptKey {
   std::vector<std::string> path;  // tables down to the key, then the key
@@ -269,15 +304,16 @@ std::string key_label(const std::vector<SweptKey>& swept, std::size_t index) {
 
 }  // namespace
 
-Scene parse_scene(std::string_view toml_text, const std::string& origin) {
-  return SceneReader(origin).read(parse_toml(toml_text, origin));
+Scene parse_scene(std::string_view toml_text, const std::string& origin, Validation validation) {
+  return SceneReader(origin, validation).read(parse_toml(toml_text, origin));
 }
 
-Scene load_scene(const std::filesystem::path& path) {
-  return parse_scene(read_text(path), path.string());
+Scene load_scene(const std::filesystem::path& path, Validation validation) {
+  return parse_scene(read_text(path), path.string(), validation);
 }
 
-std::vector<SweepPoint> parse_sweep(std::string_view toml_text, const std::string& origin) {
+std::vector<SweepPoint> parse_sweep(std::string_view toml_text, const std::string& origin,
+                                    Validation validation) {
   const toml::table root = parse_toml(toml_text, origin);
   std::vector<SweptKey> swept;
   std::vector<std::string> path;
@@ -295,10 +331,10 @@ std::vector<SweepPoint> parse_sweep(std::string_view toml_text, const std::strin
       }
       const toml::node& value = *swept[k].values->get(index[k]);
       table->insert_or_assign(swept[k].path.back(), value);
-      label += fmt::format("{}{}={}", label.empty() ? "" : "_", key_label(swept, k),
-                           value_label(value));
+      label +=
+          fmt::format("{}{}={}", label.empty() ? "" : "_", key_label(swept, k), value_label(value));
     }
-    points.push_back({label, SceneReader(origin).read(point)});
+    points.push_back({label, SceneReader(origin, validation).read(point)});
     std::size_t k = swept.size();
     while (k > 0 && ++index[k - 1] == swept[k - 1].values->size()) index[--k] = 0;
     if (k == 0) break;
@@ -306,16 +342,17 @@ std::vector<SweepPoint> parse_sweep(std::string_view toml_text, const std::strin
   return points;
 }
 
-std::vector<SweepPoint> load_sweep(const std::filesystem::path& path) {
-  return parse_sweep(read_text(path), path.string());
+std::vector<SweepPoint> load_sweep(const std::filesystem::path& path, Validation validation) {
+  return parse_sweep(read_text(path), path.string(), validation);
 }
 
-SearchlightScene parse_searchlight_scene(std::string_view toml_text, const std::string& origin) {
-  return SceneReader(origin).read_searchlight(parse_toml(toml_text, origin));
+SearchlightScene parse_searchlight_scene(std::string_view toml_text, const std::string& origin,
+                                         Validation validation) {
+  return SceneReader(origin, validation).read_searchlight(parse_toml(toml_text, origin));
 }
 
-SearchlightScene load_searchlight_scene(const std::filesystem::path& path) {
-  return parse_searchlight_scene(read_text(path), path.string());
+SearchlightScene load_searchlight_scene(const std::filesystem::path& path, Validation validation) {
+  return parse_searchlight_scene(read_text(path), path.string(), validation);
 }
 
 }  // namespace scatterlab

@@ -98,6 +98,12 @@ if "$exe" searchlight --help | grep -q -- "--incidence"; then pass; else fail "s
 if "$exe" searchlight --scene "$source_dir/data/scenes/searchlight.toml" --photons 20000 --batches 8 \
   --out "$work/scene.h5" >/dev/null 2>&1 && "$exe" info "$work/scene.h5" | grep -q "eta *1.3"
 then pass; else fail "searchlight scene"; fi
+# Flags are applied before the scene is validated: a flag can mend what the file leaves invalid.
+printf '[medium]\nalbedo = 1\n' >"$work/conservative.toml"
+if "$exe" searchlight --scene "$work/conservative.toml" --escape-radius 5 --photons 2000 --batches 4 \
+  --no-fluence --out "$work/conservative-half.h5" >/dev/null 2>&1 &&
+  "$exe" simulate --scene "$work/conservative.toml" --escape-radius 5 --photons 2000 --batches 4 \
+    --out "$work/conservative.h5" >/dev/null 2>&1; then pass; else fail "flags mend a scene"; fi
 printf '[surface]\nindx = 1.3\n' >"$work/half-typo.toml"
 expect_searchlight_error searchlight_unknown_key surface.indx --scene "$work/half-typo.toml"
 expect_searchlight_error eta_zero surface.eta --eta 0

@@ -443,5 +443,35 @@ TEST(SearchlightScene, BadInputNamesTheField) {
   EXPECT_EQ(searchlight_field_of("[medium]\nalbedo = \"high\"\n"), "medium.albedo");
 }
 
+TEST(GeometryTable, NamesTheGeometryEachCommandRuns) {
+  EXPECT_NO_THROW(parse("[geometry]\ntype = \"infinite\"\n"));
+  EXPECT_EQ(field_of("[geometry]\ntype = \"half_space\"\n"), "geometry.type");
+  EXPECT_EQ(field_of("[geometry]\neta = 1.3\n"), "geometry.eta");
+
+  const SearchlightScene half =
+      parse_searchlight_scene("[geometry]\ntype = \"half_space\"\neta = 1.45\n", "half.toml");
+  EXPECT_EQ(half.spec.eta, 1.45);
+  EXPECT_EQ(searchlight_field_of("[geometry]\ntype = \"infinite\"\n"), "geometry.type");
+  EXPECT_EQ(searchlight_field_of("[geometry]\neta = 0\n"), "geometry.eta");
+  EXPECT_EQ(searchlight_field_of("[geometry]\neta = 1.3\n[surface]\neta = 1.4\n"), "surface.eta");
+}
+
+TEST(SceneValidation, ByTheCallerLeavesTheSpecForFlagsToMend) {
+  // Albedo 1 needs an escape radius, which the command line may give after reading.
+  EXPECT_EQ(field_of("[medium]\nalbedo = 1\n"), "run.escape_radius");
+  Scene scene = parse_scene("[medium]\nalbedo = 1\n", "scene.toml", Validation::by_caller);
+  EXPECT_THROW(scene.spec.validate(), InputError);
+  scene.spec.run.escape_radius = 5.0;
+  EXPECT_NO_THROW(scene.spec.validate());
+
+  SearchlightScene half =
+      parse_searchlight_scene("[medium]\nalbedo = 1\n", "half.toml", Validation::by_caller);
+  half.spec.run.escape_radius = 5.0;
+  EXPECT_NO_THROW(half.spec.validate());
+  // Reading errors are not validation: they stop the read either way.
+  EXPECT_THROW(parse_scene("[medium]\nalbdo = 1\n", "scene.toml", Validation::by_caller),
+               InputError);
+}
+
 }  // namespace
 }  // namespace scatterlab

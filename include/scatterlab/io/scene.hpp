@@ -1,9 +1,10 @@
 #pragma once
 // Scene files: a TOML description of one simulation, read strictly into a validated
-// SimulationSpec (DESIGN.md, data flow). Anything the file leaves out keeps the default of
-// SimulationSpec, which is the paper's case (Vavassori §4.1); data/scenes/paper-beam.toml spells
-// every key out with its meaning and units.
+// SimulationSpec (docs/architecture.md, "From a scene to a file"). Anything the file leaves out
+// keeps the default of SimulationSpec, which is the paper's case (Vavassori §4.1);
+// data/scenes/paper-beam.toml spells every key out with its meaning and units.
 //
+//   [geometry] type = "infinite"              (the default; the half-space is below)
 //   [medium]   albedo, sigma_t, g            (length_unit defaults to "mfp")
 //          or  sigma_a, sigma_s, g           (length_unit defaults to "mm")
 //              length_unit = "mfp" | "um" | "mm" | "cm" | "m"
@@ -34,16 +35,22 @@
 
 namespace scatterlab {
 
+// Whether reading also validates the spec. The CLI reads with by_caller, applies its flags and
+// then validates, so that a flag can mend what the file alone leaves invalid (say
+// --escape-radius for a scene with albedo 1).
+enum class Validation { on_read, by_caller };
+
 struct Scene {
-  SimulationSpec spec;                     // validated
+  SimulationSpec spec;                     // validated unless read with Validation::by_caller
   std::optional<std::string> output_path;  // [output] path, as written; the CLI resolves it
 };
 
 // `origin` names the text in messages (usually its file name).
-Scene parse_scene(std::string_view toml_text, const std::string& origin);
+Scene parse_scene(std::string_view toml_text, const std::string& origin,
+                  Validation validation = Validation::on_read);
 
 // Reads and parses a file; an unreadable file is an InputError for "scene".
-Scene load_scene(const std::filesystem::path& path);
+Scene load_scene(const std::filesystem::path& path, Validation validation = Validation::on_read);
 
 // Parameter sweeps: in a sweep file any scalar key may hold a list of values instead of one,
 //   [medium]
@@ -59,23 +66,28 @@ struct SweepPoint {
   Scene scene;
 };
 
-std::vector<SweepPoint> parse_sweep(std::string_view toml_text, const std::string& origin);
-std::vector<SweepPoint> load_sweep(const std::filesystem::path& path);
+std::vector<SweepPoint> parse_sweep(std::string_view toml_text, const std::string& origin,
+                                    Validation validation = Validation::on_read);
+std::vector<SweepPoint> load_sweep(const std::filesystem::path& path,
+                                   Validation validation = Validation::on_read);
 
 // The searchlight's scene (scatterlab searchlight --scene; data/scenes/searchlight.toml), as
 // strict as the above, with these tables:
+//   [geometry] type = "half_space", eta = n_medium / n_outside
 //   [medium]   albedo, g                                   (in mfp: sigma_t = 1)
-//   [surface]  eta = n_medium / n_outside
+//   [surface]  eta                                         (the same eta, as older files say)
 //   [source]   incidence_deg
 //   [grid]     r = { max, bins }, z = { max, bins }, theta_o = { bins }
 //   [tallies]  fluence = bool
 //   [run]      as above;  [output] path
 struct SearchlightScene {
-  SearchlightSpec spec;                    // validated
+  SearchlightSpec spec;                    // validated unless read with Validation::by_caller
   std::optional<std::string> output_path;  // [output] path, as written
 };
 
-SearchlightScene parse_searchlight_scene(std::string_view toml_text, const std::string& origin);
-SearchlightScene load_searchlight_scene(const std::filesystem::path& path);
+SearchlightScene parse_searchlight_scene(std::string_view toml_text, const std::string& origin,
+                                         Validation validation = Validation::on_read);
+SearchlightScene load_searchlight_scene(const std::filesystem::path& path,
+                                        Validation validation = Validation::on_read);
 
 }  // namespace scatterlab
