@@ -29,7 +29,7 @@ std::size_t product(const std::vector<std::size_t>& shape) {
   return values;
 }
 
-// E = integral of L w d omega over the bins (DESIGN.md, "Normalisation"), for files without
+// E = integral of L w d omega over the bins (docs/architecture.md, "Normalisation"), for files without
 // the flux tally.
 std::vector<double> flux_from_radiance(const RadianceLobes& lobes, const LobeGrid& grid) {
   std::vector<double> flux;

@@ -92,7 +92,7 @@ void write_medium(hdf5::Group& parameters, const Medium& medium) {
   parameters.write_double_attribute("sigma_a", medium.sigma_a());
   parameters.write_double_attribute("sigma_s", medium.sigma_s());
   parameters.write_string_attribute("length_unit", medium.length_unit);
-  // g = 0 samples isotropically (DESIGN.md, "Leave out what a scene does not need").
+  // g = 0 samples isotropically (docs/architecture.md, "Leave out what a scene does not need").
   parameters.write_string_attribute("phase", medium.g == 0.0 ? "isotropic" : "henyey-greenstein");
 }
 
@@ -116,7 +116,7 @@ void write_parameters(hdf5::Group& root, const SimulationSpec& spec) {
   parameters.write_int64_attribute("threads", spec.run.threads);
 }
 
-// The half-space run (DESIGN.md: /parameters eta): geometry, interface and beam first.
+// The half-space run: geometry, interface and beam first.
 void write_searchlight_parameters(hdf5::Group& root, const SearchlightSpec& spec) {
   hdf5::Group parameters = root.create_group("parameters");
   parameters.write_string_attribute("geometry", "half_space");
@@ -138,7 +138,7 @@ void write_axis(hdf5::Group& grid, const char* name, const UniformAxis& axis, co
   grid.write_dataset(name, edges).write_string_attribute("units", units);
 }
 
-// Grid lengths are in mean free paths: transport runs with sigma_t = 1 (DESIGN.md, "Units").
+// Grid lengths are in mean free paths: transport runs with sigma_t = 1 (docs/architecture.md, "Units").
 void write_grid(hdf5::Group& root, const SimulationSpec& spec) {
   hdf5::Group grid = root.create_group("grid");
   grid.write_bool_attribute("phi_folded", spec.grid.fold_phi);

@@ -14,7 +14,7 @@ namespace scatterlab {
 namespace {
 
 // Field names below are those the user writes: the TOML keys of the scene file, which the CLI
-// options mirror (DESIGN.md, "Errors").
+// options mirror (docs/architecture.md, "Errors").
 
 constexpr int max_bins = 100'000;
 // 2^28 doubles are 2 GiB for the mean alone; batch accumulators and per-order siblings multiply

@@ -1,4 +1,4 @@
-// The HDF5 output layer: the simulation file round trip (the public layout of DESIGN.md),
+// The HDF5 output layer: the simulation file round trip (the public layout of simulation_file.hpp),
 // atomic output, `scatterlab info`, and the errors of the HDF5 wrapper.
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 #pragma once
-// Bad input is reported once, naming the field and what it accepts (DESIGN.md, "Errors").
+// Bad input is reported once, naming the field and what it accepts (docs/architecture.md, "Errors").
 
 #include <stdexcept>
 #include <string>

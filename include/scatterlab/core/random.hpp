@@ -1,6 +1,6 @@
 #pragma once
 // Counter-based randomness: a photon's stream is a pure function of (seed, photon index), so a
-// result does not depend on how photons are spread over threads or ranks (DESIGN.md,
+// result does not depend on how photons are spread over threads or ranks (docs/architecture.md,
 // "Randomness"). One Philox4x32-10 call (Salmon et al. 2011) gives four 32-bit words.
 
 #include <Random123/philox.h>

@@ -3,7 +3,7 @@
 // direction, its solid angle, and quadrature nodes that average a model over the bin.
 //
 // Directions are in the local frame of the spatial bin, (e_r, e_phi, e_z) with
-// omega = (sin t cos f, sin t sin f, cos t) (DESIGN.md, "Frames"). The tally stores bin
+// omega = (sin t cos f, sin t sin f, cos t) (docs/architecture.md, "Frames"). The tally stores bin
 // averages, so a model is compared with its own average over each bin, not its value at the
 // centre: on the paper's 10-degree bins a lobe with lambda ~ 1e3 (width ~2 degrees) lives inside
 // one bin, and its centre value says nothing about its bin average. The average is an n x n

@@ -1,5 +1,5 @@
 #pragma once
-// Nothing half-written is left behind (DESIGN.md, "Errors"): an output is written to a temporary
+// Nothing half-written is left behind (docs/architecture.md, "Errors"): an output is written to a temporary
 // file beside its final path and renamed into place only when complete. Rename within one
 // directory is atomic on POSIX, so readers see either the old file or the whole new one.
 

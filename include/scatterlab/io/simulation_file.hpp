@@ -1,5 +1,5 @@
 #pragma once
-// The simulation file: one self-describing HDF5 file per run (DESIGN.md, HDF5 layout).
+// The simulation file: one self-describing HDF5 file per run.
 //
 //   /                  attrs format="scatterlab", format_version=1, scatterlab_version, command,
 //                            created (ISO 8601 UTC), wall_seconds, photons_run, scattering_events,

@@ -1,6 +1,6 @@
 #pragma once
 // A finished tally as it goes to the file: a named array with its dimensions, units, the batch
-// mean and the standard error of that mean (DESIGN.md, HDF5 layout: /tallies/<name>/{mean,stderr}).
+// mean and the standard error of that mean (in the file: /tallies/<name>/{mean,stderr}).
 
 #include <cstddef>
 #include <string>

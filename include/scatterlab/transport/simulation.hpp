@@ -1,5 +1,5 @@
 #pragma once
-// What one simulation is asked to do, as plain structs validated once (DESIGN.md, data flow).
+// What one simulation is asked to do, as plain structs validated once (docs/architecture.md, "From a scene to a file").
 // Lengths are in mean free paths (sigma_t = 1) throughout transport and tallies.
 
 #include <cstdint>
