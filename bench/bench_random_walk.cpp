@@ -64,28 +64,33 @@ void BareLoop(benchmark::State& state, Phase phase, double albedo) {
   report(state, photons, scatterings);
 }
 
-template <class Phase>
-void Walk(benchmark::State& state, Phase phase, SimulationSpec spec) {
+template <class Phase, VolumeEstimator estimator>
+void run_walk(benchmark::State& state, const Phase& phase, const SimulationSpec& spec) {
   const TransportProblem problem = transport_problem(spec);
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
+  const RandomWalk<InfiniteMedium, Phase, estimator> walk(
+      InfiniteMedium{}, phase, problem.source, scorer, problem.albedo, problem.run.escape_radius,
+      problem.run.seed);
   std::vector<double> buffer(book.size(), 0.0);
-  std::vector<double> crossings = scorer.make_crossing_scratch();
-  const RandomWalk<InfiniteMedium, Phase, VolumeEstimator::collision> collision(
-      InfiniteMedium{}, phase, problem.source, scorer, problem.albedo, problem.run.escape_radius,
-      problem.run.seed);
-  const RandomWalk<InfiniteMedium, Phase, VolumeEstimator::track_length> track_length(
-      InfiniteMedium{}, phase, problem.source, scorer, problem.albedo, problem.run.escape_radius,
-      problem.run.seed);
+  std::vector<double> crossings = walk.make_scratch();
   std::uint64_t photon = 0, scatterings = 0;
   for (auto _ : state) {
-    scatterings += spec.tallies.estimator == Estimator::collision
-                       ? collision.run(photon, photon + 1000, buffer.data(), crossings)
-                       : track_length.run(photon, photon + 1000, buffer.data(), crossings);
+    scatterings += walk.run(photon, photon + 1000, buffer.data(), crossings);
     photon += 1000;
   }
   benchmark::DoNotOptimize(buffer.data());
   report(state, photon, scatterings);
+}
+
+// Picks the kernel the scene needs, as the engine does, outside the timed loop.
+template <class Phase>
+void Walk(benchmark::State& state, Phase phase, SimulationSpec spec) {
+  if (spec.tallies.estimator == Estimator::collision) {
+    run_walk<Phase, VolumeEstimator::collision>(state, phase, spec);
+  } else {
+    run_walk<Phase, VolumeEstimator::track_length>(state, phase, spec);
+  }
 }
 
 void WholeRun(benchmark::State& state) {
