@@ -67,7 +67,7 @@ struct ModelResult {
 
 // The same file for the half-space (scatterlab searchlight): /parameters adds geometry =
 // "half_space", eta and incidence_deg; /grid holds r, z (with the fluence) and theta_o, the exit
-// angle outside the medium; the tallies are those of finalize_half_space_tallies.
+// angle outside the medium; the tallies are those declared in sim/transport/searchlight.cpp.
 // Model curves, if any, go under /models.
 void write_searchlight_file(const std::filesystem::path& path, const SearchlightSpec& spec,
                             const std::vector<TallyResult>& tallies, const Provenance& provenance,
