@@ -86,11 +86,25 @@ LobeGrid::LobeGrid(std::span<const double> theta_edges, std::span<const double> 
       in_plane_.push_back(phi_low < plane_tolerance || std::abs(phi_high - pi) < plane_tolerance ||
                           std::abs(phi_low - pi) < plane_tolerance ||
                           std::abs(phi_high - 2.0 * pi) < plane_tolerance);
+      // The line phi = 0 (ridge.hpp): half of it in each of the two bins beside it, or all of
+      // it, with its mirror image, in the one bin of a folded grid: 1 / (2 Omega) either way.
+      const bool on_ridge =
+          phi_low < plane_tolerance || std::abs(phi_high - 2.0 * pi) < plane_tolerance;
+      on_ridge_.push_back(on_ridge);
+      const double theta_low = theta_edges[t], theta_high = theta_edges[t + 1];
+      for (std::size_t i = 0; i < n; ++i) {
+        const double half_width = 0.5 * (theta_high - theta_low);
+        ridge_nodes_.push_back(
+            {0.5 * (theta_low + theta_high) + half_width * rule.nodes[i],
+             on_ridge ? half_width * rule.weights[i] / (2.0 * solid_angles_.back()) : 0.0});
+      }
       for (std::size_t i = 0; i < n; ++i) {
         const double mu = 0.5 * (mu_low + mu_high) + 0.5 * (mu_high - mu_low) * rule.nodes[i];
         for (std::size_t j = 0; j < n; ++j) {
-          const double phi = 0.5 * (phi_low + phi_high) + 0.5 * (phi_high - phi_low) * rule.nodes[j];
-          const double weight = 0.25 * rule.weights[i] * rule.weights[j] / static_cast<double>(mirrors);
+          const double phi =
+              0.5 * (phi_low + phi_high) + 0.5 * (phi_high - phi_low) * rule.nodes[j];
+          const double weight =
+              0.25 * rule.weights[i] * rule.weights[j] / static_cast<double>(mirrors);
           nodes_.push_back({direction(mu, phi), weight});
           if (phi_folded) nodes_.push_back({direction(mu, -phi), weight});
         }
