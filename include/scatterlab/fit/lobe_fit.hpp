@@ -20,7 +20,8 @@
 // same in every direction of the lobe: Q is the median of stderr_i^2 Omega_i / L_i over the
 // directions with L_i > 0. A dark direction then says "fewer than about one event here", which
 // is what the tally knows. Where no direction has a standard error (noise-free data), sigma_i
-// is 1e-9 of the brightest L_i: an unweighted fit in L.
+// is 1e-6 of L_i (at least 1e-12 of the brightest L): every direction known to the same relative
+// precision, as if counted with the same number of events; an exact model still fits to zero.
 //
 // Reported per bin, over all directions, from the same L, stderr and <m>:
 //   error       relative L1 error over the sphere, sum Omega |<m> - L| / sum Omega L
