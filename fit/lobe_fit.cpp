@@ -21,6 +21,7 @@ constexpr double kNoiseFreeRelative = 1e-6, kNoiseFreeFloor = 1e-12;
 // The ridge's start: an HG-like forward peak, a mild attenuation and a sharp onset (ridge.hpp);
 // its amplitude and onset come from the data (ridge_from_adexp).
 constexpr double kRidgeStartG = 0.8, kRidgeStartK = 0.5, kRidgeStartWidth = 0.05;
+constexpr double kRidgeStartKappa = 10.0;  // a spread of ~1/sqrt(10) rad, 18 degrees
 
 inline bool finite(double x) {
   return std::isfinite(x);
@@ -63,6 +64,7 @@ T bin_value(const LobeGrid& grid, std::size_t bin, const Evaluator& lobe) {
     for (const RidgeNode& node : grid.ridge_nodes(bin)) {
       value += node.weight * lobe.ridge_density(node.theta);
     }
+    value += lobe.spread_average(bin / grid.phi_bins(), bin % grid.phi_bins());
   }
   return value;
 }
@@ -98,8 +100,8 @@ struct RidgeResidual {
 
   template <typename T>
   bool operator()(const T* axis, const T* shape, const T* ridge, T* residuals) const {
-    return chi_residuals(*grid, *observations, AnisotropicRidge::Evaluator<T>(axis, shape, ridge),
-                         residuals);
+    return chi_residuals(*grid, *observations,
+                         AnisotropicRidge::Evaluator<T>(axis, shape, ridge, *grid), residuals);
   }
 };
 
@@ -115,7 +117,7 @@ double cost_with(const LobeGrid& grid, const LobeObservations& o, const Evaluato
 
 // Calls f with the double Evaluator of `model` at `p`.
 template <class F>
-auto with_evaluator(LobeModel model, const LobeParameters& p, F&& f) {
+auto with_evaluator(LobeModel model, const LobeGrid& grid, const LobeParameters& p, F&& f) {
   const double* axis = p.axis.data();
   const double* shape = p.shape.data();
   switch (model) {
@@ -132,7 +134,7 @@ auto with_evaluator(LobeModel model, const LobeParameters& p, F&& f) {
     case LobeModel::adexp_ridge:
       break;
   }
-  return f(AnisotropicRidge::Evaluator<double>(axis, shape, p.ridge.data()));
+  return f(AnisotropicRidge::Evaluator<double>(axis, shape, p.ridge.data(), grid));
 }
 
 // A bound on one parameter: block 0 = shape, 1 = ridge. `artificial`: a fit that ends on it is
@@ -168,7 +170,9 @@ std::vector<Bound> bounds(LobeModel model) {
               {1, 1, -kRidgeGBound, kRidgeGBound, true, true},
               {1, 2, 0.0, kSharpnessBound, false, true},
               {1, 3, 0.0, pi, false, false},
-              {1, 4, 1e-3, 1.0, false, false}};
+              {1, 4, 1e-3, 1.0, false, false},
+              {1, 5, 0.0, inf, false, false},
+              {1, 6, 0.0, kSharpnessBound, false, true}};
   }
   return {};
 }
@@ -249,7 +253,7 @@ LobeFit solve(LobeModel model, const LobeGrid& grid, const LobeObservations& o,
       break;
     case LobeModel::adexp_ridge:
       problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<RidgeResidual, ceres::DYNAMIC, 3, 4, 5>(
+          new ceres::AutoDiffCostFunction<RidgeResidual, ceres::DYNAMIC, 3, 4, 7>(
               new RidgeResidual{&grid, &o}, residuals),
           nullptr, axis, shape, ridge);
       break;
@@ -435,7 +439,7 @@ LobeObservations observe(const LobeGrid& grid, const LobeData& data, const FitOp
 double fit_cost(LobeModel model, const LobeGrid& grid, const LobeObservations& observations,
                 const LobeParameters& parameters) {
   const LobeParameters p = feasible(model, parameters);
-  return with_evaluator(model, p,
+  return with_evaluator(model, grid, p,
                         [&](const auto& lobe) { return cost_with(grid, observations, lobe); });
 }
 
@@ -526,7 +530,7 @@ LobeParameters asg_from_sg(const LobeParameters& sg) {
 LobeParameters ridge_from_adexp(const LobeGrid& grid, const LobeObservations& o,
                                 const LobeParameters& adexp, bool with_ridge) {
   LobeParameters start = adexp;
-  start.ridge = {0.0, kRidgeStartG, kRidgeStartK, 0.0, kRidgeStartWidth};
+  start.ridge = {0.0, kRidgeStartG, kRidgeStartK, 0.0, kRidgeStartWidth, 0.0, kRidgeStartKappa};
   if (!with_ridge) return start;
   // The onset where the tally on the line lies most standard errors above the smooth lobe.
   const AnisotropicDoubleExponential::Evaluator<double> lobe(adexp.axis.data(), adexp.shape.data());
@@ -544,7 +548,7 @@ LobeParameters ridge_from_adexp(const LobeGrid& grid, const LobeObservations& o,
   // c by weighted least squares of the excess on the profile (linear in c).
   start.ridge[0] = 1.0;
   const AnisotropicRidge::Evaluator<double> unit(adexp.axis.data(), adexp.shape.data(),
-                                                 start.ridge.data());
+                                                 start.ridge.data(), grid);
   double sxy = 0.0, sxx = 0.0;
   for (std::size_t i = 0; i < o.radiance.size(); ++i) {
     double profile = 0.0;
@@ -560,7 +564,7 @@ LobeParameters ridge_from_adexp(const LobeGrid& grid, const LobeObservations& o,
 
 double log_bin_average(LobeModel model, const LobeGrid& grid, std::size_t bin,
                        const LobeParameters& p) {
-  return with_evaluator(model, p,
+  return with_evaluator(model, grid, p,
                         [&](const auto& lobe) { return std::log(bin_value(grid, bin, lobe)); });
 }
 
@@ -568,7 +572,7 @@ LobeErrors lobe_errors(LobeModel model, const LobeGrid& grid, const LobeObservat
                        const LobeParameters& parameters) {
   double difference = 0.0, total = 0.0, plane_difference = 0.0, plane_total = 0.0, noise = 0.0,
          chi2 = 0.0;
-  with_evaluator(model, parameters, [&](const auto& lobe) {
+  with_evaluator(model, grid, parameters, [&](const auto& lobe) {
     for (std::size_t bin = 0; bin < o.radiance.size(); ++bin) {
       const double measured = o.radiance[bin];
       const double model_value = bin_value(grid, bin, lobe);

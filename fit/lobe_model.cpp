@@ -73,7 +73,8 @@ std::string describe(LobeModel model) {
     case LobeModel::adexp_ridge:
       return "adexp plus the ridge of once-scattered light on phi = 0, density across it "
              "c e^a (1 - g^2) / (1 + g^2 - 2 g cos theta)^1.5 e^(-k tan(theta/2)) / "
-             "(1 + e^(-(theta - theta_on) / w))";
+             "(1 + e^(-(theta - theta_on) / w)), and its spread in phi, spread_c e^a R e^(kappa "
+             "(cos phi - 1))";
   }
   return "";
 }
@@ -110,8 +111,10 @@ std::vector<std::string> parameter_names(LobeModel model) {
     case LobeModel::asg:
       return {"c", "lambda", "mu", "p_r", "p_phi", "p_z"};
     case LobeModel::adexp_ridge:
-      return {"alpha", "beta", "gamma",   "eta",     "log_peak", "slope",          "p_r",
-              "p_phi", "p_z",  "ridge_c", "ridge_g", "ridge_k",  "ridge_theta_on", "ridge_width"};
+      return {"alpha",       "beta",    "gamma",          "eta",         "log_peak",
+              "slope",       "p_r",     "p_phi",          "p_z",         "ridge_c",
+              "ridge_g",     "ridge_k", "ridge_theta_on", "ridge_width", "spread_c",
+              "spread_kappa"};
   }
   return {};
 }

@@ -127,8 +127,9 @@ double fit_cost(LobeModel model, const LobeGrid& grid, const LobeObservations& o
 // Chi-square fit from `start` with Ceres (Levenberg-Marquardt, dense QR). The axis is held at
 // start.axis for sg and moves on the sphere otherwise; bounds: lambda, mu in [0, 1e5],
 // |gamma| <= 50, |eta| <= 8; for the ridge c >= 0, |g| <= 0.999, k in [0, 1e5],
-// theta_on in [0, pi], w in [1e-3, 1]. Fills the errors. `observations` must come from observe()
-// and not be skipped. dexp_paper is not solved: its fit is the start, with status estimate.
+// theta_on in [0, pi], w in [1e-3, 1], spread c >= 0, kappa in [0, 1e5]. Fills the errors.
+// `observations` must come from observe() and not be skipped. dexp_paper is not solved: its fit is
+// the start, with status estimate.
 LobeFit fit_lobe(LobeModel model, const LobeGrid& grid, const LobeData& data,
                  const LobeObservations& observations, const LobeParameters& start,
                  const FitOptions& options = {});

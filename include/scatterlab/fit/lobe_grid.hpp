@@ -23,6 +23,14 @@ struct LobeNode {
   double weight = 0.0;  // weights of one bin's nodes sum to 1
 };
 
+// One factor of the product rule: theta (or cos phi) and half its Gauss-Legendre weight, so
+// that a function f(theta) g(phi) averages over bin (t, f) to
+// (sum over row t of weight f(theta)) (sum over column f of weight g(phi)).
+struct FactorNode {
+  double value = 0.0;
+  double weight = 0.0;  // the weights of one row (column) sum to 1
+};
+
 // A node of the quadrature that averages a line density R(theta) on phi = 0 over a bin
 // (ridge.hpp): <L>_bin = sum weight R(theta).
 struct RidgeNode {
@@ -57,6 +65,16 @@ class LobeGrid {
     const std::size_t n = on_ridge_[bin] ? static_cast<std::size_t>(quadrature_order_) : 0;
     return {ridge_nodes_.data() + bin * static_cast<std::size_t>(quadrature_order_), n};
   }
+  // The product rule's factors: quadrature_order() nodes per theta row (theta) and per phi
+  // column (cos phi; a folded grid's mirror image -phi has the same cosine).
+  std::span<const FactorNode> row_nodes(std::size_t theta_bin) const {
+    const auto n = static_cast<std::size_t>(quadrature_order_);
+    return {row_nodes_.data() + theta_bin * n, n};
+  }
+  std::span<const FactorNode> column_nodes(std::size_t phi_bin) const {
+    const auto n = static_cast<std::size_t>(quadrature_order_);
+    return {column_nodes_.data() + phi_bin * n, n};
+  }
   // Bins that touch the phi = 0 half-plane or its continuation phi = pi: the cut through the
   // lobe's plane of symmetry that Vavassori's Figs. 4.5, 4.8 and 4.10 show.
   bool in_symmetry_plane(std::size_t bin) const { return in_plane_[bin]; }
@@ -69,6 +87,7 @@ class LobeGrid {
   std::vector<double> solid_angles_;
   std::vector<LobeNode> nodes_;
   std::vector<bool> in_plane_;
+  std::vector<FactorNode> row_nodes_, column_nodes_;
   std::vector<RidgeNode> ridge_nodes_;  // quadrature_order per bin, zero weights off the line
   std::vector<bool> on_ridge_;
 };

@@ -47,6 +47,7 @@
 #include <string>
 #include <vector>
 
+#include "scatterlab/fit/lobe_grid.hpp"
 #include "scatterlab/fit/ridge.hpp"
 
 namespace scatterlab::fit {
@@ -68,11 +69,11 @@ std::vector<LobeModel> parse_lobe_models(const std::string& list);
 std::string describe(LobeModel model);
 
 // The parameters a Ceres problem moves: the axis and up to four shape parameters, and for
-// adexp_ridge the ridge's five (c, g, k, theta_on, width; ridge.hpp).
+// adexp_ridge the ridge's seven (c, g, k, theta_on, width, c_spread, kappa; ridge.hpp).
 struct LobeParameters {
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
   std::array<double, 4> shape{};
-  std::array<double, 5> ridge{};
+  std::array<double, 7> ridge{};
 };
 
 // Parameters a fit moves: shape parameters plus 2 for a free axis (per axis).
@@ -262,26 +263,52 @@ struct AnisotropicSphericalGaussian {
 
 // adexp plus the once-scattered ridge (ridge.hpp): the smooth part is the adexp of (axis,
 // shape), averaged over a bin by its nodes; the ridge, a line on phi = 0, by its own nodes
-// (LobeGrid::ridge_nodes). ridge = (c, g, k, theta_on, w) with A = c e^{a}.
+// (LobeGrid::ridge_nodes); the ridge's spread by the bin's nodes. ridge = (c, g, k, theta_on,
+// w, c_spread, kappa) with A = c e^{a} and A_spread = c_spread e^{a}.
 struct AnisotropicRidge {
   static constexpr int kShape = 4;
-  static constexpr int kRidge = 5;
+  static constexpr int kRidge = 7;
   template <typename T>
   class Evaluator {
    public:
-    Evaluator(const T* axis, const T* shape, const T* ridge)
-        : lobe_(axis, shape), log_peak_(shape[0]), ridge_(ridge) {}
+    Evaluator(const T* axis, const T* shape, const T* ridge, const LobeGrid& grid)
+        : lobe_(axis, shape), log_peak_(shape[0]), ridge_(ridge) {
+      prepare(grid);
+    }
     T log_value(const Eigen::Vector3d& w) const { return lobe_.log_value(w); }
     // R(theta), the ridge's density across the line.
     T ridge_density(double theta) const {
       using std::exp;
       return ridge_[0] * exp(log_peak_ + log_ridge_profile(ridge_, theta));
     }
+    // The spread ridge (ridge.hpp), A_spread R(theta)/A e^{kappa (cos phi - 1)}: a product of a
+    // function of theta and one of phi, averaged over a bin as a product of its row's and
+    // column's averages (LobeGrid::row_nodes), computed once per parameter set.
+    T spread_average(std::size_t theta_bin, std::size_t phi_bin) const {
+      return row_[theta_bin] * column_[phi_bin];
+    }
 
    private:
+    void prepare(const LobeGrid& grid) {
+      using std::exp;
+      row_.assign(grid.theta_bins(), T(0.0));
+      column_.assign(grid.phi_bins(), T(0.0));
+      for (std::size_t t = 0; t < grid.theta_bins(); ++t) {
+        for (const FactorNode& node : grid.row_nodes(t)) {
+          row_[t] += node.weight * exp(log_peak_ + log_ridge_profile(ridge_, node.value));
+        }
+        row_[t] *= ridge_[5];
+      }
+      for (std::size_t f = 0; f < grid.phi_bins(); ++f) {
+        for (const FactorNode& node : grid.column_nodes(f)) {
+          column_[f] += node.weight * exp(ridge_[6] * (node.value - 1.0));
+        }
+      }
+    }
     typename AnisotropicDoubleExponential::template Evaluator<T> lobe_;
     T log_peak_;
     const T* ridge_;
+    std::vector<T> row_, column_;
   };
 };
 

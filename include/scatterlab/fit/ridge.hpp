@@ -21,6 +21,11 @@
 // (the HG phase function times 4 pi, the attenuation, and a logistic onset: the spatial bin
 // spreads atan2(r, z) over its extent in r and z). Parameters (A, g, k, theta_on, w).
 //
+// Light scattered twice or more after leaving the beam at a small angle stays near the line:
+// the spread ridge, A_spread R(theta) / A e^{kappa (cos phi - 1)} (a von Mises profile in phi
+// about the line, one-sided as the line is: phi = pi is the plane's other half), a radiance
+// rather than a line density, with the line's profile in theta. Parameters (A_spread, kappa).
+//
 // A tally bin on the line (one whose phi range ends at phi = 0 or 2 pi) holds half of the
 // ridge's power over its theta range, the bin across the line the other half:
 //   <L>_bin = (1 / (2 Omega_bin)) integral over the bin's theta range of R(theta) d theta.
