@@ -464,6 +464,28 @@ LobeFit fit_lobe(LobeModel model, const LobeGrid& grid, const LobeData& /*data*/
   return fit;
 }
 
+namespace {
+
+// The SG `p` with mu scaled to its chi-square optimum: the model is linear in mu, so
+// mu* = sum L m / sigma^2 / sum m^2 / sigma^2 over the bin averages m of mu = 1.
+LobeParameters with_best_amplitude(const LobeGrid& grid, const LobeObservations& o,
+                                   LobeParameters p) {
+  p.shape[1] = 0.0;
+  double sxy = 0.0, sxx = 0.0;
+  const SphericalGaussian::Evaluator<double> lobe(p.axis.data(), p.shape.data());
+  for (std::size_t i = 0; i < o.radiance.size(); ++i) {
+    const double m = std::exp(log_average(grid, i, lobe)), w = 1.0 / (o.sigma[i] * o.sigma[i]);
+    sxy += w * m * o.radiance[i];
+    sxx += w * m * m;
+  }
+  if (sxx > 0.0 && sxy > 0.0 && std::isfinite(sxx) && std::isfinite(sxy)) {
+    p.shape[1] = std::log(sxy) - std::log(sxx);
+  }
+  return p;
+}
+
+}  // namespace
+
 LobeParameters spherical_gaussian_estimate(const LobeGrid& grid, const LobeObservations& o,
                                            const Eigen::Vector3d& axis) {
   // log L = log mu + lambda x with x = p.c - 1 (§4.2.1), weighted least squares.
@@ -481,6 +503,18 @@ LobeParameters spherical_gaussian_estimate(const LobeGrid& grid, const LobeObser
   if (!(lambda > 0.0)) lambda = 0.0;
   start.shape[0] = std::min(lambda, kSharpnessBound);
   start.shape[1] = sw > 0.0 ? (sy - lambda * sx) / sw : 0.0;
+  // Bin centres say nothing of a lobe narrower than a bin (lambda ~ 1e3 on 10-degree bins),
+  // and from a start far off in sharpness a fit in L sees no gradient. So lambda is also tried
+  // on a grid of 4 per decade from 1e-3 to 1e5, each with its best amplitude, and the lowest
+  // chi-square kept.
+  double best = fit_cost(LobeModel::sg, grid, o, with_best_amplitude(grid, o, start));
+  LobeParameters trial = start;
+  for (int k = -12; k <= 20; ++k) {
+    trial.shape[0] = std::pow(10.0, 0.25 * k);
+    trial = with_best_amplitude(grid, o, trial);
+    const double cost = fit_cost(LobeModel::sg, grid, o, trial);
+    if (cost < best) best = cost, start = trial;
+  }
   return start;
 }
 

@@ -136,7 +136,8 @@ LobeFit fit_lobe(LobeModel model, const LobeGrid& grid, const LobeData& data,
 
 // Starting points computed from the data alone, in log L over the directions with L > 0, each
 // weighted by (L / sigma)^2 (the delta method: the variance of log L is (sigma / L)^2).
-// SG: weighted linear regression of log L on (p.w - 1) at the bin centres, for a given axis.
+// SG: weighted linear regression of log L on (p.w - 1) at the bin centres, for a given axis,
+// or, where it fits better, lambda from a grid with mu at its chi-square optimum.
 LobeParameters spherical_gaussian_estimate(const LobeGrid& grid,
                                            const LobeObservations& observations,
                                            const Eigen::Vector3d& axis);
