@@ -10,7 +10,8 @@
 //              G(v) = mu exp(lambda (v.p - 1)); shape (lambda, log mu)
 //   sg_free    the same with p free on the sphere (a Ceres SphereManifold)
 //   dexp_paper the double exponential as the paper estimates it, in four steps and without a
-//              solve (Vavassori §4.2.2, steps 1-4): reproduces Figs. 4.9 and 4.10 as printed
+//              solve (Vavassori §4.2.2, steps 1-4; step 2 on rings, double_exponential_estimate):
+//              the estimate behind Figs. 4.9 and 4.10
 //   dexp       double exponential (Vavassori §4.2.2): L = alpha exp(beta e^{gamma sqrt(1 - p.w)});
 //              p free. Fitted as log L = a + b (e^{gamma s} - 1) / gamma, s = sqrt(1 - p.w), with
 //              a = log alpha + beta (log L at the peak) and b = beta gamma (its slope in s there):
