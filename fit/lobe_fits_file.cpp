@@ -218,6 +218,12 @@ RadianceLobes read_radiance_lobes(const std::filesystem::path& path) {
     if (!root.has_member("tallies/radiance/mean") || !root.has_member("tallies/radiance/stderr")) {
       unusable_file(path, "no radiance tally (/tallies/radiance); run simulate with it");
     }
+    if (root.has_member("parameters")) {
+      const hdf5::Group parameters = root.open_group("parameters");
+      if (parameters.has_attribute("albedo"))
+        lobes.albedo = parameters.read_double_attribute("albedo");
+      if (parameters.has_attribute("g")) lobes.g = parameters.read_double_attribute("g");
+    }
     const hdf5::Group grid = root.open_group("grid");
     lobes.phi_folded = grid.has_attribute("phi_folded") && grid.read_int64_attribute("phi_folded");
     lobes.r_edges = grid.read_dataset("r").values;
@@ -372,40 +378,55 @@ void write_fits(const RadianceLobes& lobes, const LobeGrid& grid, const LobeFitR
   output.commit();
 }
 
+std::vector<std::string> fits_csv_header(const LobeFitRun& run) {
+  std::vector<std::string> header = {"r_index", "z_index", "r", "z"};
+  for (const ModelFits& model : run.models) {
+    const std::string name = to_string(model.model);
+    for (const char* column : {"status", "error", "error_plane", "noise", "chi2_dof"}) {
+      header.push_back(name + "_" + column);
+    }
+    for (const std::string& parameter : parameter_names(model.model)) {
+      header.push_back(name + "_" + parameter);
+    }
+  }
+  return header;
+}
+
+std::vector<std::vector<std::string>> fits_csv_rows(const RadianceLobes& lobes,
+                                                    const LobeFitRun& run) {
+  std::vector<std::vector<std::string>> rows;
+  for (std::size_t r = 0; r < lobes.r_bins(); ++r) {
+    for (std::size_t z = 0; z < lobes.z_bins(); ++z) {
+      std::vector<std::string> row = {
+          std::to_string(r), std::to_string(z),
+          fmt::format("{:.6g}", 0.5 * (lobes.r_edges[r] + lobes.r_edges[r + 1])),
+          fmt::format("{:.6g}", 0.5 * (lobes.z_edges[z] + lobes.z_edges[z + 1]))};
+      for (const ModelFits& model : run.models) {
+        const LobeFit& fit = model.fits[r * lobes.z_bins() + z];
+        const bool ok = usable(fit.status);
+        row.push_back(to_string(fit.status));
+        for (const double value : {fit.error_sphere, fit.error_plane, fit.noise, fit.chi2_dof}) {
+          row.push_back(fmt::format("{:.6g}", ok ? value : -1.0));
+        }
+        for (const double value : reported_parameters(model.model, fit.parameters)) {
+          row.push_back(fmt::format("{:.8g}", ok && std::isfinite(value) ? value : 0.0));
+        }
+      }
+      rows.push_back(std::move(row));
+    }
+  }
+  return rows;
+}
+
+std::string join_csv(const std::vector<std::string>& fields) {
+  return join(fields);
+}
+
 void write_fits_csv(const std::filesystem::path& path, const RadianceLobes& lobes,
                     const LobeFitRun& run) {
   write_text_file(path, [&lobes, &run](std::ostream& csv) {
-    std::vector<std::string> header = {"r_index", "z_index", "r", "z"};
-    for (const ModelFits& model : run.models) {
-      const std::string name = to_string(model.model);
-      for (const char* column : {"status", "error", "error_plane", "noise", "chi2_dof"}) {
-        header.push_back(name + "_" + column);
-      }
-      for (const std::string& parameter : parameter_names(model.model)) {
-        header.push_back(name + "_" + parameter);
-      }
-    }
-    csv << join(header) << '\n';
-    for (std::size_t r = 0; r < lobes.r_bins(); ++r) {
-      for (std::size_t z = 0; z < lobes.z_bins(); ++z) {
-        std::vector<std::string> row = {
-            std::to_string(r), std::to_string(z),
-            fmt::format("{:.6g}", 0.5 * (lobes.r_edges[r] + lobes.r_edges[r + 1])),
-            fmt::format("{:.6g}", 0.5 * (lobes.z_edges[z] + lobes.z_edges[z + 1]))};
-        for (const ModelFits& model : run.models) {
-          const LobeFit& fit = model.fits[r * lobes.z_bins() + z];
-          const bool ok = usable(fit.status);
-          row.push_back(to_string(fit.status));
-          for (const double value : {fit.error_sphere, fit.error_plane, fit.noise, fit.chi2_dof}) {
-            row.push_back(fmt::format("{:.6g}", ok ? value : -1.0));
-          }
-          for (const double value : reported_parameters(model.model, fit.parameters)) {
-            row.push_back(fmt::format("{:.8g}", ok && std::isfinite(value) ? value : 0.0));
-          }
-        }
-        csv << join(row) << '\n';
-      }
-    }
+    csv << join(fits_csv_header(run)) << '\n';
+    for (const auto& row : fits_csv_rows(lobes, run)) csv << join(row) << '\n';
   });
 }
 

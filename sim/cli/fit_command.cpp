@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/fit/field_table.hpp"
 #include "scatterlab/fit/lobe_fits_file.hpp"
 
 namespace scatterlab::cli {
@@ -33,7 +34,11 @@ Action add_fit_command(CLI::App& app) {
   auto* command = app.add_subcommand(
       "fit", "Fit lobe models to every spatial bin of a simulation file (Vavassori 2013, §4.2)");
   auto options = std::make_shared<FitCommandOptions>();
-  command->add_option("FILE", options->path, "File written by scatterlab simulate (radiance tally)")
+  command
+      ->add_option("FILE", options->path,
+                   "File written by scatterlab simulate (radiance tally), or a sweep directory "
+                   "(simulate --out-dir): every .h5 file in it, and one table of parameters "
+                   "against (r, z, albedo, g)")
       ->required();
   command
       ->add_option("--models", options->models,
@@ -44,7 +49,8 @@ Action add_fit_command(CLI::App& app) {
                    "ridge of once-scattered light on phi = 0)")
       ->capture_default_str();
   command->add_option("--csv", options->csv,
-                      "Summary CSV path [default: FILE without .h5 + -fits.csv]");
+                      "Summary CSV path [default: FILE without .h5 + -fits.csv; for a directory "
+                      "DIR/fits-table.csv]");
   command->add_option("--threads", options->threads, "Threads (0: all cores)")
       ->capture_default_str();
   command
@@ -58,9 +64,26 @@ Action add_fit_command(CLI::App& app) {
     if (options->quadrature < 1 || options->quadrature > 8) {
       throw InputError("quadrature", std::to_string(options->quadrature), "an integer in [1, 8]");
     }
+    const fit::FitOptions fit_options;
+    if (std::filesystem::is_directory(options->path)) {
+      // A sweep directory: one table of parameters against (r, z, albedo, g) (field_table.hpp).
+      const std::filesystem::path table =
+          options->csv.empty() ? std::filesystem::path(options->path) / "fits-table.csv"
+                               : std::filesystem::path(options->csv);
+      const fit::FieldFit field = fit::fit_field(options->path, table, models, fit_options,
+                                                 options->quadrature, options->threads);
+      for (std::size_t f = 0; f < field.files.size(); ++f) {
+        const fit::RadianceLobes& lobes = field.files[f];
+        fmt::print("scatterlab fit: {} (albedo {}, g {})\n", lobes.path.string(), lobes.albedo,
+                   lobes.g);
+        fmt::print("{}", fit::describe(fit::summarize(field.runs[f]), field.runs[f]));
+      }
+      fmt::print("  wrote /fits/{{{}}} in {} files and the table {}\n", options->models,
+                 field.files.size(), table.string());
+      return 0;
+    }
     const std::filesystem::path csv =
         options->csv.empty() ? default_csv(options->path) : std::filesystem::path(options->csv);
-    const fit::FitOptions fit_options;
     const fit::RadianceLobes lobes = fit::read_radiance_lobes(options->path);
     const fit::LobeGrid grid(lobes.theta_edges, lobes.phi_edges, lobes.phi_folded,
                              options->quadrature);

@@ -12,6 +12,7 @@
 
 #include "../physics/lobe_fixtures.hpp"
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/fit/field_table.hpp"
 #include "scatterlab/fit/lobe_fits_file.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
 #include "scatterlab/io/simulation_file.hpp"
@@ -165,8 +166,12 @@ class LobeFitsFileTest : public ::testing::Test {
     fs::remove_all(directory_, ignored);
   }
 
-  void write_file() {
+  void write_file() { write_file(path_, 0.5, 0.9); }
+
+  void write_file(const fs::path& path, double albedo, double g) {
     SimulationSpec spec;
+    spec.medium.albedo = albedo;
+    spec.medium.g = g;
     spec.grid.r = {0.0, 1.0, 2};
     spec.grid.z = {0.0, 3.0, 3};
     spec.grid.theta = {0.0, kPi, 9};
@@ -202,7 +207,7 @@ class LobeFitsFileTest : public ::testing::Test {
     Provenance provenance;
     provenance.version = provenance.command = "test";
     provenance.created = "2024-01-01T00:00:00Z";
-    write_simulation_file(path_, spec, {radiance, flux}, provenance);
+    write_simulation_file(path, spec, {radiance, flux}, provenance);
   }
 
   fit::LobeFitRun fit_file(int threads) {
@@ -260,6 +265,12 @@ TEST_F(LobeFitsFileTest, FitsAreWrittenWithNamesStatusAndNoNaN) {
   const fit::LobeFitSummary summary = fit::summarize(run);
   EXPECT_EQ(summary.models[0].fitted, 3u);
   EXPECT_EQ(summary.models[0].skipped, 3u);
+  // Each model that contains another started from its solution: never a larger chi-square.
+  EXPECT_EQ(summary.supersets.size(), 4u);  // sg_free, dexp, adexp, adexp_ridge
+  for (const fit::SupersetCheck& check : summary.supersets) {
+    EXPECT_EQ(check.bins, 3u) << fit::to_string(check.superset);
+    EXPECT_EQ(check.worse_chi2, 0u) << fit::to_string(check.superset);
+  }
 }
 
 TEST_F(LobeFitsFileTest, ResultsDoNotDependOnThreadsAndReRunsReplaceTheFits) {
@@ -301,6 +312,38 @@ TEST_F(LobeFitsFileTest, CsvHasOneRowPerSpatialBin) {
     EXPECT_EQ(line.find("nan"), std::string::npos) << line;
   }
   EXPECT_EQ(rows, 6u);
+}
+
+// A sweep directory: one table row per file and spatial bin, with the file's albedo and g, and
+// each file's own fits; a file without the radiance tally stops the run before any is written.
+TEST_F(LobeFitsFileTest, ASweepDirectoryGivesOneTableAgainstAlbedoAndG) {
+  const fs::path sweep = directory_ / "sweep";
+  fs::create_directories(sweep);
+  write_file(sweep / "albedo=0.3_g=0.5.h5", 0.3, 0.5);
+  write_file(sweep / "albedo=0.9_g=0.0.h5", 0.9, 0.0);
+  const fit::FieldFit field =
+      fit::fit_field(sweep, directory_ / "table.csv", {LobeModel::sg, LobeModel::dexp}, {}, 3, 1);
+  ASSERT_EQ(field.runs.size(), 2u);
+  std::ifstream csv(directory_ / "table.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line.find("file,albedo,g,r_index,z_index,r,z,sg_status"), 0u) << line;
+  std::vector<std::string> rows;
+  while (std::getline(csv, line)) rows.push_back(line);
+  ASSERT_EQ(rows.size(), 12u);  // 2 files x 6 bins, in name order
+  EXPECT_EQ(rows[0].find("albedo=0.3_g=0.5.h5,0.3,0.5,0,0,"), 0u) << rows[0];
+  EXPECT_EQ(rows[6].find("albedo=0.9_g=0.0.h5,0.9,0,0,0,"), 0u) << rows[6];
+  for (const fs::path& file : fit::sweep_files(sweep)) {
+    EXPECT_TRUE(hdf5::File::open_read_only(file).root().has_member("fits/dexp")) << file;
+  }
+
+  const fs::path bad = directory_ / "bad-sweep";
+  fs::create_directories(bad);
+  write_file(bad / "a.h5", 0.5, 0.9);
+  write_simulation_file(bad / "b.h5", SimulationSpec{}, {}, Provenance{});
+  EXPECT_THROW(fit::fit_field(bad, directory_ / "bad.csv", {LobeModel::sg}, {}, 3, 1), InputError);
+  EXPECT_FALSE(hdf5::File::open_read_only(bad / "a.h5").root().has_member("fits"));
+  EXPECT_FALSE(fs::exists(directory_ / "bad.csv"));
 }
 
 TEST_F(LobeFitsFileTest, FilesWithoutRadianceAreInputErrors) {

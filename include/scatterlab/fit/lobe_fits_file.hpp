@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,8 @@ struct RadianceLobes {
   std::vector<double> mean, stderr_of_mean;  // [r, z, theta, phi]
   std::vector<double> flux;                  // [r, z, 3] = (E_r, E_phi, E_z)
   bool flux_from_tally = false;
+  double albedo = std::numeric_limits<double>::quiet_NaN();  // /parameters attrs, NaN if absent
+  double g = std::numeric_limits<double>::quiet_NaN();
 
   std::size_t r_bins() const { return r_edges.size() - 1; }
   std::size_t z_bins() const { return z_edges.size() - 1; }
@@ -74,6 +77,11 @@ void write_fits(const RadianceLobes& lobes, const LobeGrid& grid, const LobeFitR
 // <model>_<parameter>. Written to a temporary name and renamed into place.
 void write_fits_csv(const std::filesystem::path& path, const RadianceLobes& lobes,
                     const LobeFitRun& run);
+// The CSV's header and rows (the field table of field_table.hpp prefixes albedo and g).
+std::vector<std::string> fits_csv_header(const LobeFitRun& run);
+std::vector<std::vector<std::string>> fits_csv_rows(const RadianceLobes& lobes,
+                                                    const LobeFitRun& run);
+std::string join_csv(const std::vector<std::string>& fields);
 
 struct ModelFitSummary {
   LobeModel model;
