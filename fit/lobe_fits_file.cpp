@@ -99,23 +99,35 @@ std::optional<LobeModel> subset_of(LobeModel model) {
 
 // The starting points of one model in one bin: from the data alone, from the subset's solution
 // in this bin, and from the neighbour's solution (the previous z in the column).
+// The data-only estimates of one bin, each computed once for all the models that use it.
+struct Estimates {
+  LobeParameters double_exponential;
+  std::optional<LobeParameters> sg_on_axis, sg_on_peak;  // SG about E (or the peak), and the peak
+};
+
 std::vector<LobeParameters> candidates(LobeModel model, const LobeGrid& grid,
                                        const LobeObservations& o, const Eigen::Vector3d& e_axis,
-                                       const BinFits& previous, const BinFits& current) {
+                                       Estimates& estimates, const BinFits& previous,
+                                       const BinFits& current) {
   std::vector<LobeParameters> starts;
-  const LobeParameters estimate = double_exponential_estimate(grid, o);
   switch (model) {
     case LobeModel::sg:
     case LobeModel::sg_free:
-      starts.push_back(spherical_gaussian_estimate(grid, o, e_axis));
+      if (!estimates.sg_on_axis)
+        estimates.sg_on_axis = spherical_gaussian_estimate(grid, o, e_axis);
+      starts.push_back(*estimates.sg_on_axis);
       break;
     case LobeModel::dexp_paper:
     case LobeModel::dexp:
     case LobeModel::adexp:
-      starts.push_back(estimate);
+      starts.push_back(estimates.double_exponential);
       break;
     case LobeModel::asg:
-      starts.push_back(asg_from_sg(spherical_gaussian_estimate(grid, o, estimate.axis)));
+      if (!estimates.sg_on_peak) {
+        estimates.sg_on_peak =
+            spherical_gaussian_estimate(grid, o, estimates.double_exponential.axis);
+      }
+      starts.push_back(asg_from_sg(*estimates.sg_on_peak));
       break;
     case LobeModel::adexp_ridge:
       break;
@@ -148,6 +160,7 @@ void fit_bin(const LobeGrid& grid, const LobeData& data, const std::vector<bool>
              std::size_t& attempted, std::array<double, kAllLobeModels.size()>& seconds) {
   const LobeObservations o = observe(grid, data, options);
   const std::optional<Eigen::Vector3d> e_axis = flux_axis(data);
+  std::optional<Estimates> estimates;  // once the bin is known to be fitted
   for (const LobeModel model : kAllLobeModels) {
     const auto index = static_cast<std::size_t>(model);
     if (!wanted[index]) continue;
@@ -164,8 +177,10 @@ void fit_bin(const LobeGrid& grid, const LobeData& data, const std::vector<bool>
       current[index] = skipped;
       continue;
     }
-    const Eigen::Vector3d axis = e_axis.value_or(double_exponential_estimate(grid, o).axis);
-    const std::vector<LobeParameters> starts = candidates(model, grid, o, axis, previous, current);
+    if (!estimates) estimates = Estimates{double_exponential_estimate(grid, o), {}, {}};
+    const Eigen::Vector3d axis = e_axis.value_or(estimates->double_exponential.axis);
+    const std::vector<LobeParameters> starts =
+        candidates(model, grid, o, axis, *estimates, previous, current);
     if (starts.empty()) continue;  // adexp_ridge without an adexp fit in this bin
     if (model != LobeModel::dexp_paper) ++attempted;
     const auto start = std::chrono::steady_clock::now();
