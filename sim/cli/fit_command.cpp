@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/fit/field_table.hpp"
 #include "scatterlab/fit/lobe_fits_file.hpp"
 
 namespace scatterlab::cli {
@@ -14,11 +15,10 @@ namespace {
 
 struct FitCommandOptions {
   std::string path;
-  std::string models = "sg,sg_free,dexp,adexp";
+  std::string models = "sg,sg_free,dexp_paper,dexp,adexp,asg,adexp_ridge";
   std::string csv;
   int threads = 0;
   int quadrature = 3;
-  double stderr_floor = 0.01;
 };
 
 std::filesystem::path default_csv(const std::filesystem::path& file) {
@@ -34,22 +34,29 @@ Action add_fit_command(CLI::App& app) {
   auto* command = app.add_subcommand(
       "fit", "Fit lobe models to every spatial bin of a simulation file (Vavassori 2013, §4.2)");
   auto options = std::make_shared<FitCommandOptions>();
-  command->add_option("FILE", options->path, "File written by scatterlab simulate (radiance tally)")
+  command
+      ->add_option("FILE", options->path,
+                   "File written by scatterlab simulate (radiance tally), or a sweep directory "
+                   "(simulate --out-dir): every .h5 file in it, and one table of parameters "
+                   "against (r, z, albedo, g)")
       ->required();
   command
       ->add_option("--models", options->models,
-                   "Comma-separated: sg (spherical Gaussian, axis E), sg_free (axis fitted), dexp "
-                   "(double exponential), adexp (anisotropic double exponential)")
+                   "Comma-separated: sg (spherical Gaussian, axis E), sg_free (axis fitted), "
+                   "dexp_paper (the paper's four-step double-exponential estimate, not solved), "
+                   "dexp (double exponential), adexp (anisotropic double exponential), asg "
+                   "(anisotropic spherical Gaussian, Xu et al. 2013), adexp_ridge (adexp plus the "
+                   "ridge of once-scattered light on phi = 0)")
       ->capture_default_str();
-  command->add_option("--csv", options->csv, "Summary CSV path [default: FILE without .h5 + -fits.csv]");
+  command->add_option("--csv", options->csv,
+                      "Summary CSV path [default: FILE without .h5 + -fits.csv; for a directory "
+                      "DIR/fits-table.csv]");
   command->add_option("--threads", options->threads, "Threads (0: all cores)")
       ->capture_default_str();
-  command->add_option("--quadrature", options->quadrature,
-                      "Gauss-Legendre points per angular bin and axis that average a model over "
-                      "the bin, in [1, 8]")
-      ->capture_default_str();
-  command->add_option("--stderr-floor", options->stderr_floor,
-                      "Floor on the relative standard error in the fit weights")
+  command
+      ->add_option("--quadrature", options->quadrature,
+                   "Gauss-Legendre points per angular bin and axis that average a model over "
+                   "the bin, in [1, 8]")
       ->capture_default_str();
   return [options] {
     const std::vector<fit::LobeModel> models = fit::parse_lobe_models(options->models);
@@ -57,21 +64,34 @@ Action add_fit_command(CLI::App& app) {
     if (options->quadrature < 1 || options->quadrature > 8) {
       throw InputError("quadrature", std::to_string(options->quadrature), "an integer in [1, 8]");
     }
-    if (!(options->stderr_floor >= 0.0)) {
-      throw InputError("stderr-floor", fmt::format("{}", options->stderr_floor), "0 or more");
+    const fit::FitOptions fit_options;
+    if (std::filesystem::is_directory(options->path)) {
+      // A sweep directory: one table of parameters against (r, z, albedo, g) (field_table.hpp).
+      const std::filesystem::path table =
+          options->csv.empty() ? std::filesystem::path(options->path) / "fits-table.csv"
+                               : std::filesystem::path(options->csv);
+      const fit::FieldFit field = fit::fit_field(options->path, table, models, fit_options,
+                                                 options->quadrature, options->threads);
+      for (std::size_t f = 0; f < field.files.size(); ++f) {
+        const fit::RadianceLobes& lobes = field.files[f];
+        fmt::print("scatterlab fit: {} (albedo {}, g {})\n", lobes.path.string(), lobes.albedo,
+                   lobes.g);
+        fmt::print("{}", fit::describe(fit::summarize(field.runs[f]), field.runs[f]));
+      }
+      fmt::print("  wrote /fits/{{{}}} in {} files and the table {}\n", options->models,
+                 field.files.size(), table.string());
+      return 0;
     }
     const std::filesystem::path csv =
         options->csv.empty() ? default_csv(options->path) : std::filesystem::path(options->csv);
-    fit::FitOptions fit_options;
-    fit_options.relative_stderr_floor = options->stderr_floor;
     const fit::RadianceLobes lobes = fit::read_radiance_lobes(options->path);
     const fit::LobeGrid grid(lobes.theta_edges, lobes.phi_edges, lobes.phi_folded,
                              options->quadrature);
     const fit::LobeFitRun run = fit::fit_lobes(lobes, grid, models, fit_options, options->threads);
     fit::write_fits_csv(csv, lobes, run);
     fit::write_fits(lobes, grid, run, fit_options);
-    fmt::print("scatterlab fit: {} ({} x {} spatial bins, {} x {} directions{})\n",
-               options->path, lobes.r_bins(), lobes.z_bins(), grid.theta_bins(), grid.phi_bins(),
+    fmt::print("scatterlab fit: {} ({} x {} spatial bins, {} x {} directions{})\n", options->path,
+               lobes.r_bins(), lobes.z_bins(), grid.theta_bins(), grid.phi_bins(),
                lobes.phi_folded ? ", phi folded" : "");
     fmt::print("{}", fit::describe(fit::summarize(run), run));
     fmt::print("  wrote /fits/{{{}}} in {} and {}\n", options->models, options->path, csv.string());

@@ -14,6 +14,13 @@ mkdir -p "$data"
 "$exe" simulate --albedo 0.5 --g 0.9 --photons 2e5 --batches 16 --theta-bins 9 --phi-bins 12 \
   --out "$data/paper-beam.h5" >/dev/null
 "$exe" fit "$data/paper-beam.h5" >/dev/null
+mkdir -p "$data/sweep"
+for medium in "0.5 0.5" "0.9 0.9"; do
+  set -- $medium
+  "$exe" simulate --albedo "$1" --g "$2" --photons 2e5 --batches 16 --theta-bins 9 --phi-bins 12 \
+    --out "$data/sweep/albedo=$1_g=$2.h5" >/dev/null
+done
+"$exe" fit "$data/sweep" --models adexp_ridge >/dev/null
 "$exe" searchlight --albedo 0.9 --g 0.5 --eta 1.33 --photons 1e5 --batches 16 --r-bins 50 \
   --out "$data/searchlight.h5" >/dev/null
 mkdir -p "$data/render-study"

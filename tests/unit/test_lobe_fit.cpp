@@ -12,6 +12,7 @@
 
 #include "../physics/lobe_fixtures.hpp"
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/fit/field_table.hpp"
 #include "scatterlab/fit/lobe_fits_file.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
 #include "scatterlab/io/simulation_file.hpp"
@@ -65,9 +66,9 @@ TEST(LobeGrid, BinAveragesConvergeToTheExactIntegralWithTheOrder) {
     double worst = 0.0;
     for (std::size_t t = 0; t < 6; ++t) {  // the lobe lives within 60 degrees of e_z
       const double t0 = kPi * static_cast<double>(t) / 18.0, t1 = t0 + kPi / 18.0;
-      const double exact = (std::exp(50.0 * (std::cos(t0) - 1.0)) -
-                            std::exp(50.0 * (std::cos(t1) - 1.0))) /
-                           (50.0 * (std::cos(t0) - std::cos(t1)));
+      const double exact =
+          (std::exp(50.0 * (std::cos(t0) - 1.0)) - std::exp(50.0 * (std::cos(t1) - 1.0))) /
+          (50.0 * (std::cos(t0) - std::cos(t1)));
       const double average = std::exp(fit::log_bin_average(LobeModel::sg, grid, t * 36, sg));
       worst = std::max(worst, std::abs(average / exact - 1.0));
     }
@@ -93,7 +94,7 @@ TEST(LobeModels, ResidualAndJacobianAreFiniteAtThePeak) {
     const double values[4] = {-1.0, 5.0, -2.0, 0.7};
     for (int i = 0; i < 4; ++i) shape[i] = Jet(values[i], 3 + i);
     for (const Jet& value : {fit::DoubleExponential::log_value(axis, shape, w),
-                            fit::AnisotropicDoubleExponential::log_value(axis, shape, w)}) {
+                             fit::AnisotropicDoubleExponential::log_value(axis, shape, w)}) {
       EXPECT_NEAR(value.a, -1.0, 1e-12);  // a = log alpha + beta: log L at the peak
       EXPECT_TRUE(value.v.allFinite()) << value.v.transpose();
     }
@@ -165,8 +166,12 @@ class LobeFitsFileTest : public ::testing::Test {
     fs::remove_all(directory_, ignored);
   }
 
-  void write_file() {
+  void write_file() { write_file(path_, 0.5, 0.9); }
+
+  void write_file(const fs::path& path, double albedo, double g) {
     SimulationSpec spec;
+    spec.medium.albedo = albedo;
+    spec.medium.g = g;
     spec.grid.r = {0.0, 1.0, 2};
     spec.grid.z = {0.0, 3.0, 3};
     spec.grid.theta = {0.0, kPi, 9};
@@ -177,8 +182,9 @@ class LobeFitsFileTest : public ::testing::Test {
     const Eigen::Vector3d in_plane = direction(0.6, 0.0);
     const std::vector<testing::SyntheticLobe> lobes = {
         synthesize(LobeModel::sg, parameters(in_plane, {6.0, 0.0}), grid, 0.02, 1),
-        synthesize(LobeModel::dexp, parameters(in_plane, fit::double_exponential_shape(-3.0, 6.0, -2.0)),
-                   grid, 0.02, 2),
+        synthesize(LobeModel::dexp,
+                   parameters(in_plane, fit::double_exponential_shape(-3.0, 6.0, -2.0)), grid, 0.02,
+                   2),
         synthesize(LobeModel::adexp,
                    parameters(in_plane, fit::double_exponential_shape(-3.0, 6.0, -2.0, -1.5)), grid,
                    0.02, 3)};
@@ -201,14 +207,14 @@ class LobeFitsFileTest : public ::testing::Test {
     Provenance provenance;
     provenance.version = provenance.command = "test";
     provenance.created = "2024-01-01T00:00:00Z";
-    write_simulation_file(path_, spec, {radiance, flux}, provenance);
+    write_simulation_file(path, spec, {radiance, flux}, provenance);
   }
 
   fit::LobeFitRun fit_file(int threads) {
     const fit::RadianceLobes lobes = fit::read_radiance_lobes(path_);
     const fit::LobeGrid grid(lobes.theta_edges, lobes.phi_edges, lobes.phi_folded);
-    fit::LobeFitRun run = fit::fit_lobes(lobes, grid, {fit::kAllLobeModels.begin(),
-                                                       fit::kAllLobeModels.end()}, {}, threads);
+    fit::LobeFitRun run = fit::fit_lobes(
+        lobes, grid, {fit::kAllLobeModels.begin(), fit::kAllLobeModels.end()}, {}, threads);
     fit::write_fits(lobes, grid, run, {});
     return run;
   }
@@ -225,7 +231,7 @@ TEST_F(LobeFitsFileTest, FitsAreWrittenWithNamesStatusAndNoNaN) {
     const std::vector<std::string> names = fit::parameter_names(model);
     EXPECT_EQ(params.shape(), (std::vector<std::size_t>{2, 3, names.size()}));
     EXPECT_EQ(params.read_string_attribute("names").find(names[0]), 0u);
-    for (const char* dataset : {"params", "error", "error_plane", "noise", "status"}) {
+    for (const char* dataset : {"params", "error", "error_plane", "noise", "chi2_dof", "status"}) {
       for (const double value : file.root().read_dataset(name + "/" + dataset).values) {
         EXPECT_TRUE(std::isfinite(value)) << name << "/" << dataset;
       }
@@ -236,7 +242,9 @@ TEST_F(LobeFitsFileTest, FitsAreWrittenWithNamesStatusAndNoNaN) {
     EXPECT_EQ(status[5], static_cast<double>(FitStatus::non_finite_input)) << name;
     const std::vector<double> error = file.root().read_dataset(name + "/error").values;
     for (std::size_t bin = 0; bin < 3; ++bin) {
-      EXPECT_EQ(status[bin], static_cast<double>(FitStatus::converged)) << name << " " << bin;
+      const auto expected =
+          model == LobeModel::dexp_paper ? FitStatus::estimate : FitStatus::converged;
+      EXPECT_EQ(status[bin], static_cast<double>(expected)) << name << " " << bin;
       EXPECT_GE(error[bin], 0.0);
     }
     for (std::size_t bin = 3; bin < 6; ++bin) EXPECT_EQ(error[bin], -1.0);
@@ -257,6 +265,12 @@ TEST_F(LobeFitsFileTest, FitsAreWrittenWithNamesStatusAndNoNaN) {
   const fit::LobeFitSummary summary = fit::summarize(run);
   EXPECT_EQ(summary.models[0].fitted, 3u);
   EXPECT_EQ(summary.models[0].skipped, 3u);
+  // Each model that contains another started from its solution: never a larger chi-square.
+  EXPECT_EQ(summary.supersets.size(), 4u);  // sg_free, dexp, adexp, adexp_ridge
+  for (const fit::SupersetCheck& check : summary.supersets) {
+    EXPECT_EQ(check.bins, 3u) << fit::to_string(check.superset);
+    EXPECT_EQ(check.worse_chi2, 0u) << fit::to_string(check.superset);
+  }
 }
 
 TEST_F(LobeFitsFileTest, ResultsDoNotDependOnThreadsAndReRunsReplaceTheFits) {
@@ -273,7 +287,8 @@ TEST_F(LobeFitsFileTest, ResultsDoNotDependOnThreadsAndReRunsReplaceTheFits) {
   }
   const hdf5::File file = hdf5::File::open_read_only(path_);
   EXPECT_EQ(file.root().open_group("fits").member_names(),
-            (std::vector<std::string>{"sg", "sg_free", "dexp", "adexp"}));
+            (std::vector<std::string>{"sg", "sg_free", "dexp_paper", "dexp", "adexp", "asg",
+                                      "adexp_ridge"}));
   // Nothing left beside the file.
   std::size_t entries = 0;
   for ([[maybe_unused]] const auto& entry : fs::directory_iterator(directory_)) ++entries;
@@ -288,7 +303,8 @@ TEST_F(LobeFitsFileTest, CsvHasOneRowPerSpatialBin) {
   std::ifstream csv(directory_ / "fits.csv");
   std::string header, line;
   std::getline(csv, header);
-  EXPECT_EQ(header.find("r_index,z_index,r,z,sg_status,sg_error,sg_error_plane,sg_noise,sg_lambda"),
+  EXPECT_EQ(header.find("r_index,z_index,r,z,sg_status,sg_error,sg_error_plane,sg_noise,"
+                        "sg_chi2_dof,sg_lambda"),
             0u);
   std::size_t rows = 0;
   while (std::getline(csv, line)) {
@@ -296,6 +312,38 @@ TEST_F(LobeFitsFileTest, CsvHasOneRowPerSpatialBin) {
     EXPECT_EQ(line.find("nan"), std::string::npos) << line;
   }
   EXPECT_EQ(rows, 6u);
+}
+
+// A sweep directory: one table row per file and spatial bin, with the file's albedo and g, and
+// each file's own fits; a file without the radiance tally stops the run before any is written.
+TEST_F(LobeFitsFileTest, ASweepDirectoryGivesOneTableAgainstAlbedoAndG) {
+  const fs::path sweep = directory_ / "sweep";
+  fs::create_directories(sweep);
+  write_file(sweep / "albedo=0.3_g=0.5.h5", 0.3, 0.5);
+  write_file(sweep / "albedo=0.9_g=0.0.h5", 0.9, 0.0);
+  const fit::FieldFit field =
+      fit::fit_field(sweep, directory_ / "table.csv", {LobeModel::sg, LobeModel::dexp}, {}, 3, 1);
+  ASSERT_EQ(field.runs.size(), 2u);
+  std::ifstream csv(directory_ / "table.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line.find("file,albedo,g,r_index,z_index,r,z,sg_status"), 0u) << line;
+  std::vector<std::string> rows;
+  while (std::getline(csv, line)) rows.push_back(line);
+  ASSERT_EQ(rows.size(), 12u);  // 2 files x 6 bins, in name order
+  EXPECT_EQ(rows[0].find("albedo=0.3_g=0.5.h5,0.3,0.5,0,0,"), 0u) << rows[0];
+  EXPECT_EQ(rows[6].find("albedo=0.9_g=0.0.h5,0.9,0,0,0,"), 0u) << rows[6];
+  for (const fs::path& file : fit::sweep_files(sweep)) {
+    EXPECT_TRUE(hdf5::File::open_read_only(file).root().has_member("fits/dexp")) << file;
+  }
+
+  const fs::path bad = directory_ / "bad-sweep";
+  fs::create_directories(bad);
+  write_file(bad / "a.h5", 0.5, 0.9);
+  write_simulation_file(bad / "b.h5", SimulationSpec{}, {}, Provenance{});
+  EXPECT_THROW(fit::fit_field(bad, directory_ / "bad.csv", {LobeModel::sg}, {}, 3, 1), InputError);
+  EXPECT_FALSE(hdf5::File::open_read_only(bad / "a.h5").root().has_member("fits"));
+  EXPECT_FALSE(fs::exists(directory_ / "bad.csv"));
 }
 
 TEST_F(LobeFitsFileTest, FilesWithoutRadianceAreInputErrors) {

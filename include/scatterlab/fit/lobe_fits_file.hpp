@@ -6,13 +6,14 @@
 //         (computed from the radiance when the file has no flux tally).
 // Write:  /fits/<model>/params [r, z, k] (attr names, comma-separated), error [r, z] and
 //         error_plane [r, z] (relative L1 errors, lobe_fit.hpp; -1 where not fitted), noise
-//         [r, z] (the error an exact model would show),
-//         status [r, z] int32 (attr legend); attrs on /fits/<model> say how it was fitted.
+//         [r, z] (the error an exact model would show), chi2_dof [r, z], status [r, z] int32
+//         (attr legend); attrs on /fits/<model> say how it was fitted.
 //         The file is copied, the copy gets the fits, and it is renamed over the original, so a
 //         failure leaves the original as it was; a re-run replaces /fits/<model>.
 
 #include <cstddef>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,8 @@ struct RadianceLobes {
   std::vector<double> mean, stderr_of_mean;  // [r, z, theta, phi]
   std::vector<double> flux;                  // [r, z, 3] = (E_r, E_phi, E_z)
   bool flux_from_tally = false;
+  double albedo = std::numeric_limits<double>::quiet_NaN();  // /parameters attrs, NaN if absent
+  double g = std::numeric_limits<double>::quiet_NaN();
 
   std::size_t r_bins() const { return r_edges.size() - 1; }
   std::size_t z_bins() const { return z_edges.size() - 1; }
@@ -43,6 +46,7 @@ RadianceLobes read_radiance_lobes(const std::filesystem::path& path);
 struct ModelFits {
   LobeModel model;
   std::vector<LobeFit> fits;  // index r * z_bins + z
+  double seconds = 0.0;       // thread time spent on its fits, all threads together
 };
 
 struct LobeFitRun {
@@ -55,8 +59,11 @@ struct LobeFitRun {
 // Fits every spatial bin with every model. Columns of constant r run in parallel (OpenMP,
 // `threads` <= 0: all); along z within a column each fit may start from its neighbour's
 // solution, so the result is the same for any number of threads. Each fit starts from the
-// lowest-cost of: the data-only estimate, the same bin's simpler model (sg for sg_free, dexp
-// for adexp) and the previous z bin's solution.
+// lowest chi-square of: the data-only estimate, the same bin's solution of the model it
+// contains (sg for sg_free, the paper's estimate for dexp, dexp for adexp, adexp for
+// adexp_ridge; sg_free for asg, through asg_from_sg) and the previous z bin's solution.
+// Levenberg-Marquardt never raises the cost, so a model ends with a chi-square no larger than
+// the model it contains; those models are fitted too when only the larger one is asked for.
 LobeFitRun fit_lobes(const RadianceLobes& lobes, const LobeGrid& grid,
                      const std::vector<LobeModel>& models, const FitOptions& options = {},
                      int threads = 0);
@@ -66,19 +73,35 @@ void write_fits(const RadianceLobes& lobes, const LobeGrid& grid, const LobeFitR
                 const FitOptions& options);
 
 // One row per spatial bin: r_index, z_index, r, z (bin centres, mfp), then per model
-// <model>_status, <model>_error, <model>_error_plane, <model>_noise and <model>_<parameter>. Written to a
-// temporary name and renamed into place.
+// <model>_status, <model>_error, <model>_error_plane, <model>_noise, <model>_chi2_dof and
+// <model>_<parameter>. Written to a temporary name and renamed into place.
 void write_fits_csv(const std::filesystem::path& path, const RadianceLobes& lobes,
                     const LobeFitRun& run);
+// The CSV's header and rows (the field table of field_table.hpp prefixes albedo and g).
+std::vector<std::string> fits_csv_header(const LobeFitRun& run);
+std::vector<std::vector<std::string>> fits_csv_rows(const RadianceLobes& lobes,
+                                                    const LobeFitRun& run);
+std::string join_csv(const std::vector<std::string>& fields);
 
 struct ModelFitSummary {
   LobeModel model;
-  std::size_t fitted = 0, skipped = 0, failed = 0;
+  std::size_t fitted = 0, converged = 0, skipped = 0, failed = 0;
   double median_error = -1, p90_error = -1, median_plane = -1, p90_plane = -1, median_noise = -1;
+  // error / noise over the fitted bins, and the fraction of them within 2x the noise.
+  double median_ratio = -1, p90_ratio = -1, within_twice_noise = -1;
+  double median_chi2_dof = -1, p90_chi2_dof = -1;
+  double seconds = 0.0, mean_iterations = 0.0;
+};
+
+// Bins where a model ends worse than a model it contains (both fitted): never by chi^2.
+struct SupersetCheck {
+  LobeModel superset = LobeModel::sg_free, subset = LobeModel::sg;
+  std::size_t bins = 0, worse_chi2 = 0, worse_error = 0;
 };
 
 struct LobeFitSummary {
   std::vector<ModelFitSummary> models;
+  std::vector<SupersetCheck> supersets;
   // Over bins where both (all three) were fitted; -1 when a model was not run.
   double dexp_beats_sg = -1.0;
   double adexp_beats_sg_and_dexp = -1.0;
