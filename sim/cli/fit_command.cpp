@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "prepare_outputs.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/fit/lobe_fits_file.hpp"
 
@@ -62,6 +63,10 @@ Action add_fit_command(CLI::App& app) {
     }
     const std::filesystem::path csv =
         options->csv.empty() ? default_csv(options->path) : std::filesystem::path(options->csv);
+    OutputPlan plan;
+    plan.rewritten_input("FILE", options->path);  // /fits is added to it
+    plan.output_file("--csv", csv);
+    prepare_outputs(plan);
     fit::FitOptions fit_options;
     fit_options.relative_stderr_floor = options->stderr_floor;
     const fit::RadianceLobes lobes = fit::read_radiance_lobes(options->path);
