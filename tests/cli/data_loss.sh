@@ -59,6 +59,9 @@ mkfifo fifo
 mkdir dir
 ln a.h5 a-hard.h5
 ln -s a.h5 a-soft.h5
+# The device through a link: a command that wrongly renames onto it replaces the link, never the
+# system's /dev/null.
+ln -s /dev/null device
 
 # --- outputs that are inputs or other outputs --------------------------------------------------
 expect_refused "simulate: checkpoint is the output" --checkpoint \
@@ -90,7 +93,7 @@ expect_refused "render: output is the scene" --out render render.toml --out rend
 expect_refused "render: output is the mesh" --out render render.toml --out tet.obj
 
 # --- outputs that are not files -----------------------------------------------------------------
-expect_refused "simulate: output is a device" --out simulate "${tiny[@]}" --out /dev/null
+expect_refused "simulate: output is a device" --out simulate "${tiny[@]}" --out device
 expect_refused "simulate: output is a FIFO" --out simulate "${tiny[@]}" --out fifo
 expect_refused "simulate: output is a directory" --out simulate "${tiny[@]}" --out dir
 expect_refused "simulate: checkpoint is a FIFO" --checkpoint \
@@ -100,7 +103,7 @@ expect_refused "simulate: checkpoint is a directory" --checkpoint \
 expect_refused "simulate: --out-dir is a file" --out-dir \
   simulate "${tiny[@]}" --out-dir notes.txt
 expect_refused "searchlight: output is a FIFO" --out searchlight "${tiny[@]}" --out fifo
-expect_refused "fit: CSV is a device" --csv fit a.h5 --csv /dev/null
+expect_refused "fit: CSV is a device" --csv fit a.h5 --csv device
 expect_refused "fit: CSV is a directory" --csv fit a.h5 --csv dir
 expect_refused "merge: output is a FIFO" --out merge a.h5 b.h5 -o fifo
 expect_refused "render: output is a directory" --out render render.toml --out dir

@@ -88,7 +88,9 @@ TEST_F(OutputPlanTest, TwoOutputsOnOneFileNameTheLater) {
 TEST_F(OutputPlanTest, OnlyRegularFilesAreReplaced) {
   ASSERT_EQ(::mkfifo((directory_ / "fifo").c_str(), 0600), 0);
   fs::create_directory(directory_ / "dir");
-  for (const fs::path& path : {directory_ / "fifo", directory_ / "dir", fs::path("/dev/null")}) {
+  // The device through a link, so that a wrong rename replaces the link, not /dev/null itself.
+  fs::create_symlink("/dev/null", directory_ / "device");
+  for (const fs::path& path : {directory_ / "fifo", directory_ / "dir", directory_ / "device"}) {
     OutputPlan plan;
     plan.output_file("--out", path);
     EXPECT_EQ(refused_field(plan), "--out") << path;
