@@ -2,9 +2,11 @@
 // written back into the file under /fits/<model> and summarised in a CSV file.
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <memory>
 
 #include "commands.hpp"
+#include "prepare_outputs.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/fit/field_table.hpp"
 #include "scatterlab/fit/lobe_fits_file.hpp"
@@ -70,6 +72,12 @@ Action add_fit_command(CLI::App& app) {
       const std::filesystem::path table =
           options->csv.empty() ? std::filesystem::path(options->path) / "fits-table.csv"
                                : std::filesystem::path(options->csv);
+      OutputPlan plan;
+      for (const auto& entry : std::filesystem::directory_iterator(options->path)) {
+        if (entry.path().extension() == ".h5") plan.rewritten_input("FILE", entry.path());
+      }
+      plan.output_file("--csv", table);
+      prepare_outputs(plan);
       const fit::FieldFit field = fit::fit_field(options->path, table, models, fit_options,
                                                  options->quadrature, options->threads);
       for (std::size_t f = 0; f < field.files.size(); ++f) {
@@ -84,6 +92,10 @@ Action add_fit_command(CLI::App& app) {
     }
     const std::filesystem::path csv =
         options->csv.empty() ? default_csv(options->path) : std::filesystem::path(options->csv);
+    OutputPlan plan;
+    plan.rewritten_input("FILE", options->path);  // /fits is added to it
+    plan.output_file("--csv", csv);
+    prepare_outputs(plan);
     const fit::RadianceLobes lobes = fit::read_radiance_lobes(options->path);
     const fit::LobeGrid grid(lobes.theta_edges, lobes.phi_edges, lobes.phi_folded,
                              options->quadrature);

@@ -2,17 +2,15 @@
 
 #include <fmt/format.h>
 #include <signal.h>
-#include <sys/types.h>
 
 #include <atomic>
-#include <cerrno>
 #include <cmath>
 #include <csignal>
-#include <cstdlib>
 #include <exception>
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/checkpoint_file.hpp"
+#include "scatterlab/io/simulation_file.hpp"
 
 namespace scatterlab::cli {
 namespace {
@@ -42,21 +40,19 @@ void restore_signals() {
   for (const int signal : kSignals) std::signal(signal, SIG_DFL);
 }
 
-// A run killed while writing a checkpoint leaves "<checkpoint>.tmp-<pid>-<n>" behind
-// (atomic_output.hpp); remove those whose process is gone.
-void remove_stale_temporaries(const std::filesystem::path& checkpoint) {
-  const std::string prefix = checkpoint.filename().string() + ".tmp-";
-  const std::filesystem::path directory =
-      checkpoint.has_parent_path() ? checkpoint.parent_path() : std::filesystem::path(".");
+// A checkpoint path may hold only this run's own checkpoint: anything else there (notes, the
+// output, another run's checkpoint) is not the run's to replace, nor to remove when it ends.
+void refuse_foreign_checkpoint(const std::filesystem::path& checkpoint,
+                               const std::string& fingerprint) {
   std::error_code error;
-  for (const auto& entry : std::filesystem::directory_iterator(directory, error)) {
-    const std::string name = entry.path().filename().string();
-    if (name.rfind(prefix, 0) != 0) continue;
-    const long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
-    if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) == -1 && errno == ESRCH) {
-      std::filesystem::remove(entry.path(), error);
-    }
-  }
+  if (!std::filesystem::exists(std::filesystem::symlink_status(checkpoint, error))) return;
+  if (is_checkpoint_of(checkpoint, fingerprint)) return;
+  throw InputError("--checkpoint",
+                   fmt::format("'{}' exists and is not a checkpoint of this run (same "
+                               "parameters and seed); it is left as it is",
+                               checkpoint.string()),
+                   "a path where no file is yet, or this run's own checkpoint (with --resume "
+                   "to continue from it)");
 }
 
 }  // namespace
@@ -64,14 +60,25 @@ void remove_stale_temporaries(const std::filesystem::path& checkpoint) {
 std::shared_ptr<LongRunOptions> add_long_run_options(CLI::App& command) {
   auto options = std::make_shared<LongRunOptions>();
   command.add_option("--checkpoint", options->checkpoint,
-                     "Save the run's state here periodically, atomically [OUT.checkpoint]");
+                     "Save the run's state here periodically, atomically [OUT.checkpoint]: a path "
+                     "where no file is yet, or this run's own checkpoint, which is removed when "
+                     "the run completes; any other file there stops the run before it starts");
   command.add_option("--checkpoint-interval", options->interval,
                      "Checkpoint every INTERVAL: seconds (600, 600s, 10m, 2h) or batches (8b); "
                      "checkpoints are off unless this, --checkpoint or --resume is given [10m]");
   command.add_flag("--resume", options->resume,
                    "Continue from the checkpoint if there is one (same parameters and seed); the "
-                   "result equals an uninterrupted run, bit for bit");
+                   "result equals an uninterrupted run, bit for bit. Interrupted (SIGINT, SIGTERM, "
+                   "SIGUSR1), a run saves its checkpoint and writes OUT marked partial, but never "
+                   "over a complete file: then it writes OUT's name with .partial before the "
+                   "extension (run.partial.h5), removed when the resumed run completes");
   return options;
+}
+
+std::filesystem::path checkpoint_path(const LongRunOptions& options,
+                                      const std::filesystem::path& output) {
+  return options.checkpoint.empty() ? default_checkpoint_path(output)
+                                    : std::filesystem::path(options.checkpoint);
 }
 
 CheckpointPolicy parse_checkpoint_interval(const std::string& text) {
@@ -106,8 +113,7 @@ CheckpointPolicy parse_checkpoint_interval(const std::string& text) {
 LongRun::LongRun(const LongRunOptions& options, const std::filesystem::path& output,
                  std::string fingerprint, Communicator& world)
     : world_(world),
-      checkpoint_path_(options.checkpoint.empty() ? default_checkpoint_path(output)
-                                                  : std::filesystem::path(options.checkpoint)),
+      checkpoint_path_(cli::checkpoint_path(options, output)),
       fingerprint_(std::move(fingerprint)) {
   if (!options.interval.empty()) {
     control_.checkpoint = parse_checkpoint_interval(options.interval);
@@ -116,10 +122,11 @@ LongRun::LongRun(const LongRunOptions& options, const std::filesystem::path& out
   }
   // Resume on the root; every rank must learn whether it failed, or the others would wait for it.
   std::exception_ptr failure;
-  if (options.resume && world.is_root()) {
-    remove_stale_temporaries(checkpoint_path_);
+  if (world.is_root()) {
     try {
-      if (std::filesystem::exists(checkpoint_path_)) {
+      if (!options.resume) {
+        refuse_foreign_checkpoint(checkpoint_path_, fingerprint_);
+      } else if (std::filesystem::exists(checkpoint_path_)) {
         state_ = read_checkpoint(checkpoint_path_, fingerprint_);
       } else {
         fmt::print(stderr, "scatterlab: no checkpoint at {}: starting from the first batch\n",
@@ -148,20 +155,80 @@ LongRun::~LongRun() {
   restore_signals();
 }
 
+std::filesystem::path partial_sibling(const std::filesystem::path& output) {
+  std::filesystem::path sibling = output;
+  sibling.replace_extension();
+  sibling += ".partial";
+  sibling += output.extension();
+  return sibling;
+}
+
+namespace {
+
+// A partial result may take the place only of nothing or of another partial result.
+bool holds_partial_or_nothing(const std::filesystem::path& path) {
+  std::error_code error;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(path, error))) return true;
+  try {
+    return std::filesystem::is_regular_file(path, error) && read_file_summary(path).partial;
+  } catch (const std::exception&) {
+    return false;  // not a scatterlab file
+  }
+}
+
+}  // namespace
+
+std::optional<std::filesystem::path> LongRun::result_path(
+    std::uint64_t batches_done, std::uint64_t batches, const std::filesystem::path& output) const {
+  if (batches_done == batches || holds_partial_or_nothing(output)) return output;
+  const std::filesystem::path sibling = partial_sibling(output);
+  if (holds_partial_or_nothing(sibling)) return sibling;
+  return std::nullopt;
+}
+
 int LongRun::finish(std::uint64_t batches_done, std::uint64_t batches,
-                    const std::filesystem::path& output) const {
+                    const std::filesystem::path& output,
+                    const std::optional<std::filesystem::path>& written) const {
   if (batches_done == batches) {
-    std::error_code ignored;  // none was written when checkpoints were off and nothing stopped
-    if (world_.is_root()) std::filesystem::remove(checkpoint_path_, ignored);
+    if (world_.is_root()) remove_own_leftovers(output);
     return 0;
   }
   if (world_.is_root()) {
+    std::string what;
+    if (!written) {
+      what = fmt::format("kept {} and {}, which are not partial results, and wrote no file",
+                         output.string(), partial_sibling(output).string());
+    } else if (*written != output) {
+      what = fmt::format("kept {}, which is not a partial result, and wrote {} marked partial",
+                         output.string(), written->string());
+    } else {
+      what = fmt::format("wrote {} marked partial", output.string());
+    }
     fmt::print(stderr,
-               "scatterlab: interrupted after {} of {} batches: wrote {} marked partial; "
-               "rerun the same command with --resume to finish from {}\n",
-               batches_done, batches, output.string(), checkpoint_path_.string());
+               "scatterlab: interrupted after {} of {} batches: {}; rerun the same command with "
+               "--resume to finish from {}\n",
+               batches_done, batches, what, checkpoint_path_.string());
   }
   return kInterruptedExit;
+}
+
+// What this run (or the run it resumed) left for itself: its checkpoint, and a partial result
+// written beside a complete file; anything else at those paths is not the run's to remove.
+void LongRun::remove_own_leftovers(const std::filesystem::path& output) const {
+  std::error_code ignored;
+  if (is_checkpoint_of(checkpoint_path_, fingerprint_)) {
+    std::filesystem::remove(checkpoint_path_, ignored);
+  }
+  const std::filesystem::path sibling = partial_sibling(output);
+  if (!std::filesystem::is_regular_file(sibling, ignored)) return;
+  try {
+    const FileSummary summary = read_file_summary(sibling);
+    if (summary.partial && summary.spec_fingerprint == fingerprint_) {
+      std::filesystem::remove(sibling, ignored);
+    }
+  } catch (const std::exception&) {
+    // not a scatterlab file: not ours
+  }
 }
 
 }  // namespace scatterlab::cli

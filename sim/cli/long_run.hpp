@@ -5,8 +5,9 @@
 //
 //   LongRun long_run(*options, output_path, fingerprint(spec), world);
 //   const auto out = simulate(spec, progress, long_run.control());
-//   ... write the file (partial or not) on the root ...
-//   return long_run.finish(out.batches_done, spec.run.batches, output_path);
+//   const auto written = long_run.result_path(out.batches_done, spec.run.batches, output_path);
+//   if (written) ... write the file there ...
+//   return long_run.finish(out.batches_done, spec.run.batches, output_path, written);
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
@@ -29,9 +30,17 @@ struct LongRunOptions {
 // --checkpoint PATH, --checkpoint-interval INTERVAL, --resume
 std::shared_ptr<LongRunOptions> add_long_run_options(CLI::App& command);
 
+// --checkpoint, or OUT.checkpoint beside the output when it is not given.
+std::filesystem::path checkpoint_path(const LongRunOptions& options,
+                                      const std::filesystem::path& output);
+
 // "600", "600s", "10m", "2h": seconds; "8b": batches. Throws InputError naming
 // --checkpoint-interval.
 CheckpointPolicy parse_checkpoint_interval(const std::string& text);
+
+// "run.partial.h5" for "run.h5": where a run stopped early writes its partial result when a
+// complete file holds the output's name.
+std::filesystem::path partial_sibling(const std::filesystem::path& output);
 
 class LongRun {
  public:
@@ -49,12 +58,23 @@ class LongRun {
   // Batches already done by the run being resumed (0 when starting afresh).
   std::uint64_t resumed_batches() const { return state_ ? state_->batches_folded : 0; }
 
-  // After the output is written: removes the checkpoint of a complete run and returns 0; for a
-  // run stopped early prints why and how to continue (root only) and returns 130.
-  int finish(std::uint64_t batches_done, std::uint64_t batches,
-             const std::filesystem::path& output) const;
+  // Where the file of a run that ran `batches_done` of `batches` goes. A complete run writes
+  // `output`. A run stopped early never replaces a complete file (or any file that is not a
+  // partial result): it then writes partial_sibling(output) instead, or, when that name is taken
+  // by such a file too, no file at all (nullopt): the checkpoint holds the run.
+  std::optional<std::filesystem::path> result_path(std::uint64_t batches_done,
+                                                   std::uint64_t batches,
+                                                   const std::filesystem::path& output) const;
+
+  // After the file is written (to `written`, from result_path): for a complete run removes its
+  // own checkpoint and partial sibling and returns 0; for a run stopped early prints what it
+  // wrote and how to continue (root only) and returns 130.
+  int finish(std::uint64_t batches_done, std::uint64_t batches, const std::filesystem::path& output,
+             const std::optional<std::filesystem::path>& written) const;
 
  private:
+  void remove_own_leftovers(const std::filesystem::path& output) const;
+
   Communicator& world_;
   std::filesystem::path checkpoint_path_;
   std::string fingerprint_;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "prepare_outputs.hpp"
 #include "scatterlab/io/merge.hpp"
 
 namespace scatterlab::cli {
@@ -27,6 +28,10 @@ Action add_merge_command(CLI::App& app, const std::string& command_line) {
   merge->add_option("-o,--out", o->out, "Merged HDF5 file")->required();
   return [o, command_line] {
     const std::vector<std::filesystem::path> inputs(o->inputs.begin(), o->inputs.end());
+    OutputPlan plan;
+    for (const auto& input : inputs) plan.input("FILES", input);
+    plan.output_file("--out", o->out);
+    prepare_outputs(plan);
     const MergeSummary summary = merge_simulation_files(inputs, o->out, command_line);
     fmt::print("scatterlab merge: {} runs, {} photons in {} batches: wrote {}\n", inputs.size(),
                summary.photons, summary.batches, o->out);

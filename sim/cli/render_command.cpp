@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "prepare_outputs.hpp"
 #include "progress_bar.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
@@ -38,6 +39,10 @@ int run_study(const RenderOptions& o, const std::filesystem::path& out_dir) {
       o.scenes.empty()
           ? std::vector<std::string>{"data/scenes/bumpy-sphere.toml", "data/scenes/tile.toml"}
           : o.scenes;
+  OutputPlan plan;
+  for (const std::string& path : paths) plan.input("SCENE", path);
+  plan.output_directory("--out", out_dir);
+  prepare_outputs(plan);
   std::vector<RenderStudyScene> scenes;
   for (const std::string& path : paths) {
     scenes.push_back({std::filesystem::path(path).stem().string(), load_render_scene(path)});
@@ -128,7 +133,13 @@ Action add_render_command(CLI::App& app) {
     png.replace_extension(".png");
     if (png == exr) png += ".png";
 
-    // Fail before the work, not after it: AtomicOutput checks the place (InputError "out").
+    // Fail before the work, not after it.
+    OutputPlan plan;
+    plan.input("SCENE", o.scenes.front());
+    if (!scene.mesh_file.empty()) plan.input("mesh.path", scene.mesh_file);
+    plan.output_file("--out", exr);
+    plan.output_file("--out", png);  // the PNG beside the OpenEXR file
+    prepare_outputs(plan);
     { const AtomicOutput exr_check(exr), png_check(png); }
 
     ProgressBar bar("render " + o.method);

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "prepare_outputs.hpp"
 #include "scatterlab/report/report_writer.hpp"
 #include "scatterlab/report/suites.hpp"
 
@@ -35,6 +36,9 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
 
   return [options, command_line] {
     options->profile.quick = options->quick;
+    OutputPlan plan;
+    plan.output_directory("--out", options->out);
+    prepare_outputs(plan);
     const std::vector<std::function<report::Section(const report::Profile&)>> suites = {
         report::infinite_medium_convergence, report::infinite_medium_extremes,
         report::half_space_convergence, report::half_space_extremes,

@@ -5,13 +5,16 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <optional>
 
 #include "commands.hpp"
 #include "long_run.hpp"
+#include "prepare_outputs.hpp"
 #include "progress_bar.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
+#include "scatterlab/io/output_plan.hpp"
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/models/chandrasekhar_h.hpp"
@@ -105,6 +108,11 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
   spec.validate();
 
   const std::string path = given("--out") ? o.out : scene.output_path.value_or("searchlight.h5");
+  OutputPlan plan;
+  if (given("--scene")) plan.input("--scene", o.scene);
+  plan.output_file(given("--out") || !scene.output_path ? "--out" : "output.path", path);
+  plan.output_file("--checkpoint", checkpoint_path(long_run_options, path));
+  prepare_outputs(plan, world.is_root());
   { const AtomicOutput check(path); }  // a bad output path fails now, not after the run
 
   // Ranks, checkpoints, --resume and interruption, as for simulate (long_run.hpp).
@@ -120,6 +128,7 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
   const SearchlightOutput out = run_searchlight(spec, progress, long_run.control());
   bar.finish();
 
+  std::optional<std::filesystem::path> written;
   if (root) {
     const Provenance provenance{SCATTERLAB_VERSION, command_line, iso8601_now(),
                                 out.wall_seconds,   out.photons,  out.scattering_events,
@@ -128,10 +137,13 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
     double specular_error = 0.0;
     const std::vector<ModelResult> models = searchlight_model_curves(
         spec, scalar(out.tallies, "specular_reflectance", &specular_error), o.model_fluence);
-    write_searchlight_file(path, spec, out.tallies, provenance, models);
-    print_summary(spec, out, models, path);
+    written = long_run.result_path(out.batches_done, spec.run.batches, path);
+    if (written) {
+      write_searchlight_file(*written, spec, out.tallies, provenance, models);
+      print_summary(spec, out, models, written->string());
+    }
   }
-  return long_run.finish(out.batches_done, spec.run.batches, path);
+  return long_run.finish(out.batches_done, spec.run.batches, path, written);
 }
 
 }  // namespace

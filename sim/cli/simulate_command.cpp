@@ -6,14 +6,17 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "commands.hpp"
 #include "long_run.hpp"
+#include "prepare_outputs.hpp"
 #include "progress_bar.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
+#include "scatterlab/io/output_plan.hpp"
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/parallel/world.hpp"
@@ -125,6 +128,8 @@ void apply_flags(CLI::App& command, const SimulateOptions& o, SimulationSpec& sp
 struct PlannedRun {
   SimulationSpec spec;
   std::filesystem::path output;
+  // Where the path came from, for errors: --out, --out-dir or the scene's output.path.
+  std::string output_field;
 };
 
 // One run, or one per combination of a sweep (scene.hpp), each with its output path.
@@ -152,7 +157,9 @@ std::vector<PlannedRun> plan_runs(CLI::App& command, const SimulateOptions& o,
   for (SweepPoint& point : points) {
     apply_flags(command, o, point.scene.spec);
     std::filesystem::path output;
+    std::string field = "--out";
     if (given("--out-dir")) {
+      field = "--out-dir";
       const std::string name =
           point.label.empty()
               ? std::filesystem::path(point.scene.output_path.value_or("scatterlab.h5"))
@@ -162,8 +169,9 @@ std::vector<PlannedRun> plan_runs(CLI::App& command, const SimulateOptions& o,
       output = std::filesystem::path(o.out_dir) / name;
     } else {
       output = given("--out") ? o.out : point.scene.output_path.value_or("scatterlab.h5");
+      if (!given("--out") && point.scene.output_path) field = "output.path";
     }
-    runs.push_back({point.scene.spec, output});
+    runs.push_back({point.scene.spec, output, field});
   }
   return runs;
 }
@@ -197,20 +205,32 @@ int run_one(PlannedRun run, const LongRunOptions& options, const std::string& co
   const SimulationOutput out = simulate(spec, progress, long_run.control());
   bar.finish();
 
+  std::optional<std::filesystem::path> written;
   if (root) {
     const Provenance provenance{SCATTERLAB_VERSION, command_line, iso8601_now(),
                                 out.wall_seconds,   out.photons,  out.scattering_events,
                                 out.batches_done,   out.ranks};
     run.spec.run.threads = out.threads;  // record what ran, not "all cores"
-    write_simulation_file(run.output, run.spec, out.tallies, provenance);
-    print_summary(run.spec, out, run.output.string());
+    written = long_run.result_path(out.batches_done, spec.run.batches, run.output);
+    if (written) {
+      write_simulation_file(*written, run.spec, out.tallies, provenance);
+      print_summary(run.spec, out, written->string());
+    }
   }
-  return long_run.finish(out.batches_done, spec.run.batches, run.output);
+  return long_run.finish(out.batches_done, spec.run.batches, run.output, written);
 }
 
 int run_simulate(CLI::App& command, const SimulateOptions& o, const LongRunOptions& long_run,
                  const std::string& command_line, World& world) {
   const std::vector<PlannedRun> runs = plan_runs(command, o, long_run);
+  OutputPlan plan;
+  if (!o.scene.empty()) plan.input("--scene", o.scene);
+  if (!o.out_dir.empty()) plan.output_directory("--out-dir", o.out_dir);
+  for (const PlannedRun& run : runs) {
+    plan.output_file(run.output_field, run.output);
+    plan.output_file("--checkpoint", checkpoint_path(long_run, run.output));
+  }
+  prepare_outputs(plan, world.is_root());
   if (!o.out_dir.empty()) {
     // Made by the root; the others wait for it (a broadcast is a barrier here).
     std::error_code error;

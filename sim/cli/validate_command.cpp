@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "prepare_outputs.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/validate/half_space_comparison.hpp"
@@ -163,6 +164,9 @@ Action add_validate_command(CLI::App& app) {
       ->capture_default_str();
   searchlight->add_option("--seed", half_space->seed, "Random seed")->capture_default_str();
   return [options, deon, half_space, searchlight] {
+    OutputPlan plan;
+    plan.output_directory("--out", deon->parsed() ? options->out : half_space->out);
+    prepare_outputs(plan);
     if (deon->parsed()) return run_deon(*options);
     if (searchlight->parsed()) return run_searchlight_validation(*half_space);
     return 1;

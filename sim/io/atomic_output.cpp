@@ -2,9 +2,13 @@
 
 #include <fstream>
 
+#include <signal.h>
+#include <sys/types.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -59,6 +63,29 @@ void AtomicOutput::commit() {
                              final_path_.string() + "': " + error.message());
   }
   committed_ = true;
+}
+
+std::vector<std::filesystem::path> remove_stale_temporaries(
+    const std::filesystem::path& final_path) {
+  std::vector<std::filesystem::path> removed;
+  if (!final_path.has_filename()) return removed;
+  const std::string prefix = final_path.filename().string() + ".tmp-";
+  const std::filesystem::path directory =
+      final_path.has_parent_path() ? final_path.parent_path() : std::filesystem::path(".");
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(directory, error)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    char* end = nullptr;
+    const long pid = std::strtol(name.c_str() + prefix.size(), &end, 10);
+    if (pid <= 0 || end == nullptr || *end != '-') continue;  // not one of ours
+    if (!entry.is_regular_file(error)) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) == -1 && errno == ESRCH &&
+        std::filesystem::remove(entry.path(), error)) {
+      removed.push_back(entry.path());
+    }
+  }
+  return removed;
 }
 
 void write_text_file(const std::filesystem::path& path,

@@ -51,6 +51,20 @@ void write_checkpoint(const std::filesystem::path& path, const std::string& spec
   output.commit();
 }
 
+bool is_checkpoint_of(const std::filesystem::path& path, const std::string& spec_fingerprint) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error) || !hdf5::is_hdf5_file(path)) return false;
+  try {
+    const hdf5::File file = hdf5::File::open_read_only(path);
+    const hdf5::Group& root = file.root();
+    return root.has_attribute("format") && root.read_string_attribute("format") == kFormat &&
+           root.has_attribute("spec_fingerprint") &&
+           root.read_string_attribute("spec_fingerprint") == spec_fingerprint;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
 RunState read_checkpoint(const std::filesystem::path& path, const std::string& spec_fingerprint,
                          const std::string& field) {
   const std::string accepted = "a checkpoint written by the same run (same parameters and seed)";

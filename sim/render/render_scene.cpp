@@ -29,7 +29,7 @@ class RenderSceneReader : public TomlReader {
                        "a [mesh] table with shape = \"sphere\", "
                        "\"bumpy_sphere\", \"rounded_tile\", \"box\" or \"obj\"");
     }
-    scene.mesh = read_mesh(*mesh);
+    scene.mesh = read_mesh(*mesh, scene.mesh_file);
     if (const auto* medium = subtable(root, "medium", "")) read_medium(*medium, scene);
     if (const auto* light = subtable(root, "light", "")) read_light(*light, scene.light);
     if (const auto* camera = subtable(root, "camera", "")) read_camera(*camera, scene.camera);
@@ -74,7 +74,7 @@ class RenderSceneReader : public TomlReader {
     return *value;
   }
 
-  TriangleMesh read_mesh(const toml::table& table) const {
+  TriangleMesh read_mesh(const toml::table& table, std::filesystem::path& mesh_file) const {
     const std::string path = "mesh";
     check_keys(table, path,
                {"shape", "path", "normals", "radius", "amplitude", "frequency", "rings", "segments",
@@ -125,6 +125,7 @@ class RenderSceneReader : public TomlReader {
       std::filesystem::path obj(*file);
       if (obj.is_relative()) obj = base_ / obj;
       mesh = read_obj_mesh(obj, smooth);
+      mesh_file = obj;
     } else {
       wrong_type(*table.get("shape"), "mesh.shape", shapes);
     }

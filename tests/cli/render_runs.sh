@@ -45,7 +45,7 @@ expect_error no-mesh mesh nomesh.toml
 expect_error missing-scene scene "$work/none.toml"
 if "$exe" render "$scene" --width 4 --height 4 --out "$work/no/such/dir/x.exr" >stdout 2>stderr; then
   fail "bad-dir: exited 0"
-elif ! grep -q "^scatterlab: error: out:" stderr || [ "$(grep -c . stderr)" -ne 1 ]; then
+elif ! grep -q "^scatterlab: error: --out:" stderr || [ "$(grep -c . stderr)" -ne 1 ]; then
   fail "bad-dir: $(cat stderr)"
 else
   pass

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <ostream>
+#include <vector>
 
 namespace scatterlab {
 
@@ -33,6 +34,12 @@ class AtomicOutput {
   std::filesystem::path temporary_path_;
   bool committed_ = false;
 };
+
+// Removes the temporaries of `final_path` ("<final>.tmp-<pid>-<n>") whose process is gone, as a
+// kill during the write leaves them; a temporary of a live process is kept. Returns what it
+// removed.
+std::vector<std::filesystem::path> remove_stale_temporaries(
+    const std::filesystem::path& final_path);
 
 // A text file (CSV, Markdown) written the same way: `body` writes to a stream on the temporary
 // file, which is renamed into place once the stream reports no error. Throws

@@ -24,6 +24,10 @@ std::filesystem::path default_checkpoint_path(const std::filesystem::path& outpu
 void write_checkpoint(const std::filesystem::path& path, const std::string& spec_fingerprint,
                       const RunState& state);
 
+// Whether `path` is a checkpoint written for this run (`spec_fingerprint`): the only kind of file
+// a run may replace or remove at its checkpoint path. Never throws.
+bool is_checkpoint_of(const std::filesystem::path& path, const std::string& spec_fingerprint);
+
 // Throws InputError naming `field` (the option that pointed here) when the file is missing, not
 // a checkpoint, or was written for a run with another fingerprint (other parameters or seed).
 RunState read_checkpoint(const std::filesystem::path& path, const std::string& spec_fingerprint,

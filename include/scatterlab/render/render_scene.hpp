@@ -44,6 +44,7 @@ struct PinholeCamera {
 
 struct RenderScene {
   TriangleMesh mesh;  // closed, consistently oriented, validated
+  std::filesystem::path mesh_file;  // the OBJ file it was read from; empty for a built-in shape
   Medium medium;      // sigma_t, albedo, g (length unit: that of the mesh)
   double eta = 1.5;   // n_inside / n_outside
   RenderLight light;

@@ -1,0 +1,56 @@
+#pragma once
+// What a command will read and write, declared before any work, so that no run destroys a file
+// it did not mean to write: every output must be distinct from every other output and from every
+// input (compared as the files they resolve to, by inode and device, not as spellings), an
+// output file must be a regular file or not exist yet (never a directory, device, FIFO or
+// socket), and every path must be printable text the filesystem can hold.
+//
+//   OutputPlan plan;
+//   plan.input("--scene", scene);
+//   plan.output_file("--out", out);
+//   plan.output_file("--checkpoint", checkpoint);
+//   plan.check();  // InputError naming the flag, before anything is read or written
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace scatterlab {
+
+// Throws InputError(field) when `path` is empty, holds a NUL byte or another control character,
+// or has a component longer than the filesystem's NAME_MAX or a length over its PATH_MAX.
+void check_path_text(const std::string& field, const std::filesystem::path& path);
+
+// The same file: by inode and device when both exist, else by their resolved absolute paths.
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
+
+class OutputPlan {
+ public:
+  // A file the command reads.
+  void input(std::string field, std::filesystem::path path);
+  // A file the command reads and then replaces with a new version (`fit` adds to its input): an
+  // input to every other output, and a regular file like an output.
+  void rewritten_input(std::string field, std::filesystem::path path);
+  // A file the command writes whole (replacing one there): HDF5, CSV, image, checkpoint.
+  void output_file(std::string field, std::filesystem::path path);
+  // A directory the command writes files into (created if missing).
+  void output_directory(std::string field, std::filesystem::path path);
+
+  // Throws InputError naming the first offending field; reads the filesystem, writes nothing.
+  void check() const;
+
+  // Removes temporaries "<output>.tmp-<pid>-<n>" (atomic_output.hpp) of every output file whose
+  // process is gone: a run killed while writing leaves them. Returns what it removed.
+  std::vector<std::filesystem::path> remove_stale_temporaries() const;
+
+ private:
+  enum class Kind { input, rewritten_input, output_file, output_directory };
+  struct Entry {
+    Kind kind;
+    std::string field;
+    std::filesystem::path path;
+  };
+  std::vector<Entry> entries_;
+};
+
+}  // namespace scatterlab

@@ -1,0 +1,206 @@
+#include "scatterlab/io/output_plan.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <climits>
+#include <system_error>
+#include <utility>
+
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/io/atomic_output.hpp"
+
+namespace scatterlab {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kDistinct = "a path distinct from every input and every other output";
+
+bool is_control(char c) {
+  const auto byte = static_cast<unsigned char>(c);
+  return byte < 0x20 || byte == 0x7f;
+}
+
+// The path as it can be shown in one line of a message: control characters as '?'.
+std::string printable(const std::string& text) {
+  std::string shown = text;
+  for (char& c : shown) {
+    if (is_control(c)) c = '?';
+  }
+  return shown;
+}
+
+std::string quoted(const fs::path& path) {
+  return fmt::format("'{}'", printable(path.native()));
+}
+
+// The directory whose filesystem would hold `path`: its nearest ancestor that exists.
+fs::path nearest_existing_directory(const fs::path& path) {
+  std::error_code error;
+  fs::path directory = fs::absolute(path, error);
+  if (error) return ".";
+  directory = directory.parent_path();
+  while (!fs::is_directory(directory, error) && directory.has_relative_path()) {
+    directory = directory.parent_path();
+  }
+  return directory;
+}
+
+long filesystem_limit(const fs::path& directory, int name, long fallback) {
+  const long limit = ::pathconf(directory.c_str(), name);
+  return limit > 0 ? limit : fallback;
+}
+
+// Symlinks and "..", resolved as far as the path exists.
+fs::path resolved(const fs::path& path) {
+  std::error_code error;
+  fs::path absolute = fs::absolute(path, error);
+  if (error) absolute = path;
+  fs::path canonical = fs::weakly_canonical(absolute, error);
+  return error ? absolute.lexically_normal() : canonical;
+}
+
+std::string file_type_text(fs::file_type type) {
+  switch (type) {
+    case fs::file_type::directory:
+      return "a directory";
+    case fs::file_type::block:
+      return "a block device";
+    case fs::file_type::character:
+      return "a character device";
+    case fs::file_type::fifo:
+      return "a FIFO";
+    case fs::file_type::socket:
+      return "a socket";
+    default:
+      return "not a regular file";
+  }
+}
+
+}  // namespace
+
+void check_path_text(const std::string& field, const fs::path& path) {
+  const std::string& text = path.native();
+  if (text.empty()) throw InputError(field, "empty path", "a file or directory name");
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (is_control(text[i])) {
+      throw InputError(field,
+                       fmt::format("{} holds the control character 0x{:02x} at byte {}",
+                                   quoted(path), static_cast<unsigned char>(text[i]), i),
+                       "a path without NUL bytes or other control characters");
+    }
+  }
+  const fs::path directory = nearest_existing_directory(path);
+  const long path_max = filesystem_limit(directory, _PC_PATH_MAX, PATH_MAX);
+  const long name_max = filesystem_limit(directory, _PC_NAME_MAX, NAME_MAX);
+  if (static_cast<long>(text.size()) >= path_max) {
+    throw InputError(field, fmt::format("the path is {} bytes long", text.size()),
+                     fmt::format("a path shorter than {} bytes (PATH_MAX here)", path_max));
+  }
+  for (const fs::path& component : path) {
+    if (static_cast<long>(component.native().size()) > name_max) {
+      throw InputError(
+          field,
+          fmt::format("a name in {} is {} bytes long", quoted(path), component.native().size()),
+          fmt::format("names of at most {} bytes (NAME_MAX here)", name_max));
+    }
+  }
+}
+
+bool same_file(const fs::path& a, const fs::path& b) {
+  std::error_code error;
+  if (fs::exists(a, error) && fs::exists(b, error)) {
+    const bool equivalent = fs::equivalent(a, b, error);  // same device and inode
+    if (!error) return equivalent;
+  }
+  return resolved(a) == resolved(b);
+}
+
+void OutputPlan::input(std::string field, fs::path path) {
+  entries_.push_back({Kind::input, std::move(field), std::move(path)});
+}
+
+void OutputPlan::rewritten_input(std::string field, fs::path path) {
+  entries_.push_back({Kind::rewritten_input, std::move(field), std::move(path)});
+}
+
+void OutputPlan::output_file(std::string field, fs::path path) {
+  entries_.push_back({Kind::output_file, std::move(field), std::move(path)});
+}
+
+void OutputPlan::output_directory(std::string field, fs::path path) {
+  entries_.push_back({Kind::output_directory, std::move(field), std::move(path)});
+}
+
+void OutputPlan::check() const {
+  for (const Entry& entry : entries_) check_path_text(entry.field, entry.path);
+  for (const Entry& entry : entries_) {
+    std::error_code error;
+    const fs::file_status status = fs::status(entry.path, error);
+    const bool exists = fs::exists(status);
+    if (entry.kind == Kind::output_directory && exists && !fs::is_directory(status)) {
+      throw InputError(entry.field,
+                       fmt::format("{} exists and is not a directory", quoted(entry.path)),
+                       "a directory, or a path where one can be made");
+    }
+    if (entry.kind != Kind::output_file && entry.kind != Kind::rewritten_input) continue;
+    const std::string accepted =
+        "a regular file to replace, or a new file in an existing directory";
+    if (exists && !fs::is_regular_file(status)) {
+      throw InputError(entry.field,
+                       fmt::format("{} is {}", quoted(entry.path), file_type_text(status.type())),
+                       accepted);
+    }
+    if (!entry.path.has_filename()) {
+      throw InputError(entry.field, fmt::format("{} does not name a file", quoted(entry.path)),
+                       accepted);
+    }
+    // The directory must be there, or be one this command makes.
+    const fs::path parent = entry.path.has_parent_path() ? entry.path.parent_path() : fs::path(".");
+    bool made_here = false;
+    for (const Entry& other : entries_) {
+      made_here = made_here || (other.kind == Kind::output_directory &&
+                                resolved(other.path) == resolved(parent));
+    }
+    if (!made_here && !fs::is_directory(parent, error)) {
+      throw InputError(
+          entry.field,
+          fmt::format("directory {} of {} does not exist", quoted(parent), quoted(entry.path)),
+          accepted);
+    }
+  }
+  // Each output against every input and every output registered before it: an output that
+  // collides is the one named, and of two outputs the later flag.
+  const auto is_input = [](Kind kind) {
+    return kind == Kind::input || kind == Kind::rewritten_input;
+  };
+  for (std::size_t j = 0; j < entries_.size(); ++j) {
+    for (std::size_t i = 0; i < entries_.size(); ++i) {
+      if (i == j) continue;
+      const Entry& first = entries_[i];
+      const Entry& second = entries_[j];
+      if (is_input(second.kind)) continue;           // named through the output instead
+      if (!is_input(first.kind) && i > j) continue;  // each pair of outputs once
+      if (!same_file(first.path, second.path)) continue;
+      const std::string what = is_input(first.kind) ? "input" : "output";
+      throw InputError(second.field,
+                       fmt::format("{} is the same file as the {} {} ({})", quoted(second.path),
+                                   what, first.field, quoted(first.path)),
+                       kDistinct);
+    }
+  }
+}
+
+std::vector<fs::path> OutputPlan::remove_stale_temporaries() const {
+  std::vector<fs::path> removed;
+  for (const Entry& entry : entries_) {
+    if (entry.kind != Kind::output_file && entry.kind != Kind::rewritten_input) continue;
+    for (fs::path& path : scatterlab::remove_stale_temporaries(entry.path)) {
+      removed.push_back(std::move(path));
+    }
+  }
+  return removed;
+}
+
+}  // namespace scatterlab
