@@ -109,21 +109,17 @@ void WholeRun(benchmark::State& state) {
 const HenyeyGreenstein forward{0.9};
 const IsotropicPhase isotropic{};
 
-BENCHMARK_CAPTURE(BareLoop, hg_g0 .9_albedo0.5, forward, 0.5);
-BENCHMARK_CAPTURE(BareLoop, iso_albedo0 .99, isotropic, 0.99);
-BENCHMARK_CAPTURE(Walk, fluence_hg_g0 .9_albedo0.5, forward,
-                  scene(0.9, 0.5, false, Estimator::collision));
-BENCHMARK_CAPTURE(Walk, radiance_hg_g0 .9_albedo0.5, forward,
-                  scene(0.9, 0.5, true, Estimator::collision));
-BENCHMARK_CAPTURE(Walk, fluence_iso_albedo0 .99, isotropic,
-                  scene(0.0, 0.99, false, Estimator::collision));
-BENCHMARK_CAPTURE(Walk, radiance_iso_albedo0 .99, isotropic,
-                  scene(0.0, 0.99, true, Estimator::collision));
-BENCHMARK_CAPTURE(Walk, track_fluence_hg_g0 .9_albedo0.5, forward,
-                  scene(0.9, 0.5, false, Estimator::track_length));
-BENCHMARK_CAPTURE(Walk, track_radiance_hg_g0 .9_albedo0.5, forward,
-                  scene(0.9, 0.5, true, Estimator::track_length));
+// clang-format off: benchmark names are not numbers
+BENCHMARK_CAPTURE(BareLoop, hg_g0.9_albedo0.5, forward, 0.5);
+BENCHMARK_CAPTURE(BareLoop, iso_albedo0.99, isotropic, 0.99);
+BENCHMARK_CAPTURE(Walk, fluence_hg_g0.9_albedo0.5, forward, scene(0.9, 0.5, false, Estimator::collision));
+BENCHMARK_CAPTURE(Walk, radiance_hg_g0.9_albedo0.5, forward, scene(0.9, 0.5, true, Estimator::collision));
+BENCHMARK_CAPTURE(Walk, fluence_iso_albedo0.99, isotropic, scene(0.0, 0.99, false, Estimator::collision));
+BENCHMARK_CAPTURE(Walk, radiance_iso_albedo0.99, isotropic, scene(0.0, 0.99, true, Estimator::collision));
+BENCHMARK_CAPTURE(Walk, track_fluence_hg_g0.9_albedo0.5, forward, scene(0.9, 0.5, false, Estimator::track_length));
+BENCHMARK_CAPTURE(Walk, track_radiance_hg_g0.9_albedo0.5, forward, scene(0.9, 0.5, true, Estimator::track_length));
 BENCHMARK(WholeRun)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+// clang-format on
 
 }  // namespace
 }  // namespace scatterlab
