@@ -89,7 +89,8 @@ const HenyeyGreenstein hg075{0.75};
 const HenyeyGreenstein hg09{0.9};
 
 // Isotropic, albedo 0.99: the searchlight default medium.
-// clang-format off: benchmark names are not numbers
+// Benchmark names are not numbers: the formatter would split hg_g0.9 into hg_g0 .9.
+// clang-format off
 BENCHMARK_CAPTURE(HalfSpace, iso_albedo0.99_eta1, iso, half_space(0.99, 0.0, 1.0, false));
 BENCHMARK_CAPTURE(HalfSpace, iso_albedo0.99_eta1.33, iso, half_space(0.99, 0.0, 1.33, false));
 BENCHMARK_CAPTURE(HalfSpace, iso_albedo0.99_eta1.33_fluence, iso, half_space(0.99, 0.0, 1.33, true));

@@ -109,7 +109,8 @@ void WholeRun(benchmark::State& state) {
 const HenyeyGreenstein forward{0.9};
 const IsotropicPhase isotropic{};
 
-// clang-format off: benchmark names are not numbers
+// Benchmark names are not numbers: the formatter would split hg_g0.9 into hg_g0 .9.
+// clang-format off
 BENCHMARK_CAPTURE(BareLoop, hg_g0.9_albedo0.5, forward, 0.5);
 BENCHMARK_CAPTURE(BareLoop, iso_albedo0.99, isotropic, 0.99);
 BENCHMARK_CAPTURE(Walk, fluence_hg_g0.9_albedo0.5, forward, scene(0.9, 0.5, false, Estimator::collision));
