@@ -73,9 +73,7 @@ Action add_fit_command(CLI::App& app) {
           options->csv.empty() ? std::filesystem::path(options->path) / "fits-table.csv"
                                : std::filesystem::path(options->csv);
       OutputPlan plan;
-      for (const auto& entry : std::filesystem::directory_iterator(options->path)) {
-        if (entry.path().extension() == ".h5") plan.rewritten_input("FILE", entry.path());
-      }
+      for (const auto& file : fit::sweep_files(options->path)) plan.rewritten_input("FILE", file);
       plan.output_file("--csv", table);
       prepare_outputs(plan);
       const fit::FieldFit field = fit::fit_field(options->path, table, models, fit_options,

@@ -13,7 +13,6 @@
 #include "progress_bar.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
-#include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/io/output_plan.hpp"
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/simulation_file.hpp"
@@ -113,7 +112,6 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
   plan.output_file(given("--out") || !scene.output_path ? "--out" : "output.path", path);
   plan.output_file("--checkpoint", checkpoint_path(long_run_options, path));
   prepare_outputs(plan, world.is_root());
-  { const AtomicOutput check(path); }  // a bad output path fails now, not after the run
 
   // Ranks, checkpoints, --resume and interruption, as for simulate (long_run.hpp).
   const bool root = world.is_root();

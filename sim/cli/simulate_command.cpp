@@ -15,7 +15,6 @@
 #include "progress_bar.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
-#include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/io/output_plan.hpp"
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/simulation_file.hpp"
@@ -191,7 +190,6 @@ bool already_done(const PlannedRun& run) {
 int run_one(PlannedRun run, const LongRunOptions& options, const std::string& command_line,
             World& world) {
   const bool root = world.is_root();
-  { const AtomicOutput check(run.output); }  // a bad output path fails now, not after the run
   const SimulationSpec& spec = run.spec;
   LongRun long_run(options, run.output, fingerprint(spec), world.communicator());
 

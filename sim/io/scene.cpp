@@ -54,7 +54,8 @@ class SceneReader : public TomlReader {
     SearchlightSpec& spec = scene.spec;
     if (const auto* medium = subtable(root, "medium", "")) read_medium(*medium, spec.medium);
     const std::string_view eta_accepted = "a finite number > 0";
-    if (const auto* geometry = subtable(root, "geometry", "")) {
+    const toml::table* geometry = subtable(root, "geometry", "");
+    if (geometry != nullptr) {
       check_keys(*geometry, "geometry", {"type", "eta"});
       read_geometry_type(*geometry, "half_space",
                          "\"half_space\" (an infinite-medium scene runs with scatterlab simulate)");
@@ -69,8 +70,7 @@ class SceneReader : public TomlReader {
     if (const auto* surface = subtable(root, "surface", "")) {
       check_keys(*surface, "surface", {"eta"});
       if (const auto eta = number(*surface, "eta", "surface", eta_accepted)) {
-        if (const auto* geometry = subtable(root, "geometry", "");
-            geometry && geometry->get("eta")) {
+        if (geometry != nullptr && geometry->get("eta") != nullptr) {
           throw InputError("surface.eta",
                            "given together with geometry.eta" + at(*surface->get("eta")),
                            "the index once: geometry.eta (or surface.eta, as older scenes say)");

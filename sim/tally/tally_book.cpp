@@ -20,22 +20,20 @@ constexpr const char* order_scope[] = {"", " (unscattered light only)",
                                        " (light scattered twice or more)"};
 
 // The declaration's dims, shape and measure of each cell (product of its filters' measures,
-// left to right).
+// left to right, from 1: 1 x m is m exactly).
 TallyResult shaped(const TallyDeclaration& d, const std::string& name,
                    const std::string& description, std::vector<double>& measure) {
   TallyResult t{name, {}, {}, d.units, description, {}, {}};
   measure.assign(1, 1.0);
-  bool first = true;
   for (const Filter& f : d.filters) {
     t.dims.insert(t.dims.end(), f.dims.begin(), f.dims.end());
     t.shape.insert(t.shape.end(), f.shape.begin(), f.shape.end());
     std::vector<double> next;
     next.reserve(measure.size() * f.bins());
     for (const double m : measure) {
-      for (const double b : f.measures) next.push_back(first ? b : m * b);
+      for (const double b : f.measures) next.push_back(m * b);
     }
     measure = std::move(next);
-    first = false;
   }
   return t;
 }

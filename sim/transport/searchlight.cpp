@@ -158,7 +158,8 @@ std::string fingerprint(const SearchlightSpec& spec) {
 TransportProblem transport_problem(const SearchlightSpec& spec) {
   // Entry (Bitterli §2.3): the specular part F(theta_i) is reflected, 1 - F enters along the
   // refracted ray. Beyond the critical angle of an eta < 1 medium nothing enters; the walk then
-  // runs on a dummy direction and every tally is scaled by the transmitted power, 0.
+  // runs on the source's default direction, +z, and every tally is scaled by the transmitted power,
+  // 0.
   const Vec3 incident = incident_direction(spec.incidence_deg);
   const double specular = fresnel_dielectric_terms(incident.z(), spec.eta).reflectance();
   TransportProblem problem;
@@ -166,7 +167,6 @@ TransportProblem transport_problem(const SearchlightSpec& spec) {
   problem.g = spec.medium.g;
   problem.geometry = GeometryKind::half_space;
   problem.eta = spec.eta;
-  problem.source.direction = Vec3::UnitZ();
   refract(incident, -Vec3::UnitZ(), spec.eta, problem.source.direction);
   problem.axes.r = spec.grid.r;
   problem.axes.z = spec.grid.z;

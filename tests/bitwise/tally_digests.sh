@@ -40,7 +40,7 @@ all() {
 if [ "${3:-}" = "--check" ]; then
   all >"$work/now.txt"
   if diff -u "$4" "$work/now.txt"; then
-    echo "bitwise: $(wc -l <"$4") tallies in 13 scenes are the same, bit for bit"
+    echo "bitwise: $(wc -l <"$4") tallies in $(cut -d' ' -f1 "$4" | uniq | wc -l) scenes are the same, bit for bit"
   else
     echo "bitwise: tallies differ from $4 (lines above: - reference, + now)"
     exit 1
