@@ -56,6 +56,8 @@ DipoleModel better_dipole(const HalfSpaceMedium& medium) {
   DipoleModel model = make_dipole(medium,
                                   (2.0 * medium.sigma_a + medium.reduced_sigma_s()) / (3.0 * st * st),
                                   better_boundary_a(medium.eta));
+  // Strength alpha'^2: the light scattered at least twice (dipole.hpp says why).
+  model.strength = medium.reduced_albedo() * medium.reduced_albedo();
   model.fluence_weight = exitance_fluence_weight(medium.eta);
   model.flux_weight = exitance_flux_weight(medium.eta);
   return model;
