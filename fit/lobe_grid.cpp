@@ -6,41 +6,11 @@
 #include <string>
 
 #include "scatterlab/core/constants.hpp"
+#include "scatterlab/core/quadrature.hpp"
 
 namespace scatterlab::fit {
 
 namespace {
-
-struct GaussLegendre {
-  std::vector<double> nodes;    // on [-1, 1]
-  std::vector<double> weights;  // sum to 2
-};
-
-// n-point Gauss-Legendre rule by Newton's method on P_n from the Chebyshev guess
-// (Press et al., Numerical Recipes, 3rd ed., §4.6.1, routine gauleg).
-GaussLegendre gauss_legendre(int n) {
-  GaussLegendre rule{std::vector<double>(static_cast<std::size_t>(n)),
-                     std::vector<double>(static_cast<std::size_t>(n))};
-  for (int i = 0; i < n; ++i) {
-    double x = std::cos(pi * (i + 0.75) / (n + 0.5));
-    double derivative = 1.0;
-    for (int iteration = 0; iteration < 100; ++iteration) {
-      double p0 = 1.0, p1 = 0.0;
-      for (int k = 1; k <= n; ++k) {  // P_k by the three-term recurrence
-        const double p2 = p1;
-        p1 = p0;
-        p0 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p2) / k;
-      }
-      derivative = n * (x * p0 - p1) / (x * x - 1.0);
-      const double step = p0 / derivative;
-      x -= step;
-      if (std::abs(step) < 1e-15) break;
-    }
-    rule.nodes[static_cast<std::size_t>(i)] = x;
-    rule.weights[static_cast<std::size_t>(i)] = 2.0 / ((1.0 - x * x) * derivative * derivative);
-  }
-  return rule;
-}
 
 Eigen::Vector3d direction(double cos_theta, double phi) {
   const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));

@@ -1,7 +1,7 @@
 // The half-space diffusion models: boundary fits against a quadrature of the Fresnel formula,
 // the dipoles against values computed by hand from Bitterli §2.5 / d'Eon 2012, closed-form
-// totals and annulus averages against each other, the Grosjean half-space against its parts,
-// and every model at the extremes (never NaN).
+// totals and annulus averages against each other, the Grosjean beam against its parts, the
+// exact single-scatter solver and its energy bound, and every model at the extremes (never NaN).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,7 +12,10 @@
 #include "scatterlab/core/quadrature.hpp"
 #include "scatterlab/models/boundary_reflection.hpp"
 #include "scatterlab/models/dipole.hpp"
-#include "scatterlab/models/grosjean_half_space.hpp"
+#include "scatterlab/core/fresnel.hpp"
+#include "scatterlab/core/medium.hpp"
+#include "scatterlab/models/grosjean_beam.hpp"
+#include "scatterlab/refract/half_space_single_scatter.hpp"
 
 namespace scatterlab {
 namespace {
@@ -71,13 +74,16 @@ TEST(BetterDipole, HandValues) {
   // c = 0.9, g = 0, eta = 1.33: C_1 = 0.2364770, C_2 = 0.1085507 (the fits), A = (1 + 3 C_2) /
   // (1 - 2 C_1) = 2.5152491; D = (0.2 + 0.9) / 3 = 0.3666667, sigma_tr = sqrt(0.1 / D) =
   // 0.5222330; z_v = 1 + 4 A D = 4.6890321; C_phi = 0.1317615, C_E = 0.3371739.
-  // At r = 0.5: E = 0.0462154, phi = 0.0939096, R = C_phi phi + C_E E = 0.0279563.
+  // At r = 0.5, per unit strength: E = 0.0513504, phi = 0.1043440, and with the strength
+  // alpha'^2 = 0.81, R = 0.81 (C_phi phi + C_E E) = 0.0251606.
   const DipoleModel m = better_dipole(HalfSpaceMedium::from_albedo(0.9, 0.0, 1.33));
+  EXPECT_NEAR(m.strength, 0.81, 1e-15);
   EXPECT_NEAR(m.diffusion, 0.3666666667, 1e-9);
   EXPECT_NEAR(m.image_height, 4.6890320853, 1e-8);
-  EXPECT_NEAR(dipole_reflectance(m, 0.5), 0.0279562877, 1e-9);
-  // Total: 0.9 [C_E (e^-s z_r + e^-s z_v) / 2 + C_phi / (2 D s) (e^-s z_r - e^-s z_v)] = 0.2600405.
-  EXPECT_NEAR(dipole_total_reflectance(m), 0.2600405363, 1e-8);
+  EXPECT_NEAR(dipole_reflectance(m, 0.5), 0.0251606589, 1e-9);
+  // Total: 0.81 [C_E (e^-s z_r + e^-s z_v) / 2 + C_phi / (2 D s) (e^-s z_r - e^-s z_v)]
+  // = 0.2340365.
+  EXPECT_NEAR(dipole_total_reflectance(m), 0.2340364827, 1e-8);
 }
 
 TEST(Dipoles, AnnulusAveragesAddUpToTheTotal) {
@@ -116,37 +122,89 @@ TEST(Dipoles, FluenceCellAveragesMatchAMidpointSum) {
   EXPECT_NEAR(average, sum / (pi * (0.49 - 0.25) * 0.4), 1e-5 * average);
 }
 
-TEST(GrosjeanHalfSpace, PartsAgreeWithEachOther) {
-  const GrosjeanHalfSpace m = grosjean_half_space(HalfSpaceMedium::from_albedo(0.9, 0.0, 1.0));
+TEST(GrosjeanBeam, PartsAgreeWithEachOther) {
+  const GrosjeanBeam m = grosjean_beam(HalfSpaceMedium::from_albedo(0.9, 0.0, 1.3));
   // D = (2 * 0.1 + 0.9) / 3 = 0.3666667, the better dipole's.
   EXPECT_NEAR(m.diffusion, 1.1 / 3.0, 1e-12);
   std::vector<double> edges{0.0};
   for (int i = 1; i <= 200; ++i) edges.push_back(40.0 * (i / 200.0) * (i / 200.0));
-  const auto average = grosjean_half_space_reflectance_annulus_average(m, edges);
-  double sum = 0.0;
-  for (std::size_t i = 0; i < average.size(); ++i) {
-    sum += average[i] * pi * (edges[i + 1] * edges[i + 1] - edges[i] * edges[i]);
+  for (const ModelPart part : {ModelPart::single, ModelPart::multiple}) {
+    const auto average = grosjean_beam_reflectance_annulus_average(m, edges, part);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < average.size(); ++i) {
+      sum += average[i] * pi * (edges[i + 1] * edges[i + 1] - edges[i] * edges[i]);
+    }
+    // The tail beyond 40 mfp is ~exp(-0.52 * 40) ~ 1e-9.
+    const double total = grosjean_beam_total_reflectance(m, part);
+    EXPECT_NEAR(sum, total, 1e-7) << static_cast<int>(part);
+    EXPECT_NEAR(
+        grosjean_beam_reflectance_annulus_average(m, std::vector<double>{1.0, 1.0 + 1e-5}, part)[0],
+        grosjean_beam_reflectance(m, 1.0 + 5e-6, part), 1e-6 * average[20]);
   }
-  const double total = grosjean_half_space_total_reflectance(m);
-  EXPECT_NEAR(sum, total, 2e-4 * total);  // the tail beyond 40 mfp is ~exp(-0.52 * 40)
-  EXPECT_NEAR(grosjean_half_space_reflectance_annulus_average(m, std::vector<double>{1.0, 1.0 + 1e-5})[0],
-              grosjean_half_space_reflectance(m, 1.0 + 5e-6), 1e-6 * average[20]);
-  // Index-matched, the model's R_dr lies between the dipoles' and the exact 0.4816 (H-function
-  // value for c = 0.9 in Chandrasekhar's tables is not needed here: just a sanity range).
-  EXPECT_GT(total, 0.3);
-  EXPECT_LT(total, 0.6);
+  EXPECT_NEAR(grosjean_beam_total_reflectance(m, ModelPart::all),
+              grosjean_beam_total_reflectance(m, ModelPart::single) +
+                  grosjean_beam_total_reflectance(m, ModelPart::multiple),
+              1e-12);
   // Fluence cell average against a midpoint sum of point values away from the axis.
   const std::vector<double> r_edges{0.4, 0.6}, z_edges{0.5, 1.0};
-  const double cell = grosjean_half_space_fluence_cell_average(m, r_edges, z_edges)[0];
+  const double cell = grosjean_beam_fluence_cell_average(m, r_edges, z_edges)[0];
   double point_sum = 0.0;
   const int n = 40;
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
       const double r = 0.4 + 0.2 * (i + 0.5) / n, z = 0.5 + 0.5 * (j + 0.5) / n;
-      point_sum += grosjean_half_space_fluence(m, r, z) * 2.0 * pi * r * (0.2 / n) * (0.5 / n);
+      point_sum += grosjean_beam_fluence(m, r, z) * 2.0 * pi * r * (0.2 / n) * (0.5 / n);
     }
   }
   EXPECT_NEAR(cell, point_sum / (pi * (0.36 - 0.16) * 0.5), 1e-4 * cell);
+}
+
+TEST(GrosjeanBeam, EscapeIsHalfE2IndexMatched) {
+  // At eta = 1, P(z') = (1/2) int_0^1 exp(-x / mu) dmu = E_2(x) / 2 = (e^-x - x E_1(x)) / 2
+  // (Abramowitz & Stegun 5.1.14), E_1(x) = -Ei(-x).
+  const GrosjeanBeam m = grosjean_beam(HalfSpaceMedium::from_albedo(0.7, 0.0, 1.0));
+  for (const double x : {0.0, 1e-4, 0.01, 0.3, 1.0, 3.0, 10.0, 30.0}) {
+    const double e2 = x == 0.0 ? 1.0 : std::exp(-x) + x * std::expint(-x);
+    EXPECT_NEAR(grosjean_beam_escape(m, x), 0.5 * e2, 1e-8) << x;  // 48 points (header)
+  }
+}
+
+TEST(GrosjeanBeam, OnceScatteredPartIsTheExactSolutionAtGZero) {
+  // At g = 0 the straight path is the only once-scattered one, so the beam's single part is the
+  // refractive single-scatter solver's R_1 (an independent quadrature, over exit angle), less
+  // the entry transmittance that the solver includes.
+  const std::vector<double> edges{0.0, 0.1, 0.3, 1.0, 3.0, 10.0};
+  for (const double eta : {1.0, 1.3, 1.5, 0.8}) {
+    const GrosjeanBeam m = grosjean_beam(HalfSpaceMedium::from_albedo(0.9, 0.0, eta));
+    const SingleScatterReflectance exact = half_space_single_scatter_reflectance(
+        Medium::from_albedo(0.9, 1.0, 0.0), eta, edges, 1e-10);
+    const double entry = fresnel_dielectric_transmittance(1.0, eta);
+    const auto single = grosjean_beam_reflectance_annulus_average(m, edges, ModelPart::single);
+    for (std::size_t i = 0; i < single.size(); ++i) {
+      EXPECT_NEAR(entry * single[i], exact.mean[i], 1e-6 * exact.mean[i]) << eta << " " << i;
+    }
+    EXPECT_NEAR(entry * grosjean_beam_total_reflectance(m, ModelPart::single), exact.total,
+                1e-7 * exact.total)
+        << eta;
+  }
+}
+
+TEST(GrosjeanBeam, ConservesEnergy) {
+  // Nothing absorbed, all power leaves (header): R_dr = 1; below 1 whenever something is.
+  for (const double eta : {0.75, 1.0, 1.3, 1.5}) {
+    EXPECT_NEAR(grosjean_beam_total_reflectance(
+                    grosjean_beam(HalfSpaceMedium::from_albedo(1.0, 0.0, eta)), ModelPart::all),
+                1.0, 1e-6)
+        << eta;
+    for (const double c : {0.5, 0.9, 0.99, 0.999}) {
+      for (const double g : {0.0, 0.5, 0.9}) {
+        const double total = grosjean_beam_total_reflectance(
+            grosjean_beam(HalfSpaceMedium::from_albedo(c, g, eta)), ModelPart::all);
+        EXPECT_LT(total, 1.0) << c << " " << g << " " << eta;
+        EXPECT_GT(total, 0.0);
+      }
+    }
+  }
 }
 
 TEST(HalfSpaceModels, ExtremesAreNeverNaN) {
@@ -165,15 +223,13 @@ TEST(HalfSpaceModels, ExtremesAreNeverNaN) {
           for (double v : dipole_reflectance_annulus_average(m, r_edges)) EXPECT_TRUE(std::isfinite(v));
           for (double v : dipole_fluence_cell_average(m, r_edges, z_edges)) EXPECT_TRUE(std::isfinite(v));
         }
-        if (g != 0.0 && eta != 1.33) continue;  // the Grosjean model costs more: a subset
-        const GrosjeanHalfSpace gm = grosjean_half_space(medium);
-        EXPECT_FALSE(std::isnan(grosjean_half_space_reflectance(gm, 0.0)));
-        EXPECT_TRUE(std::isfinite(grosjean_half_space_reflectance(gm, 0.3)));
-        const double total = grosjean_half_space_total_reflectance(gm);
-        // Not bounded by 1: the once-scattered light that escapes is also a source of the
-        // diffusion part (grosjean_half_space.hpp), R_dr = 1.15 at c = 1, eta = 1.
-        EXPECT_TRUE(total >= 0.0 && total <= 1.2) << c << " " << g << " " << eta << " " << total;
-        for (double v : grosjean_half_space_reflectance_annulus_average(gm, r_edges)) {
+        if (g != 0.0 && eta != 1.33) continue;  // the Grosjean beam costs more: a subset
+        const GrosjeanBeam beam = grosjean_beam(medium);
+        EXPECT_FALSE(std::isnan(grosjean_beam_reflectance(beam, 0.0, ModelPart::all)));
+        EXPECT_TRUE(std::isfinite(grosjean_beam_reflectance(beam, 0.3, ModelPart::all)));
+        const double total = grosjean_beam_total_reflectance(beam, ModelPart::all);
+        EXPECT_TRUE(total >= 0.0 && total <= 1.0 + 1e-6) << c << " " << g << " " << eta << " " << total;
+        for (double v : grosjean_beam_reflectance_annulus_average(beam, r_edges, ModelPart::all)) {
           EXPECT_TRUE(std::isfinite(v));
         }
       }

@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <span>
+#include <vector>
 
 namespace scatterlab {
 
@@ -37,5 +38,13 @@ QuadratureResult integrate_adaptive(const std::function<double(double)>& f,
 // Integral of f over [a, b] (finite, a <= b).
 QuadratureResult integrate_adaptive(const std::function<double(double)>& f, double a, double b,
                                     const QuadratureOptions& options = {});
+
+// The n-point Gauss-Legendre rule on [-1, 1] (exact for polynomials of degree 2n - 1), for
+// smooth integrands whose cost must be fixed in advance.
+struct GaussLegendre {
+  std::vector<double> nodes;    // on [-1, 1]
+  std::vector<double> weights;  // sum to 2
+};
+GaussLegendre gauss_legendre(int n);
 
 }  // namespace scatterlab
