@@ -23,6 +23,7 @@ Action add_validate_command(CLI::App& app);
 Action add_merge_command(CLI::App& app, const std::string& command_line);
 Action add_report_command(CLI::App& app, const std::string& command_line);
 Action add_render_command(CLI::App& app);
+Action add_invert_command(CLI::App& app);
 
 // --photons as a double, so that 1e8 reads as it does in scene files; throws InputError
 // ("run.photons") unless it is a whole number that fits.

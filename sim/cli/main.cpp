@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   const auto merge = scatterlab::cli::add_merge_command(app, command_line);
   const auto report = scatterlab::cli::add_report_command(app, command_line);
   const auto render = scatterlab::cli::add_render_command(app);
+  const auto invert = scatterlab::cli::add_invert_command(app);
 
   try {
     app.parse(argc, argv);
@@ -52,6 +53,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("merge")) return merge();
     if (app.got_subcommand("report")) return report();
     if (app.got_subcommand("render")) return render();
+    if (app.got_subcommand("invert")) return invert();
   } catch (const scatterlab::InputError& e) {
     // Bad input is found alike on every rank, before any of them waits on another.
     if (world->is_root()) fmt::print(stderr, "scatterlab: error: {}\n", e.what());

@@ -4,7 +4,8 @@
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/models/dipole.hpp"
-#include "scatterlab/models/grosjean_half_space.hpp"
+#include "scatterlab/models/grosjean_beam.hpp"
+#include "scatterlab/models/quantized_diffusion.hpp"
 
 namespace scatterlab {
 namespace {
@@ -20,9 +21,19 @@ std::string to_string(HalfSpaceModel model) {
   switch (model) {
     case HalfSpaceModel::classical_dipole: return "dipole";
     case HalfSpaceModel::better_dipole: return "better_dipole";
-    case HalfSpaceModel::grosjean: return "grosjean";
+    case HalfSpaceModel::quantized_diffusion: return "quantized_diffusion";
+    case HalfSpaceModel::grosjean_beam: return "scatterlab_grosjean_beam";
   }
   return "dipole";
+}
+
+HalfSpaceModel half_space_model_from_string(const std::string& name, const std::string& field) {
+  std::string accepted;
+  for (const HalfSpaceModel model : all_half_space_models) {
+    if (to_string(model) == name) return model;
+    accepted += (accepted.empty() ? "" : ", ") + to_string(model);
+  }
+  throw InputError(field, "got \"" + name + "\"", "one of " + accepted);
 }
 
 double total_diffuse_reflectance(HalfSpaceModel model, double reduced_albedo, double eta) {
@@ -33,8 +44,10 @@ double total_diffuse_reflectance(HalfSpaceModel model, double reduced_albedo, do
   switch (model) {
     case HalfSpaceModel::classical_dipole: return dipole_total_reflectance(classical_dipole(medium));
     case HalfSpaceModel::better_dipole: return dipole_total_reflectance(better_dipole(medium));
-    case HalfSpaceModel::grosjean:
-      return grosjean_half_space_total_reflectance(grosjean_half_space(medium));
+    case HalfSpaceModel::quantized_diffusion:
+      return quantized_diffusion_total_reflectance(quantized_diffusion(medium));
+    case HalfSpaceModel::grosjean_beam:
+      return grosjean_beam_total_reflectance(grosjean_beam(medium), ModelPart::all);
   }
   return 0.0;
 }

@@ -5,7 +5,8 @@
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/models/dipole.hpp"
-#include "scatterlab/models/grosjean_half_space.hpp"
+#include "scatterlab/models/grosjean_beam.hpp"
+#include "scatterlab/models/quantized_diffusion.hpp"
 #include "scatterlab/models/parameter_inversion.hpp"
 
 namespace scatterlab {
@@ -15,8 +16,10 @@ double forward_total(HalfSpaceModel model, const HalfSpaceMedium& medium) {
   switch (model) {
     case HalfSpaceModel::classical_dipole: return dipole_total_reflectance(classical_dipole(medium));
     case HalfSpaceModel::better_dipole: return dipole_total_reflectance(better_dipole(medium));
-    case HalfSpaceModel::grosjean:
-      return grosjean_half_space_total_reflectance(grosjean_half_space(medium));
+    case HalfSpaceModel::quantized_diffusion:
+      return quantized_diffusion_total_reflectance(quantized_diffusion(medium));
+    case HalfSpaceModel::grosjean_beam:
+      return grosjean_beam_total_reflectance(grosjean_beam(medium), ModelPart::all);
   }
   return 0.0;
 }
@@ -25,14 +28,17 @@ double forward_sigma_tr(HalfSpaceModel model, const HalfSpaceMedium& medium) {
   switch (model) {
     case HalfSpaceModel::classical_dipole: return classical_dipole(medium).sigma_tr;
     case HalfSpaceModel::better_dipole: return better_dipole(medium).sigma_tr;
-    case HalfSpaceModel::grosjean: return grosjean_half_space(medium).sigma_tr;
+    case HalfSpaceModel::quantized_diffusion: {
+      const QuantizedDiffusion m = quantized_diffusion(medium);
+      return std::sqrt(medium.sigma_a / m.diffusion);
+    }
+    case HalfSpaceModel::grosjean_beam: return grosjean_beam(medium).sigma_tr;
   }
   return 0.0;
 }
 
 TEST(ParameterInversion, RoundTripsThroughEachModel) {
-  for (const auto model : {HalfSpaceModel::classical_dipole, HalfSpaceModel::better_dipole,
-                           HalfSpaceModel::grosjean}) {
+  for (const auto model : all_half_space_models) {
     for (const double eta : {1.0, 1.3, 0.75}) {
       for (const double r_dr : {0.05, 0.3, 0.6, 0.85}) {
         for (const double g : {0.0, 0.8}) {
@@ -60,6 +66,13 @@ TEST(ParameterInversion, ClassicalDipoleByHand) {
   EXPECT_NEAR(inv.sigma_s, 2.29, 1e-8);
   EXPECT_NEAR(total_diffuse_reflectance(HalfSpaceModel::classical_dipole, 2.29 / 2.293, 1.3), 0.846,
               0.0005);
+}
+
+TEST(ParameterInversion, ModelsByName) {
+  for (const auto model : all_half_space_models) {
+    EXPECT_EQ(half_space_model_from_string(to_string(model), "model"), model);
+  }
+  EXPECT_THROW(half_space_model_from_string("grosjean", "model"), InputError);
 }
 
 TEST(ParameterInversion, RejectsWhatNoMediumReaches) {

@@ -15,16 +15,29 @@
 
 namespace scatterlab {
 
-enum class HalfSpaceModel { classical_dipole, better_dipole, grosjean };
+enum class HalfSpaceModel { classical_dipole, better_dipole, quantized_diffusion, grosjean_beam };
 
+// Every model, in the order above.
+inline constexpr HalfSpaceModel all_half_space_models[] = {
+    HalfSpaceModel::classical_dipole, HalfSpaceModel::better_dipole,
+    HalfSpaceModel::quantized_diffusion, HalfSpaceModel::grosjean_beam};
+
+// The model's name in files and on the command line: "dipole", "better_dipole",
+// "quantized_diffusion", "scatterlab_grosjean_beam" (the name says it is this project's
+// construction, grosjean_beam.hpp).
 std::string to_string(HalfSpaceModel model);
 
-// R_dr of the model for reduced albedo alpha' in [0, 1] and index eta (per unit power entering).
+// The model named `name` (as to_string); InputError naming `field` and the accepted names.
+HalfSpaceModel half_space_model_from_string(const std::string& name, const std::string& field);
+
+// R_dr of the model for reduced albedo alpha' in [0, 1] and index eta (per unit power entering):
+// the diffusion models' multiply-scattered light, the Grosjean beam's once and multiply
+// scattered light together.
 double total_diffuse_reflectance(HalfSpaceModel model, double reduced_albedo, double eta);
 
 // sigma_tr / sigma_t' of the model: sqrt(3 (1 - alpha')) for the classical dipole
-// (D = 1 / (3 sigma_t')), sqrt(3 (1 - alpha') / (2 - alpha')) with the better dipole's and
-// Grosjean's D = (2 sigma_a + sigma_s') / (3 sigma_t'^2).
+// (D = 1 / (3 sigma_t')), sqrt(3 (1 - alpha') / (2 - alpha')) with Grosjean's
+// D = (2 sigma_a + sigma_s') / (3 sigma_t'^2) of the other three.
 double transport_to_extinction_ratio(HalfSpaceModel model, double reduced_albedo);
 
 struct InvertedCoefficients {
