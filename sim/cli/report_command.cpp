@@ -42,6 +42,7 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
     const std::vector<std::function<report::Section(const report::Profile&)>> suites = {
         report::infinite_medium_convergence, report::infinite_medium_extremes,
         report::half_space_convergence, report::half_space_extremes,
+        report::half_space_model_accuracy,
         report::lobe_fit_accuracy, report::refractive_solver_accuracy};
     std::vector<report::Section> sections;
     int failed = 0;

@@ -74,10 +74,14 @@ void print_summary(const SearchlightSpec& spec, const SearchlightOutput& out,
   }
   // Each model's total next to the Monte Carlo total it predicts.
   for (const ModelResult& m : models) {
+    if (m.values.empty()) {
+      fmt::print("  {:<24} {}\n", m.model, m.description);
+      continue;
+    }
     if (!m.shape.empty()) continue;
     double mc_error = 0.0;
     const double mc = scalar(out.tallies, m.name, &mc_error);
-    fmt::print("  {:<15} {:<27} {:.6f}   Monte Carlo {:.6f} ± {:.1e}", m.model, m.name, m.values[0],
+    fmt::print("  {:<24} {:<28} {:.6f}   Monte Carlo {:.6f} ± {:.1e}", m.model, m.name, m.values[0],
                mc, mc_error);
     if (mc_error > 0.0) fmt::print(" ({:+.1f} sigma)", (mc - m.values[0]) / mc_error);
     fmt::print("\n");

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <map>
 #include <memory>
 #include <cmath>
 #include <vector>
@@ -65,15 +66,23 @@ struct SearchlightValidateOptions {
   std::uint64_t seed = 1;
 };
 
-MonteCarloCurve curve(const std::vector<TallyResult>& tallies, const std::string& name) {
+MonteCarloCurve curve(const std::vector<TallyResult>& tallies, const std::string& name,
+                      const std::string& total_name = "") {
   const TallyResult* t = find_tally(tallies, name);
   if (t == nullptr) throw std::logic_error("searchlight run has no tally " + name);
-  return {t->mean, t->stderr_of_mean};
+  MonteCarloCurve c{t->mean, t->stderr_of_mean};
+  if (!total_name.empty()) {
+    const MonteCarloCurve total = curve(tallies, total_name);
+    c.total = total.mean[0];
+    c.total_stderr = total.stderr_of_mean[0];
+  }
+  return c;
 }
 
-// The half-space comparison: the searchlight Monte Carlo against the diffusion models
-// (R_d(r) and phi(r, z), Bitterli's pencil plots) and its once-scattered part against the exact
-// refractive single-scatter solution.
+// The half-space comparison, like with like (validate/half_space_comparison.hpp): the searchlight
+// Monte Carlo's multiply-scattered part against the diffusion models, its once-scattered part
+// against the exact refractive single-scatter solution, and its total against their sums and the
+// Grosjean beam (R_d(r) and phi(r, z), Bitterli's pencil plots).
 int run_searchlight_validation(const SearchlightValidateOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   SearchlightSpec spec;
@@ -90,39 +99,47 @@ int run_searchlight_validation(const SearchlightValidateOptions& o) {
   spec.run.seed = o.seed;
   spec.validate();
   const SearchlightOutput out = run_searchlight(spec);
-  const MonteCarloCurve reflectance = curve(out.tallies, "reflectance");
   const MonteCarloCurve specular = curve(out.tallies, "specular_reflectance");
   const std::vector<double> r = spec.grid.r.edges(), z = spec.grid.z.edges();
 
+  std::map<ModelPart, MonteCarloCurve> reflectance, fluence;
+  for (const ModelPart part : {ModelPart::all, ModelPart::single, ModelPart::multiple}) {
+    const std::string suffix = tally_suffix(part);
+    reflectance[part] =
+        curve(out.tallies, "reflectance" + suffix, "diffuse_reflectance" + suffix);
+    if (part != ModelPart::single) fluence[part] = curve(out.tallies, "fluence" + suffix);
+  }
   const HalfSpaceComparison comparison = compare_half_space(
       HalfSpaceMedium::from_albedo(o.albedo, o.g, o.eta), 1.0 - specular.mean[0], r, z,
-      reflectance, curve(out.tallies, "fluence"));
+      reflectance, fluence);
   auto files = write_half_space_report(comparison, o.out, "searchlight");
 
-  const SingleScatterReflectance exact =
-      half_space_single_scatter_reflectance(spec.medium, spec.eta, r, 1e-8);
-  const MonteCarloCurve single = curve(out.tallies, "reflectance_single");
-  const MonteCarloCurve single_total = curve(out.tallies, "diffuse_reflectance_single");
-  const SingleScatterAgreement agreement = compare_single_scatter(
-      single, exact, single_total.mean[0], single_total.stderr_of_mean[0]);
+  const ModelCurve& exact_curve = comparison.reflectance.front();  // single_scatter
+  const SingleScatterReflectance exact{exact_curve.values, exact_curve.error, exact_curve.total,
+                                       exact_curve.total_error};
+  const MonteCarloCurve& single = reflectance[ModelPart::single];
+  const SingleScatterAgreement agreement =
+      compare_single_scatter(single, exact, single.total, single.total_stderr);
   const auto more = write_single_scatter_report(r, single, exact, o.out, "searchlight");
   files.insert(files.end(), more.begin(), more.end());
 
-  const MonteCarloCurve total = curve(out.tallies, "diffuse_reflectance");
   fmt::print("scatterlab validate searchlight: albedo {}, g {}, eta {}, {} photons\n", o.albedo,
              o.g, o.eta, spec.run.photons);
-  fmt::print("  {:<15} {:>10} {:>12} {:>12}\n", "model", "R_dr", "error near", "error far");
-  fmt::print("  {:<15} {:>10.6f} {:>12} {:>12}   (± {:.1e})\n", "Monte Carlo", total.mean[0], "",
-             "", total.stderr_of_mean[0]);
+  fmt::print("  each model against the Monte Carlo part it models (all = single + multiple); "
+             "errors: mean |model - MC| / MC over resolved rings, near (r <= 1 mfp) and far\n");
+  fmt::print("  {:<38} {:<8} {:>9} {:>20} {:>11} {:>11}\n", "model", "part", "R_dr",
+             "Monte Carlo R_dr", "error near", "error far");
   for (const ModelCurve& m : comparison.reflectance) {
-    fmt::print("  {:<15} {:>10.6f} {:>11.2f}% {:>11.2f}%\n", m.model, m.total,
-               100.0 * m.near_error, 100.0 * m.far_error);
+    const MonteCarloCurve& mc = reflectance[m.part];
+    const std::string part = tally_suffix(m.part).empty() ? "all" : tally_suffix(m.part).substr(1);
+    fmt::print("  {:<38} {:<8} {:>9.6f} {:>10.6f} ± {:.1e} {:>10.2f}% {:>10.2f}%\n", m.model, part,
+               m.total, mc.total, mc.total_stderr, 100.0 * m.near_error, 100.0 * m.far_error);
   }
   fmt::print(
       "  once scattered: exact total {:.6f}, Monte Carlo {:.6f} ± {:.1e} ({:+.2f} sigma); {} "
       "rings, max |z| {:.2f}, mean z^2 {:.2f}\n",
-      exact.total, single_total.mean[0], single_total.stderr_of_mean[0], agreement.total_z,
-      agreement.rings, agreement.max_abs_z, agreement.mean_squared_z);
+      exact.total, single.total, single.total_stderr, agreement.total_z, agreement.rings,
+      agreement.max_abs_z, agreement.mean_squared_z);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   fmt::print("  {:.2f} s; wrote {} files to {}\n", seconds, files.size(), o.out);
@@ -150,9 +167,10 @@ Action add_validate_command(CLI::App& app) {
   auto half_space = std::make_shared<SearchlightValidateOptions>();
   CLI::App* searchlight = validate->add_subcommand(
       "searchlight",
-      "Half-space: the searchlight Monte Carlo against the dipole, better dipole and Grosjean "
-      "(R_d(r), phi(r, z); linear, log, sqrt and r R plots) and its once-scattered part against "
-      "the exact refractive single-scatter solution");
+      "Half-space, like with like: the searchlight Monte Carlo's multiply-scattered part against "
+      "the dipole, better dipole and quantized diffusion, its once-scattered part against the "
+      "exact refractive single-scatter solution, and its total against their sums and the "
+      "Grosjean beam (R_d(r), phi(r, z); linear, log, sqrt and r R plots)");
   searchlight->add_option("--out", half_space->out, "Directory for the CSV and PNG files")
       ->capture_default_str();
   searchlight->add_option("--photons", half_space->photons, "Photons")->capture_default_str();

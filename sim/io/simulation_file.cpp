@@ -177,6 +177,10 @@ void write_models(hdf5::Group& root, const std::vector<ModelResult>& models) {
   for (const ModelResult& m : models) {
     hdf5::Group node = group.has_member(m.model) ? group.open_group(m.model)
                                                 : group.create_group(m.model);
+    if (m.values.empty()) {  // not evaluated for this run: say why
+      node.write_string_attribute("note", m.description);
+      continue;
+    }
     auto write = [&](const std::string& name, const std::vector<double>& values) {
       hdf5::Dataset dataset = node.write_dataset(name, values, m.shape);
       dataset.write_string_attribute("units", m.units);

@@ -8,13 +8,18 @@
 namespace scatterlab {
 namespace {
 
-constexpr const char* kUnits = "W mfp^-2 per W incident";
+std::string orders(ModelPart part) {
+  switch (part) {
+    case ModelPart::single: return "once-scattered light";
+    case ModelPart::multiple: return "light scattered at least twice";
+    case ModelPart::all: return "all scattered light";
+  }
+  return "";
+}
 
-ModelResult scalar(const std::string& model, const std::string& name, double value,
-                   const std::string& description, double error = -1.0) {
-  ModelResult m{model, name, {}, {}, "W per W incident", description, {value}, {}};
-  if (error >= 0.0) m.error = {error};
-  return m;
+// A model the run's conditions leave out, said in the file instead of left unwritten.
+ModelResult not_evaluated(const std::string& model, const std::string& why) {
+  return {model, "", {}, {}, "", why, {}, {}};
 }
 
 }  // namespace
@@ -23,40 +28,64 @@ std::vector<ModelResult> searchlight_model_curves(const SearchlightSpec& spec,
                                                   double specular_reflectance,
                                                   bool with_fluence) {
   std::vector<ModelResult> models;
-  if (spec.incidence_deg != 0.0) return models;
+  const char* diffusion[] = {"dipole", "better_dipole", "quantized_diffusion",
+                             "scatterlab_grosjean_beam"};
+  if (spec.incidence_deg != 0.0) {
+    const std::string why = fmt::format(
+        "not evaluated: defined for normal incidence only, and this run's beam arrives at {} deg",
+        spec.incidence_deg);
+    models.push_back(not_evaluated("single_scatter", why));
+    for (const char* model : diffusion) models.push_back(not_evaluated(model, why));
+    return models;
+  }
   const std::vector<double> r = spec.grid.r.edges();
   const std::size_t nr = r.size() - 1;
-
-  // The exact once-scattered light: only what left after exactly one scattering event, the
-  // reference of the Monte Carlo reflectance_single tally.
-  const SingleScatterReflectance single =
-      half_space_single_scatter_reflectance(spec.medium, spec.eta, r, 1e-8);
-  models.push_back({"single_scatter", "reflectance_single", {"r"}, {nr}, kUnits,
-                    "exact once-scattered R_1(r), annulus average (Walter et al. 2009 solver on "
-                    "the flat boundary, adaptive quadrature over depth; _error: its estimate)",
-                    single.mean, single.error});
-  models.push_back(scalar("single_scatter", "diffuse_reflectance_single", single.total,
-                          "exact once-scattered total reflectance", single.total_error));
-
-  if (!(spec.eta >= 0.5 && spec.eta <= 2.5)) return models;
-  const HalfSpaceMedium medium =
-      HalfSpaceMedium::from_albedo(spec.medium.albedo, spec.medium.g, spec.eta);
+  const std::string area_units = fmt::format("W {}^-2 per W incident", spec.medium.length_unit);
+  if (!(spec.eta >= 0.5 && spec.eta <= 2.5)) {
+    // The exact once-scattered solution holds for any eta; the diffusion models' Fresnel-moment
+    // fits only in [0.5, 2.5] (models/boundary_reflection.hpp).
+    const SingleScatterReflectance single =
+        half_space_single_scatter_reflectance(spec.medium, spec.eta, r, 1e-8);
+    models.push_back({"single_scatter", "reflectance_single", {"r"}, {nr}, area_units,
+                      "single_scatter R_d(r) of the once-scattered light, annulus average per "
+                      "unit incident power",
+                      single.mean, single.error});
+    models.push_back({"single_scatter", "diffuse_reflectance_single", {}, {}, "W per W incident",
+                      "single_scatter total diffuse reflectance of the once-scattered light",
+                      {single.total}, {single.total_error}});
+    for (const char* model : diffusion) {
+      models.push_back(not_evaluated(
+          model, fmt::format("not evaluated: its boundary fits hold for eta in [0.5, 2.5], and "
+                             "this run's eta is {}",
+                             spec.eta)));
+    }
+    return models;
+  }
+  const HalfSpaceMedium medium{spec.medium.sigma_a(), spec.medium.sigma_s(), spec.medium.g,
+                               spec.eta};
   const std::vector<double> z =
       spec.tallies.fluence && with_fluence ? spec.grid.z.edges() : std::vector<double>{};
   const HalfSpaceComparison comparison =
       compare_half_space(medium, 1.0 - specular_reflectance, r, z);
   for (const ModelCurve& curve : comparison.reflectance) {
-    models.push_back({curve.model, "reflectance", {"r"}, {nr}, kUnits,
-                      fmt::format("{} R_d(r), annulus average, times the entry transmittance",
-                                  curve.model),
-                      curve.values, {}});
-    models.push_back(scalar(curve.model, "diffuse_reflectance", curve.total,
-                            fmt::format("{} total diffuse reflectance R_dr", curve.model)));
+    if (curve.model.ends_with("+single_scatter")) continue;  // a sum of two curves written here
+    const std::string suffix = tally_suffix(curve.part);
+    models.push_back({curve.model, "reflectance" + suffix, {"r"}, {nr}, area_units,
+                      fmt::format("{} R_d(r) of the {}, annulus average per unit incident power",
+                                  curve.model, orders(curve.part)),
+                      curve.values, curve.error});
+    ModelResult total{curve.model, "diffuse_reflectance" + suffix, {}, {}, "W per W incident",
+                      fmt::format("{} total diffuse reflectance R_dr of the {}", curve.model,
+                                  orders(curve.part)),
+                      {curve.total}, {}};
+    if (!curve.error.empty()) total.error = {curve.total_error};
+    models.push_back(total);
   }
   for (const ModelCurve& curve : comparison.fluence) {
-    models.push_back({curve.model, "fluence", {"r", "z"}, {nr, z.size() - 1}, kUnits,
-                      fmt::format("{} phi(r, z), cell average, times the entry transmittance",
-                                  curve.model),
+    models.push_back({curve.model, "fluence" + tally_suffix(curve.part), {"r", "z"},
+                      {nr, z.size() - 1}, area_units,
+                      fmt::format("{} phi(r, z) of the {}, cell average per unit incident power",
+                                  curve.model, orders(curve.part)),
                       curve.values, {}});
   }
   return models;

@@ -38,6 +38,20 @@ std::vector<double> times_rho2(const std::vector<double>& rho, const std::vector
 
 std::string nan_or(double v) { return std::isnan(v) ? "nan" : fmt::format("{:.6g}", v); }
 
+// A model's name in a legend: what it is and where it is published.
+std::string display_name(const std::string& model) {
+  const std::string sum = "+single_scatter";
+  if (model.ends_with(sum)) {
+    return display_name(model.substr(0, model.size() - sum.size())) + " + exact single";
+  }
+  if (model == "dipole") return "dipole (Jensen 2001)";
+  if (model == "better_dipole") return "better dipole (d'Eon 2012)";
+  if (model == "quantized_diffusion") return "quantized diffusion (d'Eon & Irving 2011)";
+  if (model == "scatterlab_grosjean_beam") return "Grosjean beam (scatterlab)";
+  if (model == "single_scatter") return "exact single scatter";
+  return model;
+}
+
 }  // namespace
 
 std::vector<std::filesystem::path> write_point_source_report(
@@ -123,25 +137,43 @@ std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceCompar
   const std::size_t nr = c.r_edges.size() - 1;
   const std::size_t nz = c.z_edges.empty() ? 0 : c.z_edges.size() - 1;
   const auto medium_line = fmt::format(
-      "sigma_a {}, sigma_s {}, g {}, eta {}, entry transmittance {}", c.medium.sigma_a,
-      c.medium.sigma_s, c.medium.g, c.medium.eta, c.entry_transmittance);
+      "sigma_a {:.4g}, sigma_s {:.4g}, g {:.4g}, eta {:.4g}, entry transmittance {:.4f}",
+      c.medium.sigma_a, c.medium.sigma_s, c.medium.g, c.medium.eta, c.entry_transmittance);
+  // The medium, short enough for a plot title (PLplot: #gs sigma, #gy eta, #d / #u sub/sup).
+  const auto medium_title = fmt::format("#gs#da#u {:.4g}, #gs#ds#u {:.4g}, g {:.4g}, #gy {:.4g}",
+                                        c.medium.sigma_a, c.medium.sigma_s, c.medium.g, c.medium.eta);
+  const ModelPart parts[] = {ModelPart::all, ModelPart::single, ModelPart::multiple};
+  const auto part_name = [](ModelPart part) {
+    const std::string suffix = tally_suffix(part);
+    return suffix.empty() ? std::string("all") : suffix.substr(1);
+  };
 
   const auto reflectance_csv = directory / (stem + "_reflectance.csv");
   write_text_file(reflectance_csv, [&](std::ostream& out) {
     out << "# Searchlight problem, " << medium_line
-        << ": R_d annulus averages per unit area per unit incident power\n# totals:";
+        << ": R_d annulus averages per unit area per unit incident power. Each model is held "
+           "against the Monte Carlo part it models (its column [part]): all = single + "
+           "multiple.\n# totals:";
     for (const ModelCurve& m : c.reflectance) {
-      out << fmt::format(" {} R_dr = {:.6g} (error near {}, far {});", m.model, m.total,
-                         nan_or(m.near_error), nan_or(m.far_error));
+      out << fmt::format(" {} [{}] R_dr = {:.6g} (error near {}, far {});", m.model,
+                         part_name(m.part), m.total, nan_or(m.near_error), nan_or(m.far_error));
     }
-    out << "\nr_lo,r_hi,monte_carlo,monte_carlo_stderr";
-    for (const ModelCurve& m : c.reflectance) out << "," << m.model;
+    out << "\nr_lo,r_hi";
+    for (const ModelPart part : parts) {
+      if (c.reflectance_mc.contains(part)) {
+        out << fmt::format(",monte_carlo_{0},monte_carlo_{0}_stderr", part_name(part));
+      }
+    }
+    for (const ModelCurve& m : c.reflectance) out << "," << m.model << "[" << part_name(m.part) << "]";
     out << "\n";
     for (std::size_t i = 0; i < nr; ++i) {
-      out << c.r_edges[i] << "," << c.r_edges[i + 1] << ","
-          << (c.reflectance_mc ? fmt::format("{:.9g},{:.9g}", c.reflectance_mc->mean[i],
-                                             c.reflectance_mc->stderr_of_mean[i])
-                               : std::string(","));
+      out << c.r_edges[i] << "," << c.r_edges[i + 1];
+      for (const ModelPart part : parts) {
+        const auto mc = c.reflectance_mc.find(part);
+        if (mc != c.reflectance_mc.end()) {
+          out << fmt::format(",{:.9g},{:.9g}", mc->second.mean[i], mc->second.stderr_of_mean[i]);
+        }
+      }
       for (const ModelCurve& m : c.reflectance) out << fmt::format(",{:.9g}", m.values[i]);
       out << "\n";
     }
@@ -155,74 +187,101 @@ std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceCompar
     for (std::size_t i = 0; i < v.size(); ++i) out[i] = r[i] * v[i];
     return out;
   };
-  // Bitterli §3.6.3: linear, log and sqrt y axes, and r R_d to damp the peak at the source.
+  // Bitterli §3.6.3: linear, log and sqrt y axes, and r R_d to damp the peak at the source; one
+  // set per part, each model beside the Monte Carlo part it models.
   struct Mode {
     const char* name;
     AxisScale scale;
     bool times_r;
   };
-  for (const Mode mode : {Mode{"linear", AxisScale::linear, false}, Mode{"log", AxisScale::log, false},
-                          Mode{"sqrt", AxisScale::sqrt, false}, Mode{"rR", AxisScale::linear, true}}) {
-    LinePlot plot;
-    plot.title = "Searchlight R#dd#u(r): " + medium_line;
-    plot.x_label = "r";
-    plot.y_label = mode.times_r ? "r R#dd#u(r)" : "R#dd#u(r)";
-    plot.y_scale = mode.scale;
-    if (c.reflectance_mc) {
-      plot.series.push_back({"Monte Carlo",
-                             r,
-                             mode.times_r ? times_r(c.reflectance_mc->mean) : c.reflectance_mc->mean,
-                             mode.times_r ? times_r(c.reflectance_mc->stderr_of_mean)
-                                          : c.reflectance_mc->stderr_of_mean,
-                             true});
+  const auto part_title = [](ModelPart part) {
+    switch (part) {
+      case ModelPart::single: return "once scattered";
+      case ModelPart::multiple: return "scattered at least twice";
+      case ModelPart::all: return "all scattered light";
     }
-    for (const ModelCurve& m : c.reflectance) {
-      plot.series.push_back({m.model, r, mode.times_r ? times_r(m.values) : m.values, {}, false});
+    return "";
+  };
+  for (const ModelPart part : {ModelPart::multiple, ModelPart::all}) {
+    for (const Mode mode : {Mode{"linear", AxisScale::linear, false}, Mode{"log", AxisScale::log, false},
+                            Mode{"sqrt", AxisScale::sqrt, false}, Mode{"rR", AxisScale::linear, true}}) {
+      LinePlot plot;
+      plot.title = fmt::format("R#dd#u(r), {}: {}", part_title(part), medium_title);
+      plot.x_label = "r (mfp)";
+      plot.y_label = mode.times_r ? "r R#dd#u(r) (mfp#u-1#d per W incident)"
+                                  : "R#dd#u(r) (mfp#u-2#d per W incident)";
+      plot.y_scale = mode.scale;
+      const auto mc = c.reflectance_mc.find(part);
+      if (mc != c.reflectance_mc.end()) {
+        const MonteCarloCurve& m = mc->second;
+        plot.series.push_back({"Monte Carlo", r, mode.times_r ? times_r(m.mean) : m.mean,
+                               mode.times_r ? times_r(m.stderr_of_mean) : m.stderr_of_mean, true});
+      }
+      for (const ModelCurve& m : c.reflectance) {
+        if (m.part != part) continue;
+        plot.series.push_back({display_name(m.model), r, mode.times_r ? times_r(m.values) : m.values, {}, false});
+      }
+      const auto path = directory / fmt::format("{}_reflectance_{}_{}.png", stem, part_name(part),
+                                                mode.name);
+      write_png(plot, path);
+      written.push_back(path);
     }
-    const auto path = directory / (stem + "_reflectance_" + mode.name + ".png");
-    write_png(plot, path);
-    written.push_back(path);
   }
 
   if (nz > 0) {
     const auto fluence_csv = directory / (stem + "_fluence.csv");
     write_text_file(fluence_csv, [&](std::ostream& out) {
       out << "# Searchlight problem, " << medium_line
-          << ": fluence cell averages per unit incident power\nr_lo,r_hi,z_lo,z_hi,monte_carlo,"
-             "monte_carlo_stderr";
-      for (const ModelCurve& m : c.fluence) out << "," << m.model;
+          << ": fluence cell averages per unit incident power, each model beside the Monte "
+             "Carlo part it models (its column [part])\nr_lo,r_hi,z_lo,z_hi";
+      for (const ModelPart part : parts) {
+        if (c.fluence_mc.contains(part)) {
+          out << fmt::format(",monte_carlo_{0},monte_carlo_{0}_stderr", part_name(part));
+        }
+      }
+      for (const ModelCurve& m : c.fluence) out << "," << m.model << "[" << part_name(m.part) << "]";
       out << "\n";
       for (std::size_t k = 0; k < nr * nz; ++k) {
         const std::size_t i = k / nz, j = k % nz;
         out << c.r_edges[i] << "," << c.r_edges[i + 1] << "," << c.z_edges[j] << ","
-            << c.z_edges[j + 1] << ","
-            << (c.fluence_mc ? fmt::format("{:.9g},{:.9g}", c.fluence_mc->mean[k],
-                                           c.fluence_mc->stderr_of_mean[k])
-                             : std::string(","));
+            << c.z_edges[j + 1];
+        for (const ModelPart part : parts) {
+          const auto mc = c.fluence_mc.find(part);
+          if (mc != c.fluence_mc.end()) {
+            out << fmt::format(",{:.9g},{:.9g}", mc->second.mean[k], mc->second.stderr_of_mean[k]);
+          }
+        }
         for (const ModelCurve& m : c.fluence) out << fmt::format(",{:.9g}", m.values[k]);
         out << "\n";
       }
     });
     written.push_back(fluence_csv);
-    // phi along z in the innermost r bin, log scale.
+    // phi along z in the innermost r bin, log scale, one plot per part.
     std::vector<double> z(nz);
     for (std::size_t j = 0; j < nz; ++j) z[j] = 0.5 * (c.z_edges[j] + c.z_edges[j + 1]);
     const auto first_row = [&](const std::vector<double>& v) {
       return std::vector<double>(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(nz));
     };
-    LinePlot plot;
-    plot.title = fmt::format("Fluence for r in [{}, {}): {}", c.r_edges[0], c.r_edges[1], medium_line);
-    plot.x_label = "z";
-    plot.y_label = "#gf(r, z)";
-    plot.y_scale = AxisScale::log;
-    if (c.fluence_mc) {
-      plot.series.push_back({"Monte Carlo", z, first_row(c.fluence_mc->mean),
-                             first_row(c.fluence_mc->stderr_of_mean), true});
+    for (const ModelPart part : {ModelPart::multiple, ModelPart::all}) {
+      LinePlot plot;
+      plot.title = fmt::format("#gf on the axis (r < {:.3g} mfp), {}: {}", c.r_edges[1],
+                               part_title(part), medium_title);
+      plot.x_label = "z (mfp)";
+      plot.y_label = "#gf(r, z) (mfp#u-2#d per W incident)";
+      plot.y_scale = AxisScale::log;
+      const auto mc = c.fluence_mc.find(part);
+      if (mc != c.fluence_mc.end()) {
+        plot.series.push_back({"Monte Carlo", z, first_row(mc->second.mean),
+                               first_row(mc->second.stderr_of_mean), true});
+      }
+      for (const ModelCurve& m : c.fluence) {
+        if (m.part == part) plot.series.push_back({display_name(m.model), z, first_row(m.values), {}, false});
+      }
+      if (plot.series.empty()) continue;
+      const auto path = directory / fmt::format("{}_fluence_axis_{}.png", stem, part_name(part));
+      write_png(plot, path);
+      written.push_back(path);
     }
-    for (const ModelCurve& m : c.fluence) plot.series.push_back({m.model, z, first_row(m.values), {}, false});
-    const auto path = directory / (stem + "_fluence_axis.png");
-    write_png(plot, path);
-    written.push_back(path);
   }
   return written;
 }

@@ -86,7 +86,9 @@ expect_error syntax_error "syntax.toml:" --scene "$work/syntax.toml"
 if "$exe" searchlight --photons 20000 --batches 8 --eta 1.33 --out "$work/half.h5" >"$work/stdout" 2>"$work/stderr" &&
   grep -q "wrote $work/half.h5" "$work/stdout" && grep -q "specular_reflectance" "$work/stdout" &&
   grep -q "^  single_scatter  *diffuse_reflectance_single" "$work/stdout" &&
-  grep -q "^  better_dipole  *diffuse_reflectance" "$work/stdout"; then pass; else
+  grep -q "^  better_dipole  *diffuse_reflectance_multiple" "$work/stdout" &&
+  grep -q "^  quantized_diffusion  *diffuse_reflectance_multiple" "$work/stdout" &&
+  grep -q "^  scatterlab_grosjean_beam  *diffuse_reflectance " "$work/stdout"; then pass; else
   fail "searchlight run: $(cat "$work/stdout" "$work/stderr")"
 fi
 if "$exe" info "$work/half.h5" >"$work/info" && grep -q "eta *1.33" "$work/info" &&
@@ -96,6 +98,23 @@ then pass; else fail "info on searchlight: $(cat "$work/info")"; fi
 if "$exe" searchlight --eta 1 --albedo 0.9 --photons 20000 --batches 8 --no-fluence \
   --out "$work/matched.h5" | grep -q "exact diffuse reflectance"; then pass; else fail "index-matched summary"; fi
 if "$exe" searchlight --help | grep -q -- "--incidence"; then pass; else fail "searchlight help"; fi
+# Oblique incidence: the models say why they are absent, in the summary and in the file.
+if "$exe" searchlight --incidence 30 --photons 20000 --batches 8 --no-fluence \
+  --out "$work/oblique.h5" >"$work/stdout" &&
+  grep -q "better_dipole .*normal incidence only" "$work/stdout" &&
+  "$exe" info "$work/oblique.h5" | grep -q "better_dipole"; then pass; else
+  fail "oblique models: $(cat "$work/stdout")"
+fi
+
+# invert: (R_dr, l_d) -> (sigma_a, sigma_s) and the forward model back, per channel.
+if "$exe" invert --Rd 0.5 0.3 --ld 2 1 --model better_dipole >"$work/stdout" &&
+  awk '$1 == "0" && $7 == "0.5" && $8 == "2" {ok++} $1 == "1" && $7 == "0.3" && $8 == "1" {ok++}
+       END {exit ok != 2}' "$work/stdout"; then pass; else fail "invert round trip: $(cat "$work/stdout")"; fi
+"$exe" invert --Rd 1.5 --ld 2 >"$work/stdout" 2>"$work/stderr"
+if [ $? -eq 2 ] && grep -q "R_dr" "$work/stderr"; then pass; else fail "invert bad R_dr: $(cat "$work/stderr")"; fi
+"$exe" invert --Rd 0.5 --ld 2 --model grosjean >"$work/stdout" 2>"$work/stderr"
+if [ $? -eq 2 ] && grep -q -- "--model" "$work/stderr" && grep -q "quantized_diffusion" "$work/stderr"; then
+  pass; else fail "invert bad model: $(cat "$work/stderr")"; fi
 
 if "$exe" searchlight --scene "$source_dir/data/scenes/searchlight.toml" --photons 20000 --batches 8 \
   --out "$work/scene.h5" >/dev/null 2>&1 && "$exe" info "$work/scene.h5" | grep -q "eta *1.3"
@@ -117,12 +136,15 @@ expect_searchlight_error conservative_without_escape run.escape_radius --albedo 
 expect_searchlight_error r_bins_zero grid.r.bins --r-bins 0
 expect_searchlight_error searchlight_missing_directory out --out "$work/no/such/dir/x.h5"
 
-# validate searchlight --quick: models against Monte Carlo, once-scattered against the exact
-# solver; every CSV and PNG written.
+# validate searchlight --quick: each model against the Monte Carlo part it models, once-scattered
+# against the exact solver; every CSV and PNG written (4 pencil plots for the multiply-scattered
+# part and 4 for all, 2 fluence plots, the once-scattered plot).
 if "$exe" validate searchlight --quick --threads 2 --out "$work/half" >"$work/stdout" 2>"$work/stderr" &&
   grep -q "once scattered: exact total" "$work/stdout" &&
+  grep -q "^  quantized_diffusion  *multiple" "$work/stdout" &&
+  grep -q "^  better_dipole+single_scatter  *all" "$work/stdout" &&
   [ -s "$work/half/searchlight_single_scatter.csv" ] && [ -s "$work/half/searchlight_fluence.csv" ] &&
-  [ "$(ls "$work"/half/*.png | wc -l)" -eq 6 ]; then pass; else
+  [ "$(ls "$work"/half/*.png | wc -l)" -eq 11 ]; then pass; else
   fail "validate searchlight: $(cat "$work/stdout" "$work/stderr"; ls "$work/half")"
 fi
 

@@ -1,5 +1,6 @@
 // The half-space comparison and its report, with the models alone and with a Monte Carlo curve
-// given as input (here the better dipole itself with a 1% error bar, so its error must be 0).
+// given as input for the multiply-scattered part (here the better dipole itself with a 1% error
+// bar, so its error must be 0, and the models of other parts must not be scored against it).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,24 +23,33 @@ TEST(HalfSpaceComparison, ScoresModelsAgainstGivenMonteCarloCurves) {
   mc.mean = dipole_reflectance_annulus_average(better_dipole(medium), r_edges);
   for (double& v : mc.mean) v *= transmittance;
   for (double v : mc.mean) mc.stderr_of_mean.push_back(0.01 * v);
-  const HalfSpaceComparison c =
-      compare_half_space(medium, transmittance, r_edges, z_edges, mc, std::nullopt, 1.0);
-  ASSERT_EQ(c.reflectance.size(), 3u);
-  EXPECT_EQ(c.reflectance[1].model, "better_dipole");
-  EXPECT_NEAR(c.reflectance[1].near_error, 0.0, 1e-14);
-  EXPECT_NEAR(c.reflectance[1].far_error, 0.0, 1e-14);
-  EXPECT_GT(c.reflectance[0].near_error, 0.01);  // the classical dipole differs
+  const HalfSpaceComparison c = compare_half_space(medium, transmittance, r_edges, z_edges,
+                                                   {{ModelPart::multiple, mc}}, {}, 1.0);
+  // single scatter; three diffusion models; the same plus single scatter; the Grosjean beam's
+  // multiply-scattered part and its total.
+  ASSERT_EQ(c.reflectance.size(), 9u);
+  EXPECT_EQ(c.reflectance[2].model, "better_dipole");
+  EXPECT_EQ(c.reflectance[2].part, ModelPart::multiple);
+  EXPECT_NEAR(c.reflectance[2].near_error, 0.0, 1e-14);
+  EXPECT_NEAR(c.reflectance[2].far_error, 0.0, 1e-14);
+  EXPECT_GT(c.reflectance[1].near_error, 0.01);  // the classical dipole differs
+  EXPECT_EQ(c.reflectance[5].model, "better_dipole+single_scatter");
+  EXPECT_EQ(c.reflectance[5].part, ModelPart::all);
+  EXPECT_TRUE(std::isnan(c.reflectance[5].near_error));  // no total given to compare with
+  EXPECT_NEAR(c.reflectance[5].total, c.reflectance[2].total + c.reflectance[0].total, 1e-15);
+  EXPECT_TRUE(std::isnan(c.reflectance[0].near_error));  // nor a once-scattered part
   EXPECT_TRUE(std::isnan(c.fluence[0].near_error));  // no Monte Carlo fluence given
   EXPECT_EQ(c.fluence[0].values.size(), 30u);
 
   const auto dir = std::filesystem::temp_directory_path() / "scatterlab_test_half_space_report";
   const auto files = write_half_space_report(c, dir, "searchlight");
-  EXPECT_EQ(files.size(), 7u);  // 2 CSV, 4 pencil plots, 1 fluence plot
+  EXPECT_EQ(files.size(), 12u);  // 2 CSV, 4 pencil plots for two parts, 2 fluence plots
   for (const auto& f : files) EXPECT_GT(std::filesystem::file_size(f), 100u) << f;
   std::filesystem::remove_all(dir);
 
   MonteCarloCurve wrong{{1.0}, {0.1}};
-  EXPECT_THROW(compare_half_space(medium, 1.0, r_edges, z_edges, wrong), InputError);
+  EXPECT_THROW(compare_half_space(medium, 1.0, r_edges, z_edges, {{ModelPart::all, wrong}}),
+               InputError);
 }
 
 }  // namespace

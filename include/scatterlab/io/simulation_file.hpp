@@ -64,6 +64,8 @@ struct ModelResult {
   std::vector<double> values;
   std::vector<double> error;        // empty, or one absolute error estimate per value
 };
+// A ModelResult without values is a model left out of this run: its group gets the attribute
+// "note" with the description (why), and no dataset.
 
 // The same file for the half-space (scatterlab searchlight): /parameters adds geometry =
 // "half_space", eta and incidence_deg; /grid holds r, z (with the fluence) and theta_o, the exit

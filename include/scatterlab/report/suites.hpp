@@ -29,6 +29,11 @@ Section infinite_medium_extremes(const Profile& profile);
 Section half_space_convergence(const Profile& profile);
 Section half_space_extremes(const Profile& profile);
 
+// The half-space models (dipole, better dipole, quantized diffusion, Grosjean beam, exact single
+// scatter) against the searchlight Monte Carlo part each models, over albedo x g x eta: totals
+// and near / far errors, with the bound R_dr <= 1 checked.
+Section half_space_model_accuracy(const Profile& profile);
+
 // Lobe fits against synthetic lobes of known parameters: parameter error against the
 // quadrature order of the bin averages, and time per fit.
 Section lobe_fit_accuracy(const Profile& profile);

@@ -1,12 +1,15 @@
 #pragma once
 // Every model's curves on a searchlight run's grid, in the run's normalisation (per unit incident
-// power), for /models in the same file: the exact once-scattered reflectance of the refractive
-// solver (refract/half_space_single_scatter.hpp) and the diffusion models (classical dipole,
-// better dipole, Grosjean; validate/half_space_comparison.hpp) for R_d(r), their totals, and
-// their fluence phi(r, z) when the run tallies it.
-//
-// Both assume normal incidence: an oblique run gets no model curves. The diffusion models also
-// need eta in [0.5, 2.5], where the Fresnel-moment fits hold; outside they are left out.
+// power), for /models in the same file, each under the name of the Monte Carlo tally it is to be
+// compared with (validate/half_space_comparison.hpp says which part each model describes):
+//   single_scatter            reflectance_single, diffuse_reflectance_single (exact)
+//   dipole, better_dipole,    reflectance_multiple, diffuse_reflectance_multiple, and with the
+//   quantized_diffusion       model fluence, fluence_multiple
+//   scatterlab_grosjean_beam  reflectance_multiple, reflectance (all orders), their totals, and
+//                             fluence (all orders)
+// A model the run's conditions leave out (oblique incidence: every model here is for normal
+// incidence; eta outside [0.5, 2.5] for the diffusion models) gets a group with a "note"
+// attribute that says why, instead of nothing.
 
 #include <vector>
 

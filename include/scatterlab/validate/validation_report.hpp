@@ -21,9 +21,10 @@ std::vector<std::filesystem::path> write_point_source_report(
 // Monte Carlo's agreement with the exact solution in its own standard errors.
 std::string point_source_error_table(const std::vector<PointSourceComparison>& comparisons);
 
-// <stem>_reflectance.csv and the pencil plots <stem>_reflectance_{linear,log,sqrt,rR}.png
-// (Bitterli §3.6.3), plus <stem>_fluence.csv and <stem>_fluence_axis.png (phi along z in the
-// innermost r bin). Returns the paths.
+// <stem>_reflectance.csv (every Monte Carlo part and every model, named with the part it models)
+// and the pencil plots <stem>_reflectance_{multiple,all}_{linear,log,sqrt,rR}.png (Bitterli
+// §3.6.3), each model beside the Monte Carlo part it models; plus <stem>_fluence.csv and
+// <stem>_fluence_axis_{multiple,all}.png (phi along z in the innermost r bin). Returns the paths.
 std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceComparison& comparison,
                                                            const std::filesystem::path& directory,
                                                            const std::string& stem);
