@@ -1,10 +1,15 @@
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <functional>
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "commands.hpp"
 #include "prepare_outputs.hpp"
+#include "scatterlab/core/error.hpp"
 #include "scatterlab/report/report_writer.hpp"
 #include "scatterlab/report/suites.hpp"
 
@@ -13,6 +18,7 @@ namespace {
 
 struct ReportOptions {
   bool quick = false;
+  std::vector<std::string> sections;  // empty: all
   std::string out = "scatterlab-report";
   report::Profile profile;
 };
@@ -34,19 +40,41 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
   command->add_option("--seed", options->profile.seed, "Seed of the first run")
       ->capture_default_str();
 
-  return [options, command_line] {
+  // Each section by its id (its CSV stem), in the order of the report.
+  using Suite = std::function<report::Section(const report::Profile&)>;
+  const auto suites = std::make_shared<std::vector<std::pair<std::string, Suite>>>(
+      std::vector<std::pair<std::string, Suite>>{
+          {"infinite_medium_convergence", report::infinite_medium_convergence},
+          {"infinite_medium_extremes", report::infinite_medium_extremes},
+          {"half_space_convergence", report::half_space_convergence},
+          {"half_space_extremes", report::half_space_extremes},
+          {"half_space_models", report::half_space_model_accuracy},
+          {"lobe_fits", report::lobe_fit_accuracy},
+          {"refractive_solver", report::refractive_solver_accuracy}});
+  std::string names;
+  for (const auto& [name, suite] : *suites) names += (names.empty() ? "" : ", ") + name;
+  command->add_option("--section", options->sections,
+                      "Run only these sections (repeat, or a comma-separated list): " + names)
+      ->delimiter(',');
+
+  return [options, command_line, suites, names] {
     options->profile.quick = options->quick;
+    for (const std::string& wanted : options->sections) {
+      bool known = false;
+      for (const auto& entry : *suites) known |= entry.first == wanted;
+      if (!known) throw InputError("--section", "got \"" + wanted + "\"", "one of " + names);
+    }
     OutputPlan plan;
     plan.output_directory("--out", options->out);
     prepare_outputs(plan);
-    const std::vector<std::function<report::Section(const report::Profile&)>> suites = {
-        report::infinite_medium_convergence, report::infinite_medium_extremes,
-        report::half_space_convergence, report::half_space_extremes,
-        report::half_space_model_accuracy,
-        report::lobe_fit_accuracy, report::refractive_solver_accuracy};
     std::vector<report::Section> sections;
     int failed = 0;
-    for (const auto& suite : suites) {
+    for (const auto& [name, suite] : *suites) {
+      if (!options->sections.empty() &&
+          std::find(options->sections.begin(), options->sections.end(), name) ==
+              options->sections.end()) {
+        continue;
+      }
       sections.push_back(suite(options->profile));
       const report::Section& section = sections.back();
       fmt::print("{:<55} {}\n", section.title, section.passed() ? "pass" : "FAIL");

@@ -106,6 +106,10 @@ if "$exe" searchlight --incidence 30 --photons 20000 --batches 8 --no-fluence \
   fail "oblique models: $(cat "$work/stdout")"
 fi
 
+"$exe" report --quick --section half_space_modles --out "$work/no_report" >"$work/stdout" 2>"$work/stderr"
+if [ $? -eq 2 ] && grep -q -- "--section" "$work/stderr" && grep -q "half_space_models" "$work/stderr" &&
+  [ ! -e "$work/no_report" ]; then pass; else fail "report bad section: $(cat "$work/stderr")"; fi
+
 # invert: (R_dr, l_d) -> (sigma_a, sigma_s) and the forward model back, per channel.
 if "$exe" invert --Rd 0.5 0.3 --ld 2 1 --model better_dipole >"$work/stdout" &&
   awk '$1 == "0" && $7 == "0.5" && $8 == "2" {ok++} $1 == "1" && $7 == "0.3" && $8 == "1" {ok++}
