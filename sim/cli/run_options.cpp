@@ -9,8 +9,9 @@ void add_run_options(CLI::App& command, RunOptions& o, const std::string& defaul
   command.add_option("--batches", o.batches, "Batches for the standard error, >= 2 [64]");
   command.add_option("--seed", o.seed, "Random seed [1]");
   command.add_option("--threads", o.threads, "Threads; 0 uses all cores [0]");
-  command.add_option("--escape-radius", o.escape_radius,
-                     "Stop photons beyond this distance (mfp); needed for albedo 1 [inf]");
+  command.add_option(
+      "--escape-radius", o.escape_radius,
+      "Stop photons beyond this distance (in the length unit); needed for albedo 1 [inf]");
 }
 
 void apply_run_options(const CLI::App& command, const RunOptions& o, RunSettings& run) {

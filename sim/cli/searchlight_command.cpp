@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "long_run.hpp"
+#include "medium_options.hpp"
 #include "prepare_outputs.hpp"
 #include "progress_bar.hpp"
 #include "run_options.hpp"
@@ -25,8 +26,9 @@ namespace {
 
 struct SearchlightOptions {
   std::string scene, out;
-  double albedo = 0, g = 0, eta = 0, incidence = 0;
-  RunOptions run;  // --photons, --batches, --seed, --threads, --escape-radius
+  double albedo = 0, g = 0, sigma_t = 0, eta = 0, incidence = 0;
+  RunOptions run;        // --photons, --batches, --seed, --threads, --escape-radius
+  MediumOptions medium;  // --material, --channel, --length-unit
   double r_max = 0, z_max = 0;
   int r_bins = 0, z_bins = 0, theta_bins = 0;
   bool no_fluence = false;
@@ -45,6 +47,11 @@ void print_summary(const SearchlightSpec& spec, const SearchlightOutput& out,
   const double events = static_cast<double>(out.scattering_events);
   fmt::print("scatterlab searchlight: half-space, albedo {}, g {}, eta {}, incidence {} deg\n",
              spec.medium.albedo, spec.medium.g, spec.eta, spec.incidence_deg);
+  if (spec.material) {
+    fmt::print("  material {} ({}), {} channel: sigma_t {:.6g} / {}, lengths in {}\n",
+               spec.material->name, spec.material->library, spec.material->channel,
+               spec.medium.sigma_t, spec.medium.length_unit, spec.medium.length_unit);
+  }
   fmt::print(
       "  {} photons in {} batches on {} thread{}: {:.2f} s ({:.3g} photons/s, {:.3g} "
       "scattering events, {:.1f} ns per event per thread)\n",
@@ -97,8 +104,10 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
   // Flags first, validation after, so that a flag can mend the scene.
   if (given("--scene")) scene = load_searchlight_scene(o.scene, Validation::by_caller);
   SearchlightSpec& spec = scene.spec;
-  if (given("--albedo")) spec.medium.albedo = o.albedo;
-  if (given("--g")) spec.medium.g = o.g;
+  const std::optional<double> material_eta = apply_medium_options(
+      command, o.medium, o.albedo, o.g, o.sigma_t, scene.material, spec.medium, spec.material);
+  // A material brings its table's index unless the scene or --eta gives one.
+  if (material_eta && !scene.eta_given) spec.eta = *material_eta;
   if (given("--eta")) spec.eta = o.eta;
   if (given("--incidence")) spec.incidence_deg = o.incidence;
   apply_run_options(command, o.run, spec.run);
@@ -164,14 +173,19 @@ Action add_searchlight_command(CLI::App& app, const std::string& command_line, W
   command->add_option("--out", o->out, "Output HDF5 file [searchlight.h5]");
   command->add_option("--albedo", o->albedo, "Single-scattering albedo in [0, 1] [0.99]");
   command->add_option("--g", o->g, "Henyey-Greenstein mean cosine, |g| < 1 [0]");
+  command->add_option("--sigma-t", o->sigma_t,
+                      "Extinction coefficient in 1/length-unit (1 in mfp, the default unit) [1]");
+  add_medium_options(*command, o->medium);
   command->add_option("--eta", o->eta,
-                      "Relative index n_medium / n_outside, > 0; 1 for no interface [1.3]");
+                      "Relative index n_medium / n_outside, > 0; 1 for no interface [1.3; a "
+                      "material's table value]");
   command->add_option("--incidence", o->incidence,
                       "Beam angle from the surface normal, degrees in [0, 90) [0]");
   add_run_options(*command, o->run, "1e7");
-  command->add_option("--r-max", o->r_max, "Radial grid extent, mfp [10]");
+  command->add_option("--r-max", o->r_max, "Radial grid extent, in the length unit [10 mfp]");
   command->add_option("--r-bins", o->r_bins, "Radial bins [200]");
-  command->add_option("--z-max", o->z_max, "Depth grid extent of the fluence, mfp [10]");
+  command->add_option("--z-max", o->z_max,
+                      "Depth grid extent of the fluence, in the length unit [10 mfp]");
   command->add_option("--z-bins", o->z_bins, "Depth bins of the fluence [100]");
   command->add_option("--theta-bins", o->theta_bins, "Exit-angle bins over [0, pi/2] [18]");
   command->add_flag("--model-fluence", o->model_fluence,

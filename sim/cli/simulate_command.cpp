@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "long_run.hpp"
+#include "medium_options.hpp"
 #include "prepare_outputs.hpp"
 #include "progress_bar.hpp"
 #include "run_options.hpp"
@@ -28,7 +29,8 @@ namespace {
 struct SimulateOptions {
   std::string scene, out, out_dir, source, estimator, tallies;
   double albedo = 0, g = 0, sigma_t = 0;
-  RunOptions run;  // --photons, --batches, --seed, --threads, --escape-radius
+  RunOptions run;        // --photons, --batches, --seed, --threads, --escape-radius
+  MediumOptions medium;  // --material, --channel, --length-unit
   double r_max = 0, z_min = 0, z_max = 0, rho_max = 0;
   int r_bins = 0, z_bins = 0, theta_bins = 0, phi_bins = 0, rho_bins = 0;
   bool fold_phi = false, split_orders = false;
@@ -48,6 +50,11 @@ void print_summary(const SimulationSpec& spec, const SimulationOutput& out,
   fmt::print("scatterlab simulate: {} source, albedo {}, g {}, {} estimator\n",
              to_string(spec.source), spec.medium.albedo, spec.medium.g,
              to_string(spec.tallies.estimator));
+  if (spec.material) {
+    fmt::print("  material {} ({}), {} channel: sigma_t {:.6g} / {}, lengths in {}\n",
+               spec.material->name, spec.material->library, spec.material->channel,
+               spec.medium.sigma_t, spec.medium.length_unit, spec.medium.length_unit);
+  }
   const int workers = out.threads * out.ranks;
   const std::string ranks = out.ranks > 1 ? fmt::format("{} ranks x ", out.ranks) : "";
   fmt::print(
@@ -93,12 +100,11 @@ void apply_tally_list(const std::string& list, TallyRequest& tallies) {
 }
 
 // The flags given override the scene (or the defaults when there is none).
-void apply_flags(CLI::App& command, const SimulateOptions& o, SimulationSpec& spec) {
+void apply_flags(CLI::App& command, const SimulateOptions& o,
+                 const std::optional<MaterialRequest>& scene_material, SimulationSpec& spec) {
   auto given = [&command](const char* flag) { return command.get_option(flag)->count() > 0; };
-  Medium& medium = spec.medium;
-  if (given("--albedo")) medium.albedo = o.albedo;
-  if (given("--g")) medium.g = o.g;
-  if (given("--sigma-t")) medium.sigma_t = o.sigma_t;
+  apply_medium_options(command, o.medium, o.albedo, o.g, o.sigma_t, scene_material, spec.medium,
+                       spec.material);
   if (given("--source")) {
     spec.set_source(o.source == "point" ? SourceKind::point : SourceKind::pencil_beam);
   }
@@ -154,7 +160,7 @@ std::vector<PlannedRun> plan_runs(CLI::App& command, const SimulateOptions& o,
   }
   std::vector<PlannedRun> runs;
   for (SweepPoint& point : points) {
-    apply_flags(command, o, point.scene.spec);
+    apply_flags(command, o, point.scene.material, point.scene.spec);
     std::filesystem::path output;
     std::string field = "--out";
     if (given("--out-dir")) {
@@ -284,7 +290,9 @@ Action add_simulate_command(CLI::App& app, const std::string& command_line, Worl
       ->check(CLI::IsMember({"beam", "point"}));
   command->add_option("--albedo", o->albedo, "Single-scattering albedo in [0, 1] [0.5]");
   command->add_option("--g", o->g, "Henyey-Greenstein mean cosine, |g| < 1 [0.9]");
-  command->add_option("--sigma-t", o->sigma_t, "Extinction coefficient (1 in mfp units) [1]");
+  command->add_option("--sigma-t", o->sigma_t,
+                      "Extinction coefficient in 1/length-unit (1 in mfp, the default unit) [1]");
+  add_medium_options(*command, o->medium);
   command->add_option("--estimator", o->estimator, "collision or track_length [collision]")
       ->check(CLI::IsMember({"collision", "track_length"}));
   command->add_option("--tallies", o->tallies,
@@ -293,16 +301,17 @@ Action add_simulate_command(CLI::App& app, const std::string& command_line, Worl
   command->add_flag("--split-orders{true}", o->split_orders,
                     "Also tally unscattered, once- and multiply-scattered light apart");
   add_run_options(*command, o->run, "1e8");
-  command->add_option("--r-max", o->r_max, "Radial grid extent, mfp [1.5]");
+  command->add_option("--r-max", o->r_max, "Radial grid extent, in the length unit [1.5 mfp]");
   command->add_option("--r-bins", o->r_bins, "Radial bins [15]");
-  command->add_option("--z-min", o->z_min, "Axial grid start, mfp [-1]");
-  command->add_option("--z-max", o->z_max, "Axial grid end, mfp [3]");
+  command->add_option("--z-min", o->z_min, "Axial grid start, in the length unit [-1 mfp]");
+  command->add_option("--z-max", o->z_max, "Axial grid end, in the length unit [3 mfp]");
   command->add_option("--z-bins", o->z_bins, "Axial bins [40]");
   command->add_option("--theta-bins", o->theta_bins, "Polar-angle bins over [0, pi] [18]");
   command->add_option("--phi-bins", o->phi_bins,
                       "Azimuth bins over [0, 2 pi], even; over [0, pi] with --fold-phi [36]");
   command->add_flag("--fold-phi{true}", o->fold_phi, "Fold phi onto [0, pi] (L is even in phi)");
-  command->add_option("--rho-max", o->rho_max, "Spherical-shell grid extent, mfp [10]");
+  command->add_option("--rho-max", o->rho_max,
+                      "Spherical-shell grid extent, in the length unit [10 mfp]");
   command->add_option("--rho-bins", o->rho_bins, "Spherical shells [200]");
   const auto long_run = add_long_run_options(*command);
   return [command, o, long_run, command_line, &world] {

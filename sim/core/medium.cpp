@@ -42,4 +42,17 @@ Medium Medium::from_coefficients(double sigma_a, double sigma_s, double g,
   return from_albedo(sigma_s / sigma_t, sigma_t, g, std::move(length_unit));
 }
 
+bool is_physical_length_unit(std::string_view unit) {
+  return unit == "um" || unit == "mm" || unit == "cm" || unit == "m";
+}
+
+double millimetres_per(std::string_view unit) {
+  if (unit == "um") return 1e-3;
+  if (unit == "mm") return 1.0;
+  if (unit == "cm") return 10.0;
+  if (unit == "m") return 1000.0;
+  throw InputError("length_unit", fmt::format("got \"{}\"", unit),
+                   "\"um\", \"mm\", \"cm\" or \"m\"");
+}
+
 }  // namespace scatterlab

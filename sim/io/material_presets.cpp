@@ -2,6 +2,8 @@
 
 #include <toml++/toml.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -10,6 +12,13 @@
 #include "scatterlab/core/error.hpp"
 
 namespace scatterlab {
+
+namespace detail {
+// (file stem, text) of every data/materials/*.toml, in file-name order: defined in the source
+// that CMake generates from sim/io/material_tables.cpp.in.
+std::vector<std::pair<std::string_view, std::string_view>> material_table_texts();
+}  // namespace detail
+
 namespace {
 
 void check_keys(const toml::table& table, const std::string& path, const std::set<std::string>& accepted) {
@@ -28,26 +37,60 @@ std::string string_at(const toml::table& table, const std::string& path, const c
   return value->get();
 }
 
+// An array of one number per channel: coefficients >= 0, or (mean_cosine) HG g with |g| < 1.
 std::vector<double> numbers_at(const toml::table& table, const std::string& path, const char* key,
-                               std::size_t expected, bool required) {
+                               std::size_t expected, bool required, bool mean_cosine = false) {
   const std::string field = path + "." + key;
+  const std::string range = mean_cosine ? "numbers with |g| < 1" : "numbers >= 0";
   const toml::node* node = table.get(key);
   if (node == nullptr) {
-    if (required) throw InputError(field, "missing", "an array of numbers >= 0");
+    if (required) throw InputError(field, "missing", "an array of " + range);
     return {};
   }
   const toml::array* array = node->as_array();
-  const std::string accepted = std::to_string(expected) + " numbers >= 0, one per channel";
+  const std::string accepted = std::to_string(expected) + " " + range + ", one per channel";
   if (array == nullptr || array->size() != expected) throw InputError(field, "wrong shape", accepted);
   std::vector<double> values;
   for (const toml::node& element : *array) {
     const auto value = element.value<double>();
-    if (!value || !(*value >= 0.0) || !std::isfinite(*value)) {
-      throw InputError(field, "holds a value that is not a finite number >= 0", accepted);
-    }
+    const bool in_range =
+        value && std::isfinite(*value) && (mean_cosine ? std::abs(*value) < 1.0 : *value >= 0.0);
+    if (!in_range) throw InputError(field, "holds a value out of range", accepted);
     values.push_back(*value);
   }
   return values;
+}
+
+// Lower case, with spaces and hyphens as underscores: "Regular Milk" -> "regular_milk".
+std::string normalised(std::string_view name) {
+  std::string key;
+  for (const char c : name) {
+    key += (c == ' ' || c == '-') ? '_'
+                                  : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return key;
+}
+
+// Levenshtein distance, for "did you mean".
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string join(const std::vector<std::string>& names, const char* separator) {
+  std::string joined;
+  for (const std::string& name : names) joined += (joined.empty() ? "" : separator) + name;
+  return joined;
 }
 
 }  // namespace
@@ -104,11 +147,27 @@ MaterialLibrary parse_material_library(std::string_view toml_text, const std::st
     const std::string path = "materials." + std::string(key.str());
     const toml::table* table = node.as_table();
     if (table == nullptr) throw InputError(path, "not a table", "a [" + path + "] table");
-    check_keys(*table, path, {"sigma_s_reduced", "sigma_a", "diffuse_reflectance"});
+    check_keys(*table, path, {"sigma_s_reduced", "sigma_s", "g", "sigma_a", "diffuse_reflectance"});
     MaterialPreset preset;
     preset.name = std::string(key.str());
     const std::size_t n = library.channels.size();
-    preset.sigma_s_reduced = numbers_at(*table, path, "sigma_s_reduced", n, true);
+    const bool reduced = table->get("sigma_s_reduced") != nullptr;
+    if (reduced == (table->get("sigma_s") != nullptr)) {
+      throw InputError(path + (reduced ? ".sigma_s" : ".sigma_s_reduced"),
+                       reduced ? "given together with sigma_s_reduced" : "missing",
+                       "either sigma_s_reduced (no g known) or sigma_s with g");
+    }
+    if (reduced) {
+      preset.sigma_s_reduced = numbers_at(*table, path, "sigma_s_reduced", n, true);
+      if (table->get("g") != nullptr) {
+        throw InputError(
+            path + ".g", "given with sigma_s_reduced",
+            "g only with sigma_s (sigma_s_reduced = sigma_s (1 - g) already holds it)");
+      }
+    } else {
+      preset.sigma_s = numbers_at(*table, path, "sigma_s", n, true);
+      preset.g = numbers_at(*table, path, "g", n, true, true);
+    }
     preset.sigma_a = numbers_at(*table, path, "sigma_a", n, true);
     preset.diffuse_reflectance = numbers_at(*table, path, "diffuse_reflectance", n, false);
     library.materials.push_back(std::move(preset));
@@ -121,7 +180,118 @@ MaterialLibrary load_material_library(const std::filesystem::path& path) {
   if (!file) throw InputError("materials", "cannot read " + path.string(), "a readable TOML file");
   std::ostringstream text;
   text << file.rdbuf();
-  return parse_material_library(text.str(), path.string());
+  MaterialLibrary library = parse_material_library(text.str(), path.string());
+  library.id = path.stem().string();
+  return library;
+}
+
+const std::vector<MaterialLibrary>& shipped_material_libraries() {
+  static const std::vector<MaterialLibrary> libraries = [] {
+    std::vector<MaterialLibrary> parsed;
+    for (const auto& [stem, text] : detail::material_table_texts()) {
+      parsed.push_back(
+          parse_material_library(text, "data/materials/" + std::string(stem) + ".toml"));
+      parsed.back().id = std::string(stem);
+    }
+    return parsed;
+  }();
+  return libraries;
+}
+
+ResolvedMaterial resolve_material(const MaterialRequest& request, const MaterialFields& fields,
+                                  const std::vector<MaterialLibrary>& libraries) {
+  // Which library: a qualified name names it; otherwise every library is searched.
+  const std::string wanted = normalised(request.name);
+  const std::size_t slash = wanted.find('/');
+  const std::string library_part = slash == std::string::npos ? "" : wanted.substr(0, slash);
+  const std::string name_part = slash == std::string::npos ? wanted : wanted.substr(slash + 1);
+  std::vector<std::pair<const MaterialLibrary*, const MaterialPreset*>> found;
+  std::vector<std::string> accepted, candidates;
+  for (const MaterialLibrary& library : libraries) {
+    std::vector<std::string> names;
+    for (const MaterialPreset& preset : library.materials) {
+      names.push_back(preset.name);
+      candidates.push_back(preset.name);
+      candidates.push_back(library.id + "/" + preset.name);
+      if ((library_part.empty() || library_part == library.id) && preset.name == name_part) {
+        found.emplace_back(&library, &preset);
+      }
+    }
+    accepted.push_back(library.id + ": " + join(names, ", "));
+  }
+  if (found.empty()) {
+    std::string nearest;
+    std::size_t best = wanted.size() / 3 + 2;  // suggest only what is a few edits away
+    for (const std::string& candidate : candidates) {
+      const std::size_t distance = edit_distance(wanted, candidate);
+      if (distance < best) {
+        best = distance;
+        nearest = candidate;
+      }
+    }
+    const std::string hint = nearest.empty() ? "" : " (did you mean \"" + nearest + "\"?)";
+    throw InputError(fields.material, "no material named \"" + request.name + "\"" + hint,
+                     "a name from a table in data/materials, optionally qualified as "
+                     "table/name: " +
+                         join(accepted, "; "));
+  }
+  if (found.size() > 1) {
+    std::vector<std::string> qualified;
+    for (const auto& [library, preset] : found)
+      qualified.push_back(library->id + "/" + preset->name);
+    throw InputError(fields.material, "\"" + request.name + "\" is in more than one table",
+                     "a qualified name: " + join(qualified, " or "));
+  }
+  const MaterialLibrary& library = *found.front().first;
+  const MaterialPreset& preset = *found.front().second;
+
+  const std::string channels = join(library.channels, ", ");
+  if (!request.channel) {
+    throw InputError(fields.channel,
+                     "missing: material \"" + preset.name + "\" has one value per channel",
+                     "one of " + channels + " (one run per channel)");
+  }
+  const auto at = std::find(library.channels.begin(), library.channels.end(), *request.channel);
+  if (at == library.channels.end()) {
+    throw InputError(fields.channel, "got \"" + *request.channel + "\"", "one of " + channels);
+  }
+  const auto k = static_cast<std::size_t>(at - library.channels.begin());
+
+  const std::string unit = request.length_unit.value_or(library.length_unit);
+  if (!is_physical_length_unit(unit)) {
+    throw InputError(fields.length_unit,
+                     "got \"" + unit + "\" with material \"" + preset.name +
+                         "\", whose coefficients are physical",
+                     "\"um\", \"mm\", \"cm\" or \"m\" (\"mfp\" only without a material)");
+  }
+  // A coefficient per table unit is (unit / table unit) times as large per requested unit.
+  const double scale = millimetres_per(unit) / millimetres_per(library.length_unit);
+  if (request.g && !(std::abs(*request.g) < 1.0)) {
+    throw InputError(fields.g, "got " + std::to_string(*request.g), "a number with |g| < 1");
+  }
+
+  MaterialOrigin origin{preset.name, library.id, *request.channel, library.citation, ""};
+  double sigma_s = 0.0;
+  double g = 0.0;
+  if (!preset.sigma_s.empty()) {
+    sigma_s = preset.sigma_s[k];
+    g = request.g.value_or(preset.g[k]);
+    if (request.g) origin.note = "g set by the user; sigma_s and sigma_a as tabulated";
+  } else {
+    // Only sigma_s' = sigma_s (1 - g) is measured: g = 0 unless asked, sigma_s' kept (similarity
+    // relation, Bitterli 2014 eqs. 2.23-2.24).
+    g = request.g.value_or(0.0);
+    sigma_s = preset.sigma_s_reduced[k] / (1.0 - g);
+    origin.note = request.g ? "the table gives sigma_s' only: sigma_s = sigma_s' / (1 - g) with "
+                              "the user's g (similarity relation)"
+                            : "the table gives sigma_s' only: g = 0, sigma_s = sigma_s' "
+                              "(similarity relation)";
+  }
+  ResolvedMaterial resolved;
+  resolved.medium = Medium::from_coefficients(preset.sigma_a[k] * scale, sigma_s * scale, g, unit);
+  resolved.origin = std::move(origin);
+  resolved.eta = library.eta;
+  return resolved;
 }
 
 }  // namespace scatterlab

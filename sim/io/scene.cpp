@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/io/material_presets.hpp"
 #include "scatterlab/io/toml_reader.hpp"
 
 namespace scatterlab {
@@ -34,7 +35,9 @@ class SceneReader : public TomlReader {
       read_geometry_type(*geometry, "infinite",
                          "\"infinite\" (a half-space scene runs with scatterlab searchlight)");
     }
-    if (const auto* medium = subtable(root, "medium", "")) read_medium(*medium, spec.medium);
+    if (const auto* medium = subtable(root, "medium", "")) {
+      scene.material = read_medium(*medium, spec.medium, spec.material, nullptr);
+    }
     if (const auto* source = subtable(root, "source", "")) read_source(*source, spec.source);
     if (const auto* grid = subtable(root, "grid", "")) read_grid(*grid, spec.grid);
     spec.set_source(spec.source);  // the source's default tallies, unless [tallies] says else
@@ -52,7 +55,9 @@ class SceneReader : public TomlReader {
                {"geometry", "medium", "surface", "source", "grid", "tallies", "run", "output"});
     SearchlightScene scene;
     SearchlightSpec& spec = scene.spec;
-    if (const auto* medium = subtable(root, "medium", "")) read_medium(*medium, spec.medium);
+    if (const auto* medium = subtable(root, "medium", "")) {
+      scene.material = read_medium(*medium, spec.medium, spec.material, &spec.eta);
+    }
     const std::string_view eta_accepted = "a finite number > 0";
     const toml::table* geometry = subtable(root, "geometry", "");
     if (geometry != nullptr) {
@@ -65,6 +70,7 @@ class SceneReader : public TomlReader {
                            std::string(eta_accepted));
         }
         spec.eta = *eta;
+        scene.eta_given = true;
       }
     }
     if (const auto* surface = subtable(root, "surface", "")) {
@@ -76,6 +82,7 @@ class SceneReader : public TomlReader {
                            "the index once: geometry.eta (or surface.eta, as older scenes say)");
         }
         spec.eta = *eta;
+        scene.eta_given = true;
       }
     }
     if (const auto* source = subtable(root, "source", "")) {
@@ -121,10 +128,17 @@ class SceneReader : public TomlReader {
     return path;
   }
 
-  // Either (albedo, sigma_t, g) or (sigma_a, sigma_s, g), never a mix.
-  void read_medium(const toml::table& table, Medium& medium) const {
+  // Either (albedo, sigma_t, g), (sigma_a, sigma_s, g) or a measured material (material, channel,
+  // and optionally g and length_unit: io/material_presets.hpp), never a mix. A material also sets
+  // *eta (the searchlight's index) when eta is given; the request is returned so that the
+  // command's flags can re-resolve it.
+  std::optional<MaterialRequest> read_medium(const toml::table& table, Medium& medium,
+                                             std::optional<MaterialOrigin>& origin,
+                                             double* eta) const {
     const std::string path = "medium";
-    check_keys(table, path, {"albedo", "sigma_t", "g", "sigma_a", "sigma_s", "length_unit"});
+    check_keys(
+        table, path,
+        {"albedo", "sigma_t", "g", "sigma_a", "sigma_s", "length_unit", "material", "channel"});
     const auto albedo = number(table, "albedo", path, "a number in [0, 1]");
     const auto sigma_t = number(table, "sigma_t", path, "a finite number > 0, in 1/length_unit");
     const auto g = number(table, "g", path, "a number with |g| < 1");
@@ -132,13 +146,38 @@ class SceneReader : public TomlReader {
     const auto sigma_s = number(table, "sigma_s", path, "a finite number >= 0, in 1/length_unit");
     const auto unit =
         string(table, "length_unit", path, "one of \"mfp\", \"um\", \"mm\", \"cm\", \"m\"");
+    const auto material =
+        string(table, "material", path, "a material name from data/materials, e.g. \"apple\"");
+    const auto channel =
+        string(table, "channel", path, "a channel of the material's table, e.g. \"red\"");
 
+    if (material) {
+      for (const char* key : {"albedo", "sigma_t", "sigma_a", "sigma_s"}) {
+        if (const toml::node* node = table.get(key)) {
+          throw InputError(dotted(path, key), "given together with medium.material" + at(*node),
+                           "either medium.material (with channel, and optionally g and "
+                           "length_unit) or the medium's coefficients");
+        }
+      }
+      MaterialRequest request{*material, channel, unit, g};
+      ResolvedMaterial resolved = resolve_material(
+          request, {"medium.material", "medium.channel", "medium.length_unit", "medium.g"});
+      medium = resolved.medium;
+      origin = resolved.origin;
+      if (eta != nullptr) *eta = resolved.eta;
+      return request;
+    }
+    if (channel) {
+      throw InputError("medium.channel",
+                       "given without medium.material" + at(*table.get("channel")),
+                       "channel only with a material (medium.material = \"apple\", say)");
+    }
     if (!sigma_a && !sigma_s) {
       if (albedo) medium.albedo = *albedo;
       if (sigma_t) medium.sigma_t = *sigma_t;
       if (g) medium.g = *g;
       medium.length_unit = unit.value_or("mfp");
-      return;
+      return std::nullopt;
     }
     const std::string_view accepted =
         "either albedo, sigma_t, g or sigma_a, sigma_s, g (with length_unit)";
@@ -157,6 +196,7 @@ class SceneReader : public TomlReader {
     }
     medium =
         Medium::from_coefficients(*sigma_a, *sigma_s, g.value_or(medium.g), unit.value_or("mm"));
+    return std::nullopt;
   }
 
   void read_source(const toml::table& table, SourceKind& source) const {
@@ -179,8 +219,10 @@ class SceneReader : public TomlReader {
     if (table == nullptr) return;
     const std::string path = dotted("grid", name);
     check_keys(*table, path, keys);
-    if (const auto min = number(*table, "min", path, "a finite number (mfp)")) axis.min = *min;
-    if (const auto max = number(*table, "max", path, "a finite number (mfp)")) axis.max = *max;
+    if (const auto min = number(*table, "min", path, "a finite number (in medium.length_unit)"))
+      axis.min = *min;
+    if (const auto max = number(*table, "max", path, "a finite number (in medium.length_unit)"))
+      axis.max = *max;
     if (const auto bins = integer_as<int>(*table, "bins", path, 1, "an integer in [1, 100000]")) {
       axis.bins = *bins;
     }
@@ -238,7 +280,8 @@ class SceneReader : public TomlReader {
                                              "an integer >= 0 (0: all hardware threads)")) {
       run.threads = *threads;
     }
-    if (const auto radius = number(table, "escape_radius", path, "a number > 0 (mfp), or inf")) {
+    if (const auto radius =
+            number(table, "escape_radius", path, "a number > 0 (in medium.length_unit), or inf")) {
       run.escape_radius = *radius;
     }
   }

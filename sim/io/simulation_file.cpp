@@ -96,6 +96,16 @@ void write_medium(hdf5::Group& parameters, const Medium& medium) {
   parameters.write_string_attribute("phase", medium.g == 0.0 ? "isotropic" : "henyey-greenstein");
 }
 
+// Only for a medium from a measured table (data/materials), so other files are as they were.
+void write_material(hdf5::Group& parameters, const std::optional<MaterialOrigin>& material) {
+  if (!material) return;
+  parameters.write_string_attribute("material", material->name);
+  parameters.write_string_attribute("material_table", material->library);
+  parameters.write_string_attribute("material_citation", material->citation);
+  parameters.write_string_attribute("channel", material->channel);
+  if (!material->note.empty()) parameters.write_string_attribute("material_note", material->note);
+}
+
 void write_run(hdf5::Group& parameters, const RunSettings& run) {
   parameters.write_int64_attribute("photons", as_int64(run.photons, "photons"));
   parameters.write_int64_attribute("batches", run.batches);
@@ -107,6 +117,7 @@ void write_parameters(hdf5::Group& root, const SimulationSpec& spec) {
   hdf5::Group parameters = root.create_group("parameters");
   parameters.write_string_attribute("source", to_string(spec.source));
   write_medium(parameters, spec.medium);
+  write_material(parameters, spec.material);
   write_run(parameters, spec.run);
   parameters.write_string_attribute("estimator", to_string(spec.tallies.estimator));
   if (std::isfinite(spec.run.escape_radius)) {
@@ -124,6 +135,7 @@ void write_searchlight_parameters(hdf5::Group& root, const SearchlightSpec& spec
   parameters.write_double_attribute("eta", spec.eta);
   parameters.write_double_attribute("incidence_deg", spec.incidence_deg);
   write_medium(parameters, spec.medium);
+  write_material(parameters, spec.material);
   write_run(parameters, spec.run);
   parameters.write_string_attribute("estimator", "collision");
   if (std::isfinite(spec.run.escape_radius)) {
@@ -133,27 +145,32 @@ void write_searchlight_parameters(hdf5::Group& root, const SearchlightSpec& spec
   parameters.write_int64_attribute("threads", spec.run.threads);
 }
 
-void write_axis(hdf5::Group& grid, const char* name, const UniformAxis& axis, const char* units) {
+void write_axis(hdf5::Group& grid, const char* name, const UniformAxis& axis,
+                const std::string& units) {
   const std::vector<double> edges = axis.edges();
   grid.write_dataset(name, edges).write_string_attribute("units", units);
 }
 
-// Grid lengths are in mean free paths: transport runs with sigma_t = 1 (docs/architecture.md, "Units").
+// Grid lengths are in the medium's length unit, mean free paths by default (docs/architecture.md,
+// "Units"): the spec holds them in that unit, and the tallies come back from transport in it.
 void write_grid(hdf5::Group& root, const SimulationSpec& spec) {
   hdf5::Group grid = root.create_group("grid");
+  const std::string& length = spec.medium.length_unit;
   grid.write_bool_attribute("phi_folded", spec.grid.fold_phi);
-  write_axis(grid, "r", spec.grid.r, "mfp");
-  write_axis(grid, "z", spec.grid.z, "mfp");
+  write_axis(grid, "r", spec.grid.r, length);
+  write_axis(grid, "z", spec.grid.z, length);
   write_axis(grid, "theta", spec.grid.theta, "rad");
   write_axis(grid, "phi", spec.grid.phi, "rad");
-  if (spec.tallies.fluence_spherical) write_axis(grid, "rho", spec.grid.rho, "mfp");
+  if (spec.tallies.fluence_spherical) write_axis(grid, "rho", spec.grid.rho, length);
 }
 
-// r from the entry point and z depth in mfp; theta_o from the outward normal, outside.
+// r from the entry point and z depth in the medium's length unit; theta_o from the outward
+// normal, outside.
 void write_searchlight_grid(hdf5::Group& root, const SearchlightSpec& spec) {
   hdf5::Group grid = root.create_group("grid");
-  write_axis(grid, "r", spec.grid.r, "mfp");
-  if (spec.tallies.fluence) write_axis(grid, "z", spec.grid.z, "mfp");
+  const std::string& length = spec.medium.length_unit;
+  write_axis(grid, "r", spec.grid.r, length);
+  if (spec.tallies.fluence) write_axis(grid, "z", spec.grid.z, length);
   write_axis(grid, "theta_o", spec.grid.theta_o, "rad");
 }
 

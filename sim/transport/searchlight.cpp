@@ -7,6 +7,7 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/tally/filter.hpp"
+#include "scatterlab/transport/length_units.hpp"
 
 namespace scatterlab {
 namespace {
@@ -30,7 +31,8 @@ void check_from_zero(const UniformAxis& axis, const std::string& name, const cha
     throw InputError("grid." + name + ".min", got(axis.min), std::string("0 (") + what + ")");
   }
   if (!(axis.max > 0.0) || !std::isfinite(axis.max)) {
-    throw InputError("grid." + name + ".max", got(axis.max), "a finite number > 0 (mfp)");
+    throw InputError("grid." + name + ".max", got(axis.max),
+                     "a finite number > 0 (in medium.length_unit)");
   }
   check_bins(axis, name);
 }
@@ -126,10 +128,7 @@ std::vector<TallyDeclaration> declare_tallies(const SearchlightSpec& spec, doubl
 
 void SearchlightSpec::validate() const {
   medium.validate();
-  if (medium.sigma_t != 1.0 || medium.length_unit != "mfp") {
-    throw InputError("medium.sigma_t", got(medium.sigma_t),
-                     "1: the searchlight runs in mean free paths");
-  }
+  check_length_unit(medium);
   if (!(eta > 0.0) || !std::isfinite(eta)) {
     throw InputError("surface.eta", got(eta),
                      "a finite number > 0 (n_medium / n_outside; 1 for no interface)");
@@ -155,7 +154,15 @@ std::string fingerprint(const SearchlightSpec& spec) {
       spec.run.batches, spec.run.seed, spec.run.escape_radius));
 }
 
-TransportProblem transport_problem(const SearchlightSpec& spec) {
+TransportProblem transport_problem(const SearchlightSpec& given) {
+  // Lengths into mfp (length_units.hpp): r, z and the escape radius; "mfp" specs as they are.
+  SearchlightSpec spec = given;
+  if (given.medium.length_unit != "mfp") {
+    const double mfp_per_unit = mfp_per_length_unit(given.medium);
+    spec.grid.r = length_axis_in_mfp(given.grid.r, mfp_per_unit);
+    spec.grid.z = length_axis_in_mfp(given.grid.z, mfp_per_unit);
+    spec.run.escape_radius = given.run.escape_radius * mfp_per_unit;
+  }
   // Entry (Bitterli §2.3): the specular part F(theta_i) is reflected, 1 - F enters along the
   // refracted ray. Beyond the critical angle of an eta < 1 medium nothing enters; the walk then
   // runs on the source's default direction, +z, and every tally is scaled by the transmitted power,
@@ -182,7 +189,9 @@ TransportProblem transport_problem(const SearchlightSpec& spec) {
 SearchlightOutput run_searchlight(const SearchlightSpec& spec, const ProgressCallback& progress,
                                   const RunControl& control) {
   spec.validate();
-  return transport(transport_problem(spec), progress, control);
+  SearchlightOutput out = transport(transport_problem(spec), progress, control);
+  tallies_to_length_unit(out.tallies, spec.medium);  // back from mfp (length_units.hpp)
+  return out;
 }
 
 }  // namespace scatterlab

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "scatterlab/tally/filter.hpp"
+#include "scatterlab/transport/length_units.hpp"
 
 namespace scatterlab {
 namespace {
@@ -77,7 +78,17 @@ std::vector<TallyDeclaration> declare_tallies(const SimulationSpec& spec) {
 
 }  // namespace
 
-TransportProblem transport_problem(const SimulationSpec& spec) {
+TransportProblem transport_problem(const SimulationSpec& given) {
+  // Lengths into mfp (length_units.hpp): the grid's r, z and rho and the escape radius. In "mfp"
+  // the spec is used as it is.
+  SimulationSpec spec = given;
+  const double mfp_per_unit = mfp_per_length_unit(given.medium);
+  if (given.medium.length_unit != "mfp") {
+    spec.grid.r = length_axis_in_mfp(given.grid.r, mfp_per_unit);
+    spec.grid.z = length_axis_in_mfp(given.grid.z, mfp_per_unit);
+    spec.grid.rho = length_axis_in_mfp(given.grid.rho, mfp_per_unit);
+    spec.run.escape_radius = given.run.escape_radius * mfp_per_unit;
+  }
   TransportProblem problem;
   problem.albedo = spec.medium.albedo;
   problem.g = spec.medium.g;
@@ -95,7 +106,9 @@ TransportProblem transport_problem(const SimulationSpec& spec) {
 SimulationOutput simulate(const SimulationSpec& spec, const ProgressCallback& progress,
                           const RunControl& control) {
   spec.validate();
-  return transport(transport_problem(spec), progress, control);
+  SimulationOutput out = transport(transport_problem(spec), progress, control);
+  tallies_to_length_unit(out.tallies, spec.medium);  // back from mfp (length_units.hpp)
+  return out;
 }
 
 }  // namespace scatterlab

@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/transport/length_units.hpp"
 
 namespace scatterlab {
 namespace {
@@ -34,20 +35,7 @@ std::string got(double value) {
 
 void check_medium(const Medium& medium) {
   medium.validate();
-  constexpr std::array<std::string_view, 5> units{"mfp", "um", "mm", "cm", "m"};
-  if (std::find(units.begin(), units.end(), medium.length_unit) == units.end()) {
-    throw InputError("medium.length_unit", fmt::format("got \"{}\"", medium.length_unit),
-                     "one of \"mfp\", \"um\", \"mm\", \"cm\", \"m\"");
-  }
-  // A mean free path is 1 / sigma_t, so sigma_t in 1/mfp is 1 by definition; anything else means
-  // the coefficients were given in a physical unit that the file did not name.
-  if (medium.length_unit == "mfp" && std::abs(medium.sigma_t - 1.0) > 1e-12) {
-    throw InputError(
-        "medium.length_unit",
-        fmt::format("\"mfp\" makes sigma_t = 1 by definition, but sigma_t is {}", medium.sigma_t),
-        "a physical unit (\"um\", \"mm\", \"cm\", \"m\") for the coefficients, or "
-        "sigma_t = 1");
-  }
+  check_length_unit(medium);
 }
 
 void check_bins(const UniformAxis& axis, const std::string& name) {
@@ -64,7 +52,8 @@ void check_radial_axis(const UniformAxis& axis, const std::string& name) {
     throw InputError("grid." + name + ".min", got(axis.min), "0 (a distance from the source)");
   }
   if (!(axis.max > 0.0) || !std::isfinite(axis.max)) {
-    throw InputError("grid." + name + ".max", got(axis.max), "a finite number > 0 (mfp)");
+    throw InputError("grid." + name + ".max", got(axis.max),
+                     "a finite number > 0 (in medium.length_unit)");
   }
   check_bins(axis, name);
 }
@@ -84,12 +73,12 @@ void check_grid(const Grid& grid, bool radiance_requested) {
   check_radial_axis(grid.r, "r");
 
   if (!std::isfinite(grid.z.min)) {
-    throw InputError("grid.z.min", got(grid.z.min), "a finite number (mfp)");
+    throw InputError("grid.z.min", got(grid.z.min), "a finite number (in medium.length_unit)");
   }
   if (!(grid.z.max > grid.z.min) || !std::isfinite(grid.z.max)) {
     throw InputError("grid.z.max",
                      fmt::format("got {} with grid.z.min = {}", grid.z.max, grid.z.min),
-                     "a finite number > grid.z.min (mfp)");
+                     "a finite number > grid.z.min (in medium.length_unit)");
   }
   check_bins(grid.z, "z");
 

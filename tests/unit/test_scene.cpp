@@ -443,6 +443,60 @@ TEST(SearchlightScene, BadInputNamesTheField) {
   EXPECT_EQ(searchlight_field_of("[medium]\nalbedo = \"high\"\n"), "medium.albedo");
 }
 
+// [medium] material: a measured medium (io/material_presets.hpp), in its table's unit.
+TEST(Scene, MaterialSetsTheMediumInItsUnit) {
+  const Scene scene = parse("[medium]\nmaterial = \"marble\"\nchannel = \"blue\"\n");
+  EXPECT_EQ(scene.spec.medium.length_unit, "mm");
+  EXPECT_NEAR(scene.spec.medium.sigma_a(), 0.0071, 1e-12);
+  EXPECT_NEAR(scene.spec.medium.sigma_s(), 3.00, 1e-12);
+  EXPECT_EQ(scene.spec.medium.g, 0.0);
+  ASSERT_TRUE(scene.material.has_value());
+  EXPECT_EQ(scene.material->name, "marble");
+  ASSERT_TRUE(scene.spec.material.has_value());
+  EXPECT_EQ(scene.spec.material->library, "jensen2001");
+  // g and length_unit apply to the material; channels sweep like any other key.
+  const Scene cm = parse(
+      "[medium]\nmaterial = \"espresso\"\nchannel = \"red\"\ng = 0.5\nlength_unit = \"cm\"\n");
+  EXPECT_EQ(cm.spec.medium.length_unit, "cm");
+  EXPECT_EQ(cm.spec.medium.g, 0.5);
+  EXPECT_NEAR(cm.spec.medium.sigma_s(), 2.707, 1e-12);
+  const auto sweep = parse_sweep(
+      "[medium]\nmaterial = \"apple\"\nchannel = [\"red\", \"green\", \"blue\"]\n", "t");
+  ASSERT_EQ(sweep.size(), 3u);
+  EXPECT_EQ(sweep[2].label, "channel=blue");
+  EXPECT_NEAR(sweep[2].scene.spec.medium.sigma_a(), 0.046, 1e-12);
+}
+
+TEST(Scene, MaterialBadInputNamesTheField) {
+  EXPECT_EQ(field_of("[medium]\nmaterial = \"marbel\"\nchannel = \"red\"\n"), "medium.material");
+  EXPECT_EQ(field_of("[medium]\nmaterial = \"marble\"\n"), "medium.channel");
+  EXPECT_EQ(field_of("[medium]\nchannel = \"red\"\n"), "medium.channel");
+  EXPECT_EQ(field_of("[medium]\nmaterial = \"marble\"\nchannel = \"red\"\nalbedo = 0.5\n"),
+            "medium.albedo");
+  EXPECT_EQ(field_of("[medium]\nmaterial = \"marble\"\nchannel = \"red\"\nsigma_s = 1\n"),
+            "medium.sigma_s");
+  EXPECT_EQ(field_of("[medium]\nmaterial = \"marble\"\nchannel = \"red\"\nlength_unit = \"mfp\"\n"),
+            "medium.length_unit");
+  EXPECT_EQ(field_of("[medium]\nmaterial = 3\n"), "medium.material");
+}
+
+// The searchlight takes the material's eta unless the scene gives one.
+TEST(SearchlightScene, MaterialBringsItsEtaAndUnit) {
+  const SearchlightScene milk = parse_searchlight_scene(
+      "[medium]\nmaterial = \"regular_milk\"\nchannel = \"red\"\n[grid]\nr = { max = 20 }\n", "t");
+  EXPECT_DOUBLE_EQ(milk.spec.eta, 1.33);
+  EXPECT_FALSE(milk.eta_given);
+  EXPECT_EQ(milk.spec.medium.length_unit, "mm");
+  EXPECT_DOUBLE_EQ(milk.spec.medium.g, 0.75);
+  EXPECT_EQ(milk.spec.grid.r.max, 20.0);
+  const SearchlightScene matched = parse_searchlight_scene(
+      "[medium]\nmaterial = \"apple\"\nchannel = \"red\"\n[geometry]\neta = 1.0\n", "t");
+  EXPECT_DOUBLE_EQ(matched.spec.eta, 1.0);
+  EXPECT_TRUE(matched.eta_given);
+  EXPECT_EQ(searchlight_field_of("[medium]\nsigma_a = 0.01\nsigma_s = 1\nlength_unit = \"mfp\"\n"),
+            "medium.length_unit");
+}
+
 TEST(GeometryTable, NamesTheGeometryEachCommandRuns) {
   EXPECT_NO_THROW(parse("[geometry]\ntype = \"infinite\"\n"));
   EXPECT_EQ(field_of("[geometry]\ntype = \"half_space\"\n"), "geometry.type");

@@ -166,7 +166,8 @@ TEST_F(SimulationFileTest, RoundTripKeepsLayoutValuesAndAttributes) {
     EXPECT_EQ(edges.shape, std::vector<std::size_t>{axis->edges().size()}) << name;
     EXPECT_EQ(edges.values, axis->edges()) << name;
     const bool angle = std::string(name) == "theta" || std::string(name) == "phi";
-    EXPECT_EQ(grid.open_dataset(name).read_string_attribute("units"), angle ? "rad" : "mfp");
+    // Lengths are in the medium's unit (here mm: the spec's grid is read in it).
+    EXPECT_EQ(grid.open_dataset(name).read_string_attribute("units"), angle ? "rad" : "mm");
   }
 
   const hdf5::Group group = root.open_group("tallies");

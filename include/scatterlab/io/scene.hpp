@@ -7,14 +7,16 @@
 //   [geometry] type = "infinite"              (the default; the half-space is below)
 //   [medium]   albedo, sigma_t, g            (length_unit defaults to "mfp")
 //          or  sigma_a, sigma_s, g           (length_unit defaults to "mm")
+//          or  material = "apple", channel = "red", optionally g and length_unit: a measured
+//              material from data/materials (io/material_presets.hpp, resolve_material)
 //              length_unit = "mfp" | "um" | "mm" | "cm" | "m"
 //   [source]   type = "beam" | "point"
 //   [grid]     r = { max, bins }, z = { min, max, bins }, theta = { bins }, phi = { bins },
-//              fold_phi = bool, rho = { max, bins }        (lengths in mfp)
+//              fold_phi = bool, rho = { max, bins }        (lengths in medium.length_unit)
 //   [tallies]  radiance, fluence, flux, fluence_spherical, split_by_order = bool,
 //              estimator = "collision" | "track_length"
 //   [run]      photons, batches, seed, threads (integers; 1e7-style floats that are whole numbers
-//              are accepted too), escape_radius (number in mfp, or inf)
+//              are accepted too), escape_radius (number in medium.length_unit, or inf)
 //   [output]   path = "file.h5"
 //
 // For the point source, tallies.fluence_spherical defaults to true (its natural tally, the
@@ -30,6 +32,7 @@
 #include <string_view>
 #include <vector>
 
+#include "scatterlab/io/material_presets.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/transport/simulation.hpp"
 
@@ -43,6 +46,7 @@ enum class Validation { on_read, by_caller };
 struct Scene {
   SimulationSpec spec;                     // validated unless read with Validation::by_caller
   std::optional<std::string> output_path;  // [output] path, as written; the CLI resolves it
+  std::optional<MaterialRequest> material;  // [medium] material and its keys, as written
 };
 
 // `origin` names the text in messages (usually its file name).
@@ -74,7 +78,8 @@ std::vector<SweepPoint> load_sweep(const std::filesystem::path& path,
 // The searchlight's scene (scatterlab searchlight --scene; data/scenes/searchlight.toml), as
 // strict as the above, with these tables:
 //   [geometry] type = "half_space", eta = n_medium / n_outside
-//   [medium]   albedo, g                                   (in mfp: sigma_t = 1)
+//   [medium]   as above: albedo, g (mfp); albedo, sigma_t, g, length_unit; sigma_a, sigma_s, g;
+//              or material, channel (g, length_unit): the material's eta too, unless given
 //   [surface]  eta                                         (the same eta, as older files say)
 //   [source]   incidence_deg
 //   [grid]     r = { max, bins }, z = { max, bins }, theta_o = { bins }
@@ -83,6 +88,8 @@ std::vector<SweepPoint> load_sweep(const std::filesystem::path& path,
 struct SearchlightScene {
   SearchlightSpec spec;                    // validated unless read with Validation::by_caller
   std::optional<std::string> output_path;  // [output] path, as written
+  std::optional<MaterialRequest> material;  // [medium] material and its keys, as written
+  bool eta_given = false;                   // geometry.eta or surface.eta in the file
 };
 
 SearchlightScene parse_searchlight_scene(std::string_view toml_text, const std::string& origin,

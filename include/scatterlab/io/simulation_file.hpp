@@ -9,7 +9,10 @@
 //   /parameters        attrs source, albedo, g, sigma_t, sigma_a, sigma_s, length_unit, phase,
 //                            photons, batches, seed, estimator, escape_radius (when finite),
 //                            split_by_order, threads
-//   /grid/{r,z,theta,phi[,rho]}   bin edges, attr units ("mfp" or "rad"); attr phi_folded on /grid
+//   /grid/{r,z,theta,phi[,rho]}   bin edges, attr units (the length unit, "mfp" by default, or
+//                            "rad"); attr phi_folded on /grid
+//   /parameters        with a measured material (io/material_presets.hpp) also: material,
+//                            material_table, material_citation, channel, material_note
 //   /tallies/<name>    attrs units, description, dims ("r,z,theta,phi"; "" for a scalar)
 //   /tallies/<name>/{mean,stderr}  the tally's shape; a scalar is a rank-0 dataset; attr units
 

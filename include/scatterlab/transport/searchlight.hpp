@@ -3,10 +3,12 @@
 // strikes a semi-infinite homogeneous medium z > 0 at the origin. What the run is asked to do,
 // as plain structs validated once, and the run itself.
 //
-// Lengths are in mean free paths (sigma_t = 1). Every tally is per unit incident power: the
-// specular reflection at entry is reported apart and the transmitted power 1 - F enters.
+// Lengths (grid, escape radius) are in medium.length_unit, mean free paths by default (sigma_t =
+// 1); transport runs in mfp (transport/length_units.hpp converts). Every tally is per unit incident
+// power: the specular reflection at entry is reported apart and the transmitted power 1 - F enters.
 
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "scatterlab/core/medium.hpp"
@@ -41,6 +43,7 @@ struct SearchlightSpec {
   SearchlightGrid grid;
   SearchlightTallies tallies;
   RunSettings run{10'000'000, 64, 1, 0};
+  std::optional<MaterialOrigin> material;  // set when the medium came from a measured table
 
   // Throws InputError naming the first bad field (CLI flag names) and what it accepts.
   void validate() const;

@@ -1,10 +1,12 @@
 #pragma once
-// What one simulation is asked to do, as plain structs validated once (docs/architecture.md, "From a scene to a file").
-// Lengths are in mean free paths (sigma_t = 1) throughout transport and tallies.
+// What one simulation is asked to do, as plain structs validated once (docs/architecture.md, "From
+// a scene to a file"). Lengths (grid, escape radius) are in medium.length_unit: mean free paths by
+// default. Transport runs in mfp; transport/length_units.hpp converts at its boundary.
 
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "scatterlab/core/medium.hpp"
@@ -52,6 +54,7 @@ struct SimulationSpec {
   Grid grid;
   TallyRequest tallies;
   RunSettings run;
+  std::optional<MaterialOrigin> material;  // set when the medium came from a measured table
 
   // Sets the source and its natural default tallies: the point source's is the fluence on
   // spherical shells (d'Eon & Irving 2011); the beam has no spherical symmetry.

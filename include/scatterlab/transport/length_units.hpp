@@ -1,0 +1,42 @@
+#pragma once
+// Physical length units at the transport boundary (docs/architecture.md, "Units").
+//
+// A spec holds its lengths (grid edges, escape radius) and its medium's sigma_t in one unit,
+// medium.length_unit: "mfp" (the default, sigma_t = 1) or a physical unit ("um", "mm", "cm",
+// "m"). Transport always runs in mean free paths: a length L in the spec's unit is L sigma_t mfp
+// (1 mfp = 1 / sigma_t). So the specs' transport_problem scales their lengths by sigma_t on the
+// way in, and simulate / run_searchlight convert each tally on the way out by its length
+// dimension k (the power of "mfp" in its units string): a value q per mfp^k is q sigma_t^-k per
+// unit^k. In "mfp" nothing is scaled, so those runs are bit for bit what they always were.
+
+#include <string>
+#include <vector>
+
+#include "scatterlab/core/medium.hpp"
+#include "scatterlab/tally/axis.hpp"
+#include "scatterlab/tally/tally_result.hpp"
+
+namespace scatterlab {
+
+// Throws InputError naming medium.length_unit unless it is "mfp" or a physical unit, or when it
+// is "mfp" but sigma_t is not 1 (coefficients in a physical unit the scene did not name).
+void check_length_unit(const Medium& medium);
+
+// Mean free paths per unit of the spec's lengths: sigma_t in a physical unit, 1 in "mfp".
+inline double mfp_per_length_unit(const Medium& medium) {
+  return medium.length_unit == "mfp" ? 1.0 : medium.sigma_t;
+}
+
+// A length axis of the spec in mfp: its ends times `mfp_per_unit`, the same bins.
+UniformAxis length_axis_in_mfp(const UniformAxis& axis, double mfp_per_unit);
+
+// `units` ("W mfp^-2 per W incident", "mfp") with mfp replaced by `length_unit`, and in
+// *factor the number that turns a value in the former into the latter: sigma_t^-k for mfp^k.
+// Units without mfp come back as they are, with *factor = 1.
+std::string units_in_length_unit(const std::string& units, const Medium& medium, double* factor);
+
+// Every tally of a run in mfp, converted to medium.length_unit (values, errors and units).
+// Does nothing when the unit is "mfp".
+void tallies_to_length_unit(std::vector<TallyResult>& tallies, const Medium& medium);
+
+}  // namespace scatterlab

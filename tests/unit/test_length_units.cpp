@@ -1,0 +1,149 @@
+// Physical length units (transport/length_units.hpp): a run whose medium and grid are in mm is
+// the mfp run with every length scaled by sigma_t, and its tallies are the mfp tallies converted
+// exactly by their length dimension. sigma_t is a power of two here, so every scaling is exact
+// and the two runs see the same photons bit for bit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/io/scene.hpp"
+#include "scatterlab/transport/length_units.hpp"
+#include "scatterlab/transport/searchlight.hpp"
+#include "scatterlab/transport/simulate.hpp"
+
+namespace scatterlab {
+namespace {
+
+Medium in_mm(double sigma_t) {
+  return Medium{0.8, sigma_t, 0.5, "mm"};
+}
+
+TEST(LengthUnits, UnitsStringsAndFactors) {
+  double factor = 0.0;
+  EXPECT_EQ(units_in_length_unit("W mfp^-2 sr^-1 per W incident", in_mm(2.0), &factor),
+            "W mm^-2 sr^-1 per W incident");
+  EXPECT_DOUBLE_EQ(factor, 4.0);  // per mfp^2 = sigma_t^2 per mm^2
+  EXPECT_EQ(units_in_length_unit("mfp", in_mm(2.0), &factor), "mm");
+  EXPECT_DOUBLE_EQ(factor, 0.5);  // 1 mfp = 1 / sigma_t mm
+  EXPECT_EQ(units_in_length_unit("W per W incident", in_mm(2.0), &factor), "W per W incident");
+  EXPECT_DOUBLE_EQ(factor, 1.0);
+  EXPECT_EQ(units_in_length_unit("W mfp^-2 per W incident", Medium{}, &factor),
+            "W mfp^-2 per W incident");
+  EXPECT_DOUBLE_EQ(factor, 1.0);
+}
+
+TEST(LengthUnits, UnknownUnitOrMfpWithSigmaTIsRefused) {
+  auto field_of = [](const Medium& medium) {
+    try {
+      check_length_unit(medium);
+    } catch (const InputError& e) {
+      return e.field();
+    }
+    return std::string("(accepted)");
+  };
+  EXPECT_EQ(field_of(Medium{0.5, 2.0, 0.0, "mfp"}), "medium.length_unit");
+  EXPECT_EQ(field_of(Medium{0.5, 2.0, 0.0, "furlong"}), "medium.length_unit");
+  EXPECT_EQ(field_of(Medium{0.5, 2.0, 0.0, "cm"}), "(accepted)");
+  // The searchlight, which refused sigma_t != 1 before units, names the unit too.
+  SearchlightSpec spec;
+  spec.medium = Medium{0.9, 2.0, 0.0, "mfp"};
+  try {
+    spec.validate();
+    FAIL() << "sigma_t = 2 in mfp accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "medium.length_unit");
+  }
+}
+
+void expect_scaled(const std::vector<TallyResult>& mm, const std::vector<TallyResult>& mfp,
+                   double sigma_t) {
+  ASSERT_EQ(mm.size(), mfp.size());
+  for (std::size_t t = 0; t < mm.size(); ++t) {
+    double factor = 0.0;
+    const std::string units = units_in_length_unit(mfp[t].units, in_mm(sigma_t), &factor);
+    EXPECT_EQ(mm[t].name, mfp[t].name);
+    EXPECT_EQ(mm[t].units, units) << mm[t].name;
+    EXPECT_EQ(mm[t].units.find("mfp"), std::string::npos) << mm[t].units;
+    ASSERT_EQ(mm[t].mean.size(), mfp[t].mean.size());
+    double total = 0.0;
+    for (std::size_t i = 0; i < mm[t].mean.size(); ++i) {
+      // Exact: the same photons in the same bins, times a power of two.
+      EXPECT_EQ(mm[t].mean[i], mfp[t].mean[i] * factor) << mm[t].name << " cell " << i;
+      EXPECT_EQ(mm[t].stderr_of_mean[i], mfp[t].stderr_of_mean[i] * factor) << mm[t].name;
+      total += mfp[t].mean[i];
+    }
+    if (mm[t].name == "fluence" || mm[t].name == "reflectance") {
+      EXPECT_GT(total, 0.0);
+    }
+  }
+}
+
+TEST(LengthUnits, SimulateInMillimetresIsTheMfpRunScaled) {
+  SimulationSpec mfp;
+  mfp.medium = Medium{0.8, 1.0, 0.5, "mfp"};
+  mfp.run = RunSettings{20'000, 8, 3, 2};
+  mfp.run.escape_radius = 6.0;
+  mfp.tallies.radiance = false;
+  SimulationSpec mm = mfp;
+  const double sigma_t = 2.0;  // 1/mm: 1 mfp = 0.5 mm
+  mm.medium = in_mm(sigma_t);
+  mm.grid.r.max = mfp.grid.r.max / sigma_t;
+  mm.grid.z.min = mfp.grid.z.min / sigma_t;
+  mm.grid.z.max = mfp.grid.z.max / sigma_t;
+  mm.grid.rho.max = mfp.grid.rho.max / sigma_t;
+  mm.run.escape_radius = mfp.run.escape_radius / sigma_t;
+  const SimulationOutput a = simulate(mm);
+  const SimulationOutput b = simulate(mfp);
+  expect_scaled(a.tallies, b.tallies, sigma_t);
+  // The mean absorption depth is a length: mm = mfp / sigma_t.
+  const TallyResult* depth = find_tally(a.tallies, "absorbed_mean_depth");
+  ASSERT_NE(depth, nullptr);
+  EXPECT_EQ(depth->units, "mm");
+  EXPECT_EQ(depth->mean[0], find_tally(b.tallies, "absorbed_mean_depth")->mean[0] / sigma_t);
+}
+
+TEST(LengthUnits, SearchlightAcceptsSigmaTInCentimetres) {
+  SearchlightSpec mfp;
+  mfp.medium = Medium{0.9, 1.0, 0.3, "mfp"};
+  mfp.run = RunSettings{20'000, 8, 5, 2};
+  mfp.grid.r.bins = 20;
+  mfp.grid.z.bins = 10;
+  SearchlightSpec cm = mfp;
+  const double sigma_t = 4.0;  // 1/cm
+  cm.medium = Medium{0.9, sigma_t, 0.3, "cm"};
+  cm.grid.r.max = mfp.grid.r.max / sigma_t;
+  cm.grid.z.max = mfp.grid.z.max / sigma_t;
+  ASSERT_NO_THROW(cm.validate());
+  const SearchlightOutput a = run_searchlight(cm);
+  const SearchlightOutput b = run_searchlight(mfp);
+  ASSERT_EQ(a.tallies.size(), b.tallies.size());
+  for (std::size_t t = 0; t < a.tallies.size(); ++t) {
+    double factor = 0.0;
+    const std::string units = units_in_length_unit(b.tallies[t].units, cm.medium, &factor);
+    EXPECT_EQ(a.tallies[t].units, units);
+    for (std::size_t i = 0; i < a.tallies[t].mean.size(); ++i) {
+      EXPECT_EQ(a.tallies[t].mean[i], b.tallies[t].mean[i] * factor) << a.tallies[t].name;
+    }
+  }
+  EXPECT_EQ(find_tally(a.tallies, "reflectance")->units, "W cm^-2 per W incident");
+}
+
+// A scene in mm reads its grid keys in mm; the material's unit is the table's.
+TEST(LengthUnits, SceneGridKeysAreInTheMediumsUnit) {
+  const Scene scene = parse_scene(
+      "[medium]\nmaterial = \"skimmilk\"\nchannel = \"green\"\n[grid]\nr = { max = 4, bins = 8 "
+      "}\n",
+      "t");
+  EXPECT_EQ(scene.spec.medium.length_unit, "mm");
+  EXPECT_EQ(scene.spec.grid.r.max, 4.0);
+  ASSERT_TRUE(scene.spec.material.has_value());
+  EXPECT_EQ(scene.spec.material->name, "skimmilk");
+  EXPECT_EQ(scene.spec.material->channel, "green");
+  EXPECT_NEAR(scene.spec.medium.sigma_a(), 0.0025, 1e-12);
+}
+
+}  // namespace
+}  // namespace scatterlab
