@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/io/toml_reader.hpp"
 
 namespace scatterlab {
 
@@ -69,22 +70,6 @@ std::string normalised(std::string_view name) {
                                   : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   }
   return key;
-}
-
-// Levenshtein distance, for "did you mean".
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
 }
 
 std::string join(const std::vector<std::string>& names, const char* separator) {
@@ -223,7 +208,7 @@ ResolvedMaterial resolve_material(const MaterialRequest& request, const Material
     std::string nearest;
     std::size_t best = wanted.size() / 3 + 2;  // suggest only what is a few edits away
     for (const std::string& candidate : candidates) {
-      const std::size_t distance = edit_distance(wanted, candidate);
+      const std::size_t distance = toml_reading::edit_distance(wanted, candidate);
       if (distance < best) {
         best = distance;
         nearest = candidate;

@@ -5,31 +5,8 @@
 set -u
 exe=$1
 source_dir=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0 passed=0
+source "$source_dir/tests/cli/harness.sh"
 
-pass() { passed=$((passed + 1)); }
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-
-# expect_command_error COMMAND NAME FIELD ARGS...: non-zero exit, FIELD named on stderr, nothing
-# written.
-expect_command_error() {
-  local command=$1 name=$2 field=$3
-  shift 3
-  local out="$work/$name.h5"
-  if "$exe" "$command" --photons 1000 --batches 4 --out "$out" "$@" >"$work/stdout" 2>"$work/stderr"; then
-    fail "$name: exited 0"
-  elif ! grep -q -- "$field" "$work/stderr"; then
-    fail "$name: error does not name $field: $(cat "$work/stderr")"
-  elif [ "$(grep -c . "$work/stderr")" -ne 1 ]; then
-    fail "$name: more than one line of error: $(cat "$work/stderr")"
-  elif compgen -G "$work/$name.h5*" >/dev/null; then
-    fail "$name: left a file behind"
-  else
-    pass
-  fi
-}
 expect_error() { expect_command_error simulate "$@"; }
 expect_searchlight_error() { expect_command_error searchlight "$@"; }
 
@@ -178,5 +155,4 @@ elif grep -q "photons" "$work/stderr" && [ ! -e "$work/deon2" ]; then pass; else
   fail "validate deon --photons 2.5: $(cat "$work/stderr")"
 fi
 
-echo "cli: $passed passed, $failures failed"
-[ "$failures" -eq 0 ]
+report cli

@@ -12,23 +12,7 @@ source "$source_dir/tests/cli/harness.sh"
 small=(--photons 4000 --batches 4 --threads 2)
 
 # expect_error COMMAND NAME FIELD ARGS...: exit 2, FIELD on the one line of stderr, no file.
-expect_error() {
-  local command=$1 name=$2 field=$3
-  shift 3
-  local out="$work/$name.h5" status=0
-  "$exe" "$command" "${small[@]}" --out "$out" "$@" >"$work/stdout" 2>"$work/stderr" || status=$?
-  if [ "$status" -ne 2 ]; then
-    fail "$name: exit status $status, not 2: $(cat "$work/stderr")"
-  elif ! grep -q -- "$field" "$work/stderr"; then
-    fail "$name: error does not name $field: $(cat "$work/stderr")"
-  elif [ "$(grep -c . "$work/stderr")" -ne 1 ]; then
-    fail "$name: more than one line of error: $(cat "$work/stderr")"
-  elif compgen -G "$work/$name.h5*" >/dev/null; then
-    fail "$name: left a file behind"
-  else
-    pass
-  fi
-}
+expect_error() { expect_command_error "$@"; }
 
 # expect_info NAME FILE PATTERN...: `info FILE` shows every pattern (extended regex).
 expect_info() {
