@@ -324,7 +324,13 @@ FileSummary summarize(const hdf5::File& file) {
   if (root.has_member("models")) {
     const hdf5::Group models = root.open_group("models");
     for (const std::string& name : models.member_names()) {
-      summary.models.emplace_back(name, models.open_group(name).member_names());
+      const hdf5::Group model = models.open_group(name);
+      // A model left out of the run has no curves, only its "note" saying why.
+      std::vector<std::string> curves = model.member_names();
+      if (curves.empty() && model.has_attribute("note")) {
+        curves.push_back(model.read_string_attribute("note"));
+      }
+      summary.models.emplace_back(name, curves);
     }
   }
   if (root.has_member("fits")) summary.fits = root.open_group("fits").member_names();
@@ -468,7 +474,7 @@ std::string describe(const FileSummary& summary) {
   for (const TallySummary& tally : summary.tallies) text += tally_text(tally);
   if (!summary.models.empty()) text += "\nmodels (analytic and exact curves on the same grid)\n";
   for (const auto& [model, curves] : summary.models) {
-    text += fmt::format("  {:<15} {}\n", model, join(curves, ", "));
+    text += fmt::format("  {:<24} {}\n", model, join(curves, ", "));
   }
   if (!summary.fits.empty()) text += fmt::format("\nfits\n  {}\n", join(summary.fits, ", "));
   return text;

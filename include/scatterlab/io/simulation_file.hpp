@@ -122,6 +122,7 @@ struct FileSummary {
   bool phi_folded = false;
   std::vector<TallySummary> tallies;
   // /models/<model> and the curves it holds; /fits/<model> names (scatterlab fit).
+  // Each model with its curves, or with the note that says why it has none.
   std::vector<std::pair<std::string, std::vector<std::string>>> models;
   std::vector<std::string> fits;
 };
