@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "prepare_outputs.hpp"
 #include "progress_bar.hpp"
+#include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/render/render_scene.hpp"
@@ -33,8 +34,8 @@ struct RenderOptions {
 
 // `render --study`: the study itself lives in sim/render/render_study.cpp.
 int run_study(const RenderOptions& o, const std::filesystem::path& out_dir) {
-  if (o.threads < 0)
-    throw InputError("threads", fmt::format("got {}", o.threads), "an integer >= 0");
+  check_threads(o.threads, "--threads");
+  check_seed(o.seed, "--seed");
   const std::vector<std::string> paths =
       o.scenes.empty()
           ? std::vector<std::string>{"data/scenes/bumpy-sphere.toml", "data/scenes/tile.toml"}
@@ -90,8 +91,8 @@ Action add_render_command(CLI::App& app) {
                      "Samples per eye ray, per interval for holzschuch (default: the scene's)");
   render->add_option("--light-samples", options->light_samples,
                      "Points on a sphere light for the deterministic methods");
-  render->add_option("--threads", options->threads, "Threads (0: all)");
-  render->add_option("--seed", options->seed, "Random seed (pathtrace)");
+  render->add_option("--threads", options->threads, threads_help());
+  render->add_option("--seed", options->seed, "Random seed (pathtrace), in [0, 2^63 - 1]");
   CLI::Option* out_option =
       render
           ->add_option("--out", options->out,
@@ -123,8 +124,8 @@ Action add_render_command(CLI::App& app) {
     if (o.height > 0) scene.height = o.height;
     if (o.samples > 0) scene.samples = o.samples;
     if (o.light_samples > 0) scene.light_samples = o.light_samples;
-    if (o.threads < 0)
-      throw InputError("threads", fmt::format("got {}", o.threads), "an integer >= 0");
+    check_threads(o.threads, "--threads");
+    check_seed(o.seed, "--seed");
     if (!(o.gamma > 0.0)) throw InputError("gamma", fmt::format("got {}", o.gamma), "a number > 0");
     settings.threads = o.threads;
     settings.seed = o.seed;

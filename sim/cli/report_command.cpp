@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "prepare_outputs.hpp"
+#include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/report/report_writer.hpp"
 #include "scatterlab/report/suites.hpp"
@@ -35,9 +36,8 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
   command->add_flag("--quick", options->quick, "Small budgets, for the test suite (minutes)");
   command->add_option("--out", options->out, "Directory to write (created if missing)")
       ->capture_default_str();
-  command->add_option("--threads", options->profile.threads, "Threads (0: all)")
-      ->check(CLI::NonNegativeNumber);
-  command->add_option("--seed", options->profile.seed, "Seed of the first run")
+  command->add_option("--threads", options->profile.threads, threads_help());
+  command->add_option("--seed", options->profile.seed, "Seed of the first run, in [0, 2^63 - 1]")
       ->capture_default_str();
 
   // Each section by its id (its CSV stem), in the order of the report.
@@ -59,6 +59,8 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
 
   return [options, command_line, suites, names] {
     options->profile.quick = options->quick;
+    check_threads(options->profile.threads, "--threads");
+    check_seed(options->profile.seed, "--seed");
     for (const std::string& wanted : options->sections) {
       bool known = false;
       for (const auto& entry : *suites) known |= entry.first == wanted;

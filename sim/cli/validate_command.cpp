@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "prepare_outputs.hpp"
+#include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/validate/half_space_comparison.hpp"
@@ -34,7 +35,6 @@ int run_deon(const ValidateOptions& options) {
   settings.photons = options.quick ? 20'000 : photon_count(options.photons);
   settings.threads = options.threads;
   settings.seed = options.seed;
-  if (options.threads < 0) throw InputError("threads", "negative", "0 (all) or a positive count");
   const std::vector<double> albedos = {0.01, 0.1, 0.3, 0.5, 0.7, 0.9, 0.99};
   std::vector<PointSourceComparison> comparisons;
   for (std::size_t i = 0; i < albedos.size(); ++i) {
@@ -161,9 +161,8 @@ Action add_validate_command(CLI::App& app) {
       ->capture_default_str();
   deon->add_option("--photons", options->photons, "Photons per albedo")->capture_default_str();
   deon->add_flag("--quick", options->quick, "2e4 photons per albedo, for tests");
-  deon->add_option("--threads", options->threads, "Threads (0: all hardware threads)")
-      ->capture_default_str();
-  deon->add_option("--seed", options->seed, "Random seed")->capture_default_str();
+  deon->add_option("--threads", options->threads, threads_help());
+  deon->add_option("--seed", options->seed, "Random seed, in [0, 2^63 - 1]")->capture_default_str();
   auto half_space = std::make_shared<SearchlightValidateOptions>();
   CLI::App* searchlight = validate->add_subcommand(
       "searchlight",
@@ -178,10 +177,12 @@ Action add_validate_command(CLI::App& app) {
   searchlight->add_option("--g", half_space->g, "Henyey-Greenstein g")->capture_default_str();
   searchlight->add_option("--eta", half_space->eta, "Relative index")->capture_default_str();
   searchlight->add_flag("--quick", half_space->quick, "1e5 photons, for tests");
-  searchlight->add_option("--threads", half_space->threads, "Threads (0: all)")
+  searchlight->add_option("--threads", half_space->threads, threads_help());
+  searchlight->add_option("--seed", half_space->seed, "Random seed, in [0, 2^63 - 1]")
       ->capture_default_str();
-  searchlight->add_option("--seed", half_space->seed, "Random seed")->capture_default_str();
   return [options, deon, half_space, searchlight] {
+    check_threads(deon->parsed() ? options->threads : half_space->threads, "--threads");
+    check_seed(deon->parsed() ? options->seed : half_space->seed, "--seed");
     OutputPlan plan;
     plan.output_directory("--out", deon->parsed() ? options->out : half_space->out);
     prepare_outputs(plan);
