@@ -78,7 +78,8 @@ Action add_render_command(CLI::App& app) {
   render->add_flag("--study", options->study,
                    "Error against run time: every method at increasing budgets against a "
                    "converged reference (holzschuch, many samples); writes render_study.csv, "
-                   "<scene>_error.png and <scene>_images.png into --out (a directory)");
+                   "<scene>_error.png and <scene>_images.png into --out (a directory); not with "
+                   "--method, --width, --height, --samples, --light-samples, --exposure, --gamma");
   render->add_flag("--quick", options->quick, "With --study: tiny images and budgets");
   render
       ->add_option("--method", options->method,
@@ -102,6 +103,12 @@ Action add_render_command(CLI::App& app) {
   render->add_option("--exposure", options->exposure, "PNG exposure in stops")
       ->capture_default_str();
   render->add_option("--gamma", options->gamma, "PNG gamma")->capture_default_str();
+  // The study chooses its own methods, sizes, budgets and plots: these would be ignored.
+  CLI::Option* study = render->get_option("--study");
+  for (const char* flag : {"--method", "--width", "--height", "--samples", "--light-samples",
+                           "--exposure", "--gamma"}) {
+    study->excludes(render->get_option(flag));
+  }
   return [options, out_option] {
     const RenderOptions& o = *options;
     if (o.study) return run_study(o, out_option->count() > 0 ? o.out : "render-study");

@@ -159,8 +159,11 @@ Action add_validate_command(CLI::App& app) {
       "Grosjean (d'Eon & Irving 2011); error table, CSV and PNG plots");
   deon->add_option("--out", options->out, "Directory for the CSV and PNG files (created if missing)")
       ->capture_default_str();
-  deon->add_option("--photons", options->photons, "Photons per albedo")->capture_default_str();
-  deon->add_flag("--quick", options->quick, "2e4 photons per albedo, for tests");
+  CLI::Option* deon_photons =
+      deon->add_option("--photons", options->photons, "Photons per albedo")->capture_default_str();
+  // --quick sets the photons: both would be a silent choice.
+  deon->add_flag("--quick", options->quick, "2e4 photons per albedo, for tests; not with --photons")
+      ->excludes(deon_photons);
   deon->add_option("--threads", options->threads, threads_help());
   deon->add_option("--seed", options->seed, "Random seed, in [0, 2^63 - 1]")->capture_default_str();
   auto half_space = std::make_shared<SearchlightValidateOptions>();
@@ -172,11 +175,13 @@ Action add_validate_command(CLI::App& app) {
       "Grosjean beam (R_d(r), phi(r, z); linear, log, sqrt and r R plots)");
   searchlight->add_option("--out", half_space->out, "Directory for the CSV and PNG files")
       ->capture_default_str();
-  searchlight->add_option("--photons", half_space->photons, "Photons")->capture_default_str();
+  CLI::Option* searchlight_photons =
+      searchlight->add_option("--photons", half_space->photons, "Photons")->capture_default_str();
   searchlight->add_option("--albedo", half_space->albedo, "Albedo")->capture_default_str();
   searchlight->add_option("--g", half_space->g, "Henyey-Greenstein g")->capture_default_str();
   searchlight->add_option("--eta", half_space->eta, "Relative index")->capture_default_str();
-  searchlight->add_flag("--quick", half_space->quick, "1e5 photons, for tests");
+  searchlight->add_flag("--quick", half_space->quick, "1e5 photons, for tests; not with --photons")
+      ->excludes(searchlight_photons);
   searchlight->add_option("--threads", half_space->threads, threads_help());
   searchlight->add_option("--seed", half_space->seed, "Random seed, in [0, 2^63 - 1]")
       ->capture_default_str();

@@ -209,6 +209,11 @@ expect_refused "searchlight --model-fluence, scene without fluence" --model-flue
   searchlight --scene nofluence.toml "${tiny[@]}" --model-fluence --out t.h5
 expect_refused "simulate --out with --out-dir" --out-dir \
   simulate "${tiny[@]}" --out t.h5 --out-dir outdir
+expect_refused "validate deon --quick --photons" --quick validate deon --quick --photons 1e5 --out vd
+expect_refused "validate searchlight --quick --photons" --quick \
+  validate searchlight --quick --photons 1e5 --out vs
+expect_refused "render --study --method" --method render --study --quick --method walter --out study
+expect_refused "render --study --width" --width render --study --quick --width 8 --out study
 
 if [ "$(cat notes.txt)" = "my notes" ]; then pass; else fail "notes.txt changed"; fi
 report hostile_values
