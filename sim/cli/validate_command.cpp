@@ -21,6 +21,9 @@
 namespace scatterlab::cli {
 namespace {
 
+// The albedos of validate deon, each run with its own seed, --seed + i.
+const std::vector<double> deon_albedos = {0.01, 0.1, 0.3, 0.5, 0.7, 0.9, 0.99};
+
 struct ValidateOptions {
   std::string out = "validate-deon";
   double photons = 1e6;  // a double so that 1e6 reads as in scene files
@@ -35,7 +38,7 @@ int run_deon(const ValidateOptions& options) {
   settings.photons = options.quick ? 20'000 : photon_count(options.photons);
   settings.threads = options.threads;
   settings.seed = options.seed;
-  const std::vector<double> albedos = {0.01, 0.1, 0.3, 0.5, 0.7, 0.9, 0.99};
+  const std::vector<double>& albedos = deon_albedos;
   std::vector<PointSourceComparison> comparisons;
   for (std::size_t i = 0; i < albedos.size(); ++i) {
     // A seed per albedo: with one seed the albedos share their first flights, and a fluctuation
@@ -165,7 +168,9 @@ Action add_validate_command(CLI::App& app) {
   deon->add_flag("--quick", options->quick, "2e4 photons per albedo, for tests; not with --photons")
       ->excludes(deon_photons);
   deon->add_option("--threads", options->threads, threads_help());
-  deon->add_option("--seed", options->seed, "Random seed, in [0, 2^63 - 1]")->capture_default_str();
+  deon->add_option("--seed", options->seed,
+                   "Random seed of the first albedo (the next take the next seeds), in [0, 2^63 - 7]")
+      ->capture_default_str();
   auto half_space = std::make_shared<SearchlightValidateOptions>();
   CLI::App* searchlight = validate->add_subcommand(
       "searchlight",
@@ -187,7 +192,11 @@ Action add_validate_command(CLI::App& app) {
       ->capture_default_str();
   return [options, deon, half_space, searchlight] {
     check_threads(deon->parsed() ? options->threads : half_space->threads, "--threads");
-    check_seed(deon->parsed() ? options->seed : half_space->seed, "--seed");
+    if (deon->parsed()) {
+      check_seed(options->seed, "--seed", deon_albedos.size());  // a seed per albedo
+    } else {
+      check_seed(half_space->seed, "--seed");
+    }
     OutputPlan plan;
     plan.output_directory("--out", deon->parsed() ? options->out : half_space->out);
     prepare_outputs(plan);

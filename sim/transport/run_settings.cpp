@@ -49,9 +49,17 @@ void check_threads(int threads, const std::string& field) {
   }
 }
 
-void check_seed(std::uint64_t seed, const std::string& field) {
-  if (seed > max_seed) {
-    throw InputError(field, fmt::format("got {}", seed), std::string(seed_accepted));
+void check_seed(std::uint64_t seed, const std::string& field, std::uint64_t count) {
+  if (count <= 1) {
+    if (seed > max_seed) throw InputError(field, fmt::format("got {}", seed), std::string(seed_accepted));
+    return;
+  }
+  const std::uint64_t highest = max_seed - (count - 1);
+  if (seed > highest) {
+    throw InputError(field, fmt::format("got {}", seed),
+                     fmt::format("an integer in [0, {}]: the command runs {} seeds from it upward, "
+                                 "each in [0, 2^63 - 1]",
+                                 highest, count));
   }
 }
 

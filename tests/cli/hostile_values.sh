@@ -177,6 +177,10 @@ expect_refused "searchlight --seed 2^63" --seed \
 expect_refused "render --seed 2^63" --seed render render.toml --seed 9223372036854775808 --out t.exr
 expect_refused "validate deon --seed 2^63" --seed \
   validate deon --quick --seed 9223372036854775808 --out vd
+expect_refused "validate deon --seed 2^63 - 1 (7 seeds from it)" --seed \
+  validate deon --quick --seed 9223372036854775807 --out vd
+expect_refused "report --seed 2^63 - 1 (seeds from it upward)" --seed \
+  report --quick --seed 9223372036854775807 --out rep
 expect_refused "report --seed -1" --seed report --quick --seed -1 --out rep
 expect_refused "scene run.seed = -1" run.seed simulate --scene seed.toml "${tiny[@]}" --out t.h5
 # The same range, in the same words, from the flag and from the key.

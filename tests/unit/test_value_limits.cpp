@@ -81,6 +81,9 @@ TEST(ValueLimits, SeedsAreWhatATomlIntegerHolds) {
   EXPECT_EQ(field_of([] { check_seed(max_seed + 1, "--seed"); }), "--seed");
   EXPECT_EQ(field_of([] { check_seed(std::numeric_limits<std::uint64_t>::max(), "--seed"); }),
             "--seed");
+  // A command running 7 seeds from --seed upward: the last must be in range too.
+  EXPECT_EQ(field_of([] { check_seed(max_seed - 6, "--seed", 7); }), "");
+  EXPECT_EQ(field_of([] { check_seed(max_seed - 5, "--seed", 7); }), "--seed");
 }
 
 TEST(ValueLimits, GridsWhoseBinsUnderflowOrOverflowAreRefused) {

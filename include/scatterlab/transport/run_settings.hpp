@@ -41,7 +41,9 @@ inline constexpr std::uint64_t max_seed = (std::uint64_t{1} << 63) - 1;
 inline constexpr std::string_view seed_accepted = "an integer in [0, 2^63 - 1]";
 
 // The one check of a seed, from any flag or key: throws InputError naming `field` above max_seed.
-void check_seed(std::uint64_t seed, const std::string& field);
+// A command that runs `count` seeds from `seed` upward (validate deon, report) needs all of them
+// in range, and says so.
+void check_seed(std::uint64_t seed, const std::string& field, std::uint64_t count = 1);
 
 // A run's identity for checkpoints, resumes and skipped sweep points: a 64-bit FNV-1a hash
 // (Fowler, Noll, Vo) of a canonical text of everything that shapes its tallies, as 16 hex
