@@ -37,7 +37,9 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
   command->add_option("--out", options->out, "Directory to write (created if missing)")
       ->capture_default_str();
   command->add_option("--threads", options->profile.threads, threads_help());
-  command->add_option("--seed", options->profile.seed, "Seed of the first run (the next runs take the next seeds), in [0, 2^63 - 2^20]")
+  command
+      ->add_option("--seed", options->profile.seed,
+                   "Seed of the first run (the next runs take the next seeds), in [0, 2^63 - 2^20]")
       ->capture_default_str();
 
   // Each section by its id (its CSV stem), in the order of the report.

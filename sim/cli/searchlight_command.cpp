@@ -176,7 +176,10 @@ Action add_searchlight_command(CLI::App& app, const std::string& command_line, W
       "to HDF5. Without flags: albedo 0.99, g 0, eta 1.3, normal incidence.");
   auto o = std::make_shared<SearchlightOptions>();
   command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  command->add_option("--scene", o->scene, "TOML scene file, a regular file of at most 1 MiB (see data/scenes/searchlight.toml)")
+  command
+      ->add_option("--scene", o->scene,
+                   "TOML scene file, a regular file of at most 1 MiB (see "
+                   "data/scenes/searchlight.toml)")
       ->check(scene_file());
   command->add_option("--out", o->out, "Output HDF5 file [searchlight.h5]");
   command->add_option("--albedo", o->albedo, "Single-scattering albedo in [0, 1] [0.99]");

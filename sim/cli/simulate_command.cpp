@@ -280,7 +280,10 @@ Action add_simulate_command(CLI::App& app, const std::string& command_line, Worl
   auto o = std::make_shared<SimulateOptions>();
   // As in most Unix tools, a repeated flag takes its last value (scripts append overrides).
   command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  command->add_option("--scene", o->scene, "TOML scene file, a regular file of at most 1 MiB (see data/scenes/paper-beam.toml)")
+  command
+      ->add_option("--scene", o->scene,
+                   "TOML scene file, a regular file of at most 1 MiB (see "
+                   "data/scenes/paper-beam.toml)")
       ->check(scene_file());
   CLI::Option* out = command->add_option("--out", o->out, "Output HDF5 file [scatterlab.h5]");
   command

@@ -165,11 +165,13 @@ Action add_validate_command(CLI::App& app) {
   CLI::Option* deon_photons =
       deon->add_option("--photons", options->photons, "Photons per albedo")->capture_default_str();
   // --quick sets the photons: both would be a silent choice.
-  deon->add_flag("--quick", options->quick, "2e4 photons per albedo, for tests; not with --photons")
+  deon->add_flag("--quick", options->quick,
+                 "2e4 photons per albedo, for tests; not with --photons")
       ->excludes(deon_photons);
   deon->add_option("--threads", options->threads, threads_help());
   deon->add_option("--seed", options->seed,
-                   "Random seed of the first albedo (the next take the next seeds), in [0, 2^63 - 7]")
+                   "Random seed of the first albedo (the next take the next seeds), in "
+                   "[0, 2^63 - 7]")
       ->capture_default_str();
   auto half_space = std::make_shared<SearchlightValidateOptions>();
   CLI::App* searchlight = validate->add_subcommand(

@@ -367,7 +367,8 @@ std::string tally_text(const TallySummary& tally) {
 
 void check_finite_tally(const std::string& name, const std::vector<double>& mean,
                         const std::vector<double>& stderr_of_mean) {
-  for (const auto& [values, what] : {std::pair{&mean, "mean"}, std::pair{&stderr_of_mean, "stderr"}}) {
+  for (const auto& [values, what] :
+       {std::pair{&mean, "mean"}, std::pair{&stderr_of_mean, "stderr"}}) {
     for (std::size_t i = 0; i < values->size(); ++i) {
       if (!std::isfinite((*values)[i])) {
         throw std::runtime_error(fmt::format(

@@ -33,8 +33,9 @@ int max_threads() {
 }
 
 std::string threads_accepted() {
-  return fmt::format("an integer in [0, {}] (0: all hardware threads; at most 4 per hardware thread)",
-                     max_threads());
+  return fmt::format(
+      "an integer in [0, {}] (0: all hardware threads; at most 4 per hardware thread)",
+      max_threads());
 }
 
 void check_threads(int threads, const std::string& field) {
@@ -51,7 +52,9 @@ void check_threads(int threads, const std::string& field) {
 
 void check_seed(std::uint64_t seed, const std::string& field, std::uint64_t count) {
   if (count <= 1) {
-    if (seed > max_seed) throw InputError(field, fmt::format("got {}", seed), std::string(seed_accepted));
+    if (seed > max_seed) {
+      throw InputError(field, fmt::format("got {}", seed), std::string(seed_accepted));
+    }
     return;
   }
   const std::uint64_t highest = max_seed - (count - 1);

@@ -23,9 +23,9 @@ struct RunSettings {
 // is the scene's call.
 void check_run_settings(const RunSettings& run);
 
-// The most threads any command may ask for: 4 per hardware thread (std::thread::hardware_concurrency,
-// taken as 1 when unknown). More only shares the same cores, and a count far above it (100000)
-// exhausts the process's stacks before a photon runs.
+// The most threads any command may ask for: 4 per hardware thread
+// (std::thread::hardware_concurrency, taken as 1 when unknown). More only shares the same cores,
+// and a count far above it (100000) exhausts the process's stacks before a photon runs.
 int max_threads();
 
 // What every command accepts for a thread count, for its help text and errors.
