@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "prepare_outputs.hpp"
+#include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/fit/field_table.hpp"
 #include "scatterlab/fit/lobe_fits_file.hpp"
@@ -53,8 +54,7 @@ Action add_fit_command(CLI::App& app) {
   command->add_option("--csv", options->csv,
                       "Summary CSV path [default: FILE without .h5 + -fits.csv; for a directory "
                       "DIR/fits-table.csv]");
-  command->add_option("--threads", options->threads, "Threads (0: all cores)")
-      ->capture_default_str();
+  command->add_option("--threads", options->threads, threads_help());
   command
       ->add_option("--quadrature", options->quadrature,
                    "Gauss-Legendre points per angular bin and axis that average a model over "
@@ -62,7 +62,7 @@ Action add_fit_command(CLI::App& app) {
       ->capture_default_str();
   return [options] {
     const std::vector<fit::LobeModel> models = fit::parse_lobe_models(options->models);
-    if (options->threads < 0) throw InputError("threads", "negative", "0 (all cores) or more");
+    check_threads(options->threads, "--threads");
     if (options->quadrature < 1 || options->quadrature > 8) {
       throw InputError("quadrature", std::to_string(options->quadrature), "an integer in [1, 8]");
     }

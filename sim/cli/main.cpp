@@ -2,11 +2,13 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <exception>
 #include <memory>
 #include <string>
 
 #include "commands.hpp"
+#include "value_checks.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/parallel/world.hpp"
 
@@ -37,12 +39,20 @@ int main(int argc, char** argv) {
   const auto report = scatterlab::cli::add_report_command(app, command_line);
   const auto render = scatterlab::cli::add_render_command(app);
   const auto invert = scatterlab::cli::add_invert_command(app);
+  scatterlab::cli::check_numeric_values(app);
 
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (!world->is_root()) return e.get_exit_code();
-    return app.exit(e);
+    // --help and --version: CLI11 prints them, with status 0.
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) {
+      return world->is_root() ? app.exit(e) : 0;
+    }
+    // Anything else is bad input, reported as every other: one line naming the flag, status 2.
+    std::string message = e.what();
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    if (world->is_root()) fmt::print(stderr, "scatterlab: error: {} (see --help)\n", message);
+    return 2;
   }
   try {
     if (app.got_subcommand("simulate")) return simulate();

@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "prepare_outputs.hpp"
 #include "progress_bar.hpp"
+#include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/render/render_scene.hpp"
@@ -33,8 +34,8 @@ struct RenderOptions {
 
 // `render --study`: the study itself lives in sim/render/render_study.cpp.
 int run_study(const RenderOptions& o, const std::filesystem::path& out_dir) {
-  if (o.threads < 0)
-    throw InputError("threads", fmt::format("got {}", o.threads), "an integer >= 0");
+  check_threads(o.threads, "--threads");
+  check_seed(o.seed, "--seed");
   const std::vector<std::string> paths =
       o.scenes.empty()
           ? std::vector<std::string>{"data/scenes/bumpy-sphere.toml", "data/scenes/tile.toml"}
@@ -77,7 +78,8 @@ Action add_render_command(CLI::App& app) {
   render->add_flag("--study", options->study,
                    "Error against run time: every method at increasing budgets against a "
                    "converged reference (holzschuch, many samples); writes render_study.csv, "
-                   "<scene>_error.png and <scene>_images.png into --out (a directory)");
+                   "<scene>_error.png and <scene>_images.png into --out (a directory); not with "
+                   "--method, --width, --height, --samples, --light-samples, --exposure, --gamma");
   render->add_flag("--quick", options->quick, "With --study: tiny images and budgets");
   render
       ->add_option("--method", options->method,
@@ -90,8 +92,8 @@ Action add_render_command(CLI::App& app) {
                      "Samples per eye ray, per interval for holzschuch (default: the scene's)");
   render->add_option("--light-samples", options->light_samples,
                      "Points on a sphere light for the deterministic methods");
-  render->add_option("--threads", options->threads, "Threads (0: all)");
-  render->add_option("--seed", options->seed, "Random seed (pathtrace)");
+  render->add_option("--threads", options->threads, threads_help());
+  render->add_option("--seed", options->seed, "Random seed (pathtrace), in [0, 2^63 - 1]");
   CLI::Option* out_option =
       render
           ->add_option("--out", options->out,
@@ -101,6 +103,12 @@ Action add_render_command(CLI::App& app) {
   render->add_option("--exposure", options->exposure, "PNG exposure in stops")
       ->capture_default_str();
   render->add_option("--gamma", options->gamma, "PNG gamma")->capture_default_str();
+  // The study chooses its own methods, sizes, budgets and plots: these would be ignored.
+  CLI::Option* study = render->get_option("--study");
+  for (const char* flag : {"--method", "--width", "--height", "--samples", "--light-samples",
+                           "--exposure", "--gamma"}) {
+    study->excludes(render->get_option(flag));
+  }
   return [options, out_option] {
     const RenderOptions& o = *options;
     if (o.study) return run_study(o, out_option->count() > 0 ? o.out : "render-study");
@@ -123,8 +131,8 @@ Action add_render_command(CLI::App& app) {
     if (o.height > 0) scene.height = o.height;
     if (o.samples > 0) scene.samples = o.samples;
     if (o.light_samples > 0) scene.light_samples = o.light_samples;
-    if (o.threads < 0)
-      throw InputError("threads", fmt::format("got {}", o.threads), "an integer >= 0");
+    check_threads(o.threads, "--threads");
+    check_seed(o.seed, "--seed");
     if (!(o.gamma > 0.0)) throw InputError("gamma", fmt::format("got {}", o.gamma), "a number > 0");
     settings.threads = o.threads;
     settings.seed = o.seed;

@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "prepare_outputs.hpp"
+#include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/report/report_writer.hpp"
 #include "scatterlab/report/suites.hpp"
@@ -35,9 +36,10 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
   command->add_flag("--quick", options->quick, "Small budgets, for the test suite (minutes)");
   command->add_option("--out", options->out, "Directory to write (created if missing)")
       ->capture_default_str();
-  command->add_option("--threads", options->profile.threads, "Threads (0: all)")
-      ->check(CLI::NonNegativeNumber);
-  command->add_option("--seed", options->profile.seed, "Seed of the first run")
+  command->add_option("--threads", options->profile.threads, threads_help());
+  command
+      ->add_option("--seed", options->profile.seed,
+                   "Seed of the first run (the next runs take the next seeds), in [0, 2^63 - 2^20]")
       ->capture_default_str();
 
   // Each section by its id (its CSV stem), in the order of the report.
@@ -59,6 +61,9 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
 
   return [options, command_line, suites, names] {
     options->profile.quick = options->quick;
+    check_threads(options->profile.threads, "--threads");
+    // The sections run seeds from --seed upward (one per batch or cell), far fewer than 2^20.
+    check_seed(options->profile.seed, "--seed", std::uint64_t{1} << 20);
     for (const std::string& wanted : options->sections) {
       bool known = false;
       for (const auto& entry : *suites) known |= entry.first == wanted;

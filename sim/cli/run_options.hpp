@@ -21,7 +21,11 @@ struct RunOptions {
 // Registers the flags, read into `options`; `default_photons` is the help text's default ("1e8").
 void add_run_options(CLI::App& command, RunOptions& options, const std::string& default_photons);
 
-// The flags given on the command line override `run`; throws InputError for a bad photon count.
+// The help text of every command's --threads: the bound and what 0 means (run_settings.hpp).
+std::string threads_help();
+
+// The flags given on the command line override `run`; throws InputError for a bad photon count,
+// and for a seed or thread count out of range, naming the flag (the same checks as the scene's).
 void apply_run_options(const CLI::App& command, const RunOptions& options, RunSettings& run);
 
 }  // namespace scatterlab::cli

@@ -13,6 +13,7 @@
 #include "prepare_outputs.hpp"
 #include "progress_bar.hpp"
 #include "run_options.hpp"
+#include "value_checks.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/output_plan.hpp"
 #include "scatterlab/io/scene.hpp"
@@ -118,6 +119,13 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
   if (given("--theta-bins")) spec.grid.theta_o.bins = o.theta_bins;
   if (given("--no-fluence")) spec.tallies.fluence = false;
   spec.validate();
+  // The models' phi(r, z) goes beside the Monte Carlo's: without it there is nothing to model.
+  if (o.model_fluence && !spec.tallies.fluence) {
+    throw InputError("--model-fluence",
+                     given("--no-fluence") ? "given with --no-fluence"
+                                           : "given with the scene's tallies.fluence = false",
+                     "--model-fluence with the fluence tally on (no --no-fluence)");
+  }
 
   const std::string path = given("--out") ? o.out : scene.output_path.value_or("searchlight.h5");
   OutputPlan plan;
@@ -168,8 +176,11 @@ Action add_searchlight_command(CLI::App& app, const std::string& command_line, W
       "to HDF5. Without flags: albedo 0.99, g 0, eta 1.3, normal incidence.");
   auto o = std::make_shared<SearchlightOptions>();
   command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  command->add_option("--scene", o->scene, "TOML scene file (see data/scenes/searchlight.toml)")
-      ->check(CLI::ExistingFile);
+  command
+      ->add_option("--scene", o->scene,
+                   "TOML scene file, a regular file of at most 1 MiB (see "
+                   "data/scenes/searchlight.toml)")
+      ->check(scene_file());
   command->add_option("--out", o->out, "Output HDF5 file [searchlight.h5]");
   command->add_option("--albedo", o->albedo, "Single-scattering albedo in [0, 1] [0.99]");
   command->add_option("--g", o->g, "Henyey-Greenstein mean cosine, |g| < 1 [0]");
@@ -177,8 +188,8 @@ Action add_searchlight_command(CLI::App& app, const std::string& command_line, W
                       "Extinction coefficient in 1/length-unit (1 in mfp, the default unit) [1]");
   add_medium_options(*command, o->medium);
   command->add_option("--eta", o->eta,
-                      "Relative index n_medium / n_outside, > 0; 1 for no interface [1.3; a "
-                      "material's table value]");
+                      "Relative index n_medium / n_outside, in [0.1, 10]; 1 for no interface "
+                      "[1.3; a material's table value]");
   command->add_option("--incidence", o->incidence,
                       "Beam angle from the surface normal, degrees in [0, 90) [0]");
   add_run_options(*command, o->run, "1e7");
@@ -190,9 +201,10 @@ Action add_searchlight_command(CLI::App& app, const std::string& command_line, W
   command->add_option("--theta-bins", o->theta_bins, "Exit-angle bins over [0, pi/2] [18]");
   command->add_flag("--model-fluence", o->model_fluence,
                     "Also write each diffusion model's phi(r, z) under /models (about 1 ms per "
-                    "cell and model: a minute on the default grid)");
+                    "cell and model: a minute on the default grid); not with --no-fluence");
   command->add_flag("--no-fluence", o->no_fluence,
-                    "Skip the fluence phi(r, z) (its bin lookup costs time at every event)");
+                    "Skip the fluence phi(r, z) (its bin lookup costs time at every event); not "
+                    "with --model-fluence");
   const auto long_run = add_long_run_options(*command);
   return [command, o, long_run, command_line, &world] {
     return run_searchlight_command(*command, *o, *long_run, command_line, world);

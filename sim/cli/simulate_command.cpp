@@ -15,6 +15,7 @@
 #include "prepare_outputs.hpp"
 #include "progress_bar.hpp"
 #include "run_options.hpp"
+#include "value_checks.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/output_plan.hpp"
 #include "scatterlab/io/scene.hpp"
@@ -279,13 +280,18 @@ Action add_simulate_command(CLI::App& app, const std::string& command_line, Worl
   auto o = std::make_shared<SimulateOptions>();
   // As in most Unix tools, a repeated flag takes its last value (scripts append overrides).
   command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  command->add_option("--scene", o->scene, "TOML scene file (see data/scenes/paper-beam.toml)")
-      ->check(CLI::ExistingFile);
-  command->add_option("--out", o->out, "Output HDF5 file [scatterlab.h5]");
-  command->add_option("--out-dir", o->out_dir,
-                      "Directory for the output: needed for a sweep (a scene whose keys hold "
-                      "lists of values), one file per combination named from its values; done "
-                      "combinations are skipped");
+  command
+      ->add_option("--scene", o->scene,
+                   "TOML scene file, a regular file of at most 1 MiB (see "
+                   "data/scenes/paper-beam.toml)")
+      ->check(scene_file());
+  CLI::Option* out = command->add_option("--out", o->out, "Output HDF5 file [scatterlab.h5]");
+  command
+      ->add_option("--out-dir", o->out_dir,
+                   "Directory for the output: needed for a sweep (a scene whose keys hold lists "
+                   "of values), one file per combination named from its values; done "
+                   "combinations are skipped. Not with --out")
+      ->excludes(out);
   command->add_option("--source", o->source, "Source: beam (along +z) or point (isotropic)")
       ->check(CLI::IsMember({"beam", "point"}));
   command->add_option("--albedo", o->albedo, "Single-scattering albedo in [0, 1] [0.5]");

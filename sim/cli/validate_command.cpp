@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "prepare_outputs.hpp"
+#include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/validate/half_space_comparison.hpp"
@@ -19,6 +20,9 @@
 
 namespace scatterlab::cli {
 namespace {
+
+// The albedos of validate deon, each run with its own seed, --seed + i.
+const std::vector<double> deon_albedos = {0.01, 0.1, 0.3, 0.5, 0.7, 0.9, 0.99};
 
 struct ValidateOptions {
   std::string out = "validate-deon";
@@ -34,8 +38,7 @@ int run_deon(const ValidateOptions& options) {
   settings.photons = options.quick ? 20'000 : photon_count(options.photons);
   settings.threads = options.threads;
   settings.seed = options.seed;
-  if (options.threads < 0) throw InputError("threads", "negative", "0 (all) or a positive count");
-  const std::vector<double> albedos = {0.01, 0.1, 0.3, 0.5, 0.7, 0.9, 0.99};
+  const std::vector<double>& albedos = deon_albedos;
   std::vector<PointSourceComparison> comparisons;
   for (std::size_t i = 0; i < albedos.size(); ++i) {
     // A seed per albedo: with one seed the albedos share their first flights, and a fluctuation
@@ -159,11 +162,17 @@ Action add_validate_command(CLI::App& app) {
       "Grosjean (d'Eon & Irving 2011); error table, CSV and PNG plots");
   deon->add_option("--out", options->out, "Directory for the CSV and PNG files (created if missing)")
       ->capture_default_str();
-  deon->add_option("--photons", options->photons, "Photons per albedo")->capture_default_str();
-  deon->add_flag("--quick", options->quick, "2e4 photons per albedo, for tests");
-  deon->add_option("--threads", options->threads, "Threads (0: all hardware threads)")
+  CLI::Option* deon_photons =
+      deon->add_option("--photons", options->photons, "Photons per albedo")->capture_default_str();
+  // --quick sets the photons: both would be a silent choice.
+  deon->add_flag("--quick", options->quick,
+                 "2e4 photons per albedo, for tests; not with --photons")
+      ->excludes(deon_photons);
+  deon->add_option("--threads", options->threads, threads_help());
+  deon->add_option("--seed", options->seed,
+                   "Random seed of the first albedo (the next take the next seeds), in "
+                   "[0, 2^63 - 7]")
       ->capture_default_str();
-  deon->add_option("--seed", options->seed, "Random seed")->capture_default_str();
   auto half_space = std::make_shared<SearchlightValidateOptions>();
   CLI::App* searchlight = validate->add_subcommand(
       "searchlight",
@@ -173,15 +182,23 @@ Action add_validate_command(CLI::App& app) {
       "Grosjean beam (R_d(r), phi(r, z); linear, log, sqrt and r R plots)");
   searchlight->add_option("--out", half_space->out, "Directory for the CSV and PNG files")
       ->capture_default_str();
-  searchlight->add_option("--photons", half_space->photons, "Photons")->capture_default_str();
+  CLI::Option* searchlight_photons =
+      searchlight->add_option("--photons", half_space->photons, "Photons")->capture_default_str();
   searchlight->add_option("--albedo", half_space->albedo, "Albedo")->capture_default_str();
   searchlight->add_option("--g", half_space->g, "Henyey-Greenstein g")->capture_default_str();
   searchlight->add_option("--eta", half_space->eta, "Relative index")->capture_default_str();
-  searchlight->add_flag("--quick", half_space->quick, "1e5 photons, for tests");
-  searchlight->add_option("--threads", half_space->threads, "Threads (0: all)")
+  searchlight->add_flag("--quick", half_space->quick, "1e5 photons, for tests; not with --photons")
+      ->excludes(searchlight_photons);
+  searchlight->add_option("--threads", half_space->threads, threads_help());
+  searchlight->add_option("--seed", half_space->seed, "Random seed, in [0, 2^63 - 1]")
       ->capture_default_str();
-  searchlight->add_option("--seed", half_space->seed, "Random seed")->capture_default_str();
   return [options, deon, half_space, searchlight] {
+    check_threads(deon->parsed() ? options->threads : half_space->threads, "--threads");
+    if (deon->parsed()) {
+      check_seed(options->seed, "--seed", deon_albedos.size());  // a seed per albedo
+    } else {
+      check_seed(half_space->seed, "--seed");
+    }
     OutputPlan plan;
     plan.output_directory("--out", deon->parsed() ? options->out : half_space->out);
     prepare_outputs(plan);

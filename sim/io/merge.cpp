@@ -262,6 +262,7 @@ MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs
         mean.values[i] = pooled[i].mean;
         error[i] = pooled[i].standard_error();
       }
+      check_finite_tally(name, mean.values, error);
       for (const char* dataset : {"mean", "stderr"}) {
         const hdf5::Dataset source = from.open_dataset(dataset);
         hdf5::Dataset target = node.write_dataset(

@@ -15,6 +15,7 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/material_presets.hpp"
 #include "scatterlab/io/toml_reader.hpp"
+#include "scatterlab/transport/run_settings.hpp"
 
 namespace scatterlab {
 namespace {
@@ -272,12 +273,12 @@ class SceneReader : public TomlReader {
                                                        "an integer in [2, run.photons]")) {
       run.batches = *batches;
     }
-    if (const auto seed =
-            integer_as<std::uint64_t>(table, "seed", path, 0, "an integer in [0, 2^63 - 1]")) {
+    // Seed and threads are held to their bounds by check_run_settings, after the flags are
+    // applied, with the same check as --seed and --threads (run_settings.hpp).
+    if (const auto seed = integer_as<std::uint64_t>(table, "seed", path, 0, seed_accepted)) {
       run.seed = *seed;
     }
-    if (const auto threads = integer_as<int>(table, "threads", path, 0,
-                                             "an integer >= 0 (0: all hardware threads)")) {
+    if (const auto threads = integer_as<int>(table, "threads", path, 0, threads_accepted())) {
       run.threads = *threads;
     }
     if (const auto radius =

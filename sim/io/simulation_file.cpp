@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include "scatterlab/core/error.hpp"
@@ -57,6 +58,7 @@ void check_tallies(const std::vector<TallyResult>& tallies) {
                                                       values, tally.mean.size(),
                                                       tally.stderr_of_mean.size()));
     }
+    check_finite_tally(tally.name, tally.mean, tally.stderr_of_mean);
   }
 }
 
@@ -368,6 +370,21 @@ std::string tally_text(const TallySummary& tally) {
 }
 
 }  // namespace
+
+void check_finite_tally(const std::string& name, const std::vector<double>& mean,
+                        const std::vector<double>& stderr_of_mean) {
+  for (const auto& [values, what] :
+       {std::pair{&mean, "mean"}, std::pair{&stderr_of_mean, "stderr"}}) {
+    for (std::size_t i = 0; i < values->size(); ++i) {
+      if (!std::isfinite((*values)[i])) {
+        throw std::runtime_error(fmt::format(
+            "tally '{}': {} of cell {} is {}; no file written (a grid or medium the validation "
+            "let through: please report it with the command line)",
+            name, what, i, (*values)[i]));
+      }
+    }
+  }
+}
 
 std::string iso8601_now() {
   const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());

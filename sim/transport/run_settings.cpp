@@ -1,6 +1,10 @@
 #include "scatterlab/transport/run_settings.hpp"
 
 #include <fmt/format.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <thread>
 
 #include "scatterlab/core/error.hpp"
 
@@ -15,13 +19,50 @@ void check_run_settings(const RunSettings& run) {
                      fmt::format("got {} with run.photons = {}", run.batches, run.photons),
                      "an integer in [2, run.photons] (a standard error needs at least 2 batches)");
   }
-  if (run.threads < 0) {
-    throw InputError("run.threads", fmt::format("got {}", run.threads),
-                     "an integer >= 0 (0: all hardware threads)");
-  }
+  check_seed(run.seed, "run.seed");
+  check_threads(run.threads, "run.threads");
   if (!(run.escape_radius > 0.0)) {
     throw InputError("run.escape_radius", fmt::format("got {}", run.escape_radius),
                      "a number > 0 (mfp), or inf");
+  }
+}
+
+int max_threads() {
+  const unsigned hardware = std::max(std::thread::hardware_concurrency(), 1u);
+  return static_cast<int>(std::min(4u * hardware, 1u << 20));
+}
+
+std::string threads_accepted() {
+  return fmt::format(
+      "an integer in [0, {}] (0: all hardware threads; at most 4 per hardware thread)",
+      max_threads());
+}
+
+void check_threads(int threads, const std::string& field) {
+  if (threads < 0 || threads > max_threads()) {
+    throw InputError(field, fmt::format("got {}", threads), threads_accepted());
+  }
+  if (threads == 0 && omp_get_max_threads() > max_threads()) {
+    throw InputError("OMP_NUM_THREADS",
+                     fmt::format("got {} (taken for {} 0)", omp_get_max_threads(), field),
+                     fmt::format("at most {} (4 per hardware thread), or a thread count in {}",
+                                 max_threads(), field));
+  }
+}
+
+void check_seed(std::uint64_t seed, const std::string& field, std::uint64_t count) {
+  if (count <= 1) {
+    if (seed > max_seed) {
+      throw InputError(field, fmt::format("got {}", seed), std::string(seed_accepted));
+    }
+    return;
+  }
+  const std::uint64_t highest = max_seed - (count - 1);
+  if (seed > highest) {
+    throw InputError(field, fmt::format("got {}", seed),
+                     fmt::format("an integer in [0, {}]: the command runs {} seeds from it upward, "
+                                 "each in [0, 2^63 - 1]",
+                                 highest, count));
   }
 }
 

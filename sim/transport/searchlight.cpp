@@ -37,9 +37,11 @@ void check_from_zero(const UniformAxis& axis, const std::string& name, const cha
   check_bins(axis, name);
 }
 
-void check_grid(const SearchlightGrid& grid) {
+void check_grid(const SearchlightGrid& grid, const Medium& medium) {
   check_from_zero(grid.r, "r", "the distance from the entry point");
   check_from_zero(grid.z, "z", "the surface");
+  check_length_axis_span(grid.r, "r", medium);
+  check_length_axis_span(grid.z, "z", medium);
   if (grid.theta_o.min != 0.0 || std::abs(grid.theta_o.max - 0.5 * std::numbers::pi) > 1e-12) {
     throw InputError("grid.theta_o",
                      fmt::format("spans [{}, {}]", grid.theta_o.min, grid.theta_o.max),
@@ -48,8 +50,10 @@ void check_grid(const SearchlightGrid& grid) {
   check_bins(grid.theta_o, "theta_o");
 }
 
-void check_run(const RunSettings& run, double albedo) {
+void check_run(const RunSettings& run, const Medium& medium) {
   check_run_settings(run);
+  check_escape_radius_span(run.escape_radius, medium);
+  const double albedo = medium.albedo;
   // With albedo 1 every photon leaves in the end (its depth is a recurrent 1-D walk), but the
   // number of events before it does has infinite mean, so a run would have no bounded cost.
   if (albedo == 1.0 && !std::isfinite(run.escape_radius)) {
@@ -129,16 +133,18 @@ std::vector<TallyDeclaration> declare_tallies(const SearchlightSpec& spec, doubl
 void SearchlightSpec::validate() const {
   medium.validate();
   check_length_unit(medium);
-  if (!(eta > 0.0) || !std::isfinite(eta)) {
+  // Real interfaces stay well inside (water 1.33, diamond 2.42, germanium 4 in the infrared);
+  // far outside, the Fresnel terms round to 0/0 and every tally to NaN (eta = 1e300).
+  if (!(eta >= min_eta && eta <= max_eta)) {
     throw InputError("surface.eta", got(eta),
-                     "a finite number > 0 (n_medium / n_outside; 1 for no interface)");
+                     "a number in [0.1, 10] (n_medium / n_outside; 1 for no interface)");
   }
   if (!(incidence_deg >= 0.0 && incidence_deg < 90.0)) {
     throw InputError("source.incidence_deg", got(incidence_deg),
                      "an angle in [0, 90) degrees from the surface normal");
   }
-  check_grid(grid);
-  check_run(run, medium.albedo);
+  check_grid(grid, medium);
+  check_run(run, medium);
 }
 
 std::string fingerprint(const SearchlightSpec& spec) {

@@ -69,7 +69,7 @@ void check_angle_axis(const UniformAxis& axis, const std::string& name, double m
   check_bins(axis, name);
 }
 
-void check_grid(const Grid& grid, bool radiance_requested) {
+void check_grid(const Grid& grid, bool radiance_requested, const Medium& medium) {
   check_radial_axis(grid.r, "r");
 
   if (!std::isfinite(grid.z.min)) {
@@ -81,6 +81,8 @@ void check_grid(const Grid& grid, bool radiance_requested) {
                      "a finite number > grid.z.min (in medium.length_unit)");
   }
   check_bins(grid.z, "z");
+  check_length_axis_span(grid.r, "r", medium);
+  check_length_axis_span(grid.z, "z", medium);
 
   check_angle_axis(grid.theta, "theta", std::numbers::pi, "pi (theta spans [0, pi])");
   if (grid.fold_phi) {
@@ -94,6 +96,7 @@ void check_grid(const Grid& grid, bool radiance_requested) {
     }
   }
   check_radial_axis(grid.rho, "rho");
+  check_length_axis_span(grid.rho, "rho", medium);
 
   if (radiance_requested) {
     // Each factor is at most 1e5 after check_bins, so the product fits in 64 bits.
@@ -131,6 +134,7 @@ void check_tallies(const TallyRequest& tallies, SourceKind source) {
 
 void check_run(const RunSettings& run, const Medium& medium) {
   check_run_settings(run);
+  check_escape_radius_span(run.escape_radius, medium);
   if (medium.albedo == 1.0 && !std::isfinite(run.escape_radius)) {
     throw InputError("run.escape_radius",
                      "is infinite, but an infinite medium with albedo 1 never absorbs, so photons "
@@ -147,7 +151,7 @@ void SimulationSpec::validate() const {
     throw InputError("source.type", fmt::format("got code {}", static_cast<int>(source)),
                      "\"beam\" or \"point\"");
   }
-  check_grid(grid, tallies.radiance);
+  check_grid(grid, tallies.radiance, medium);
   check_tallies(tallies, source);
   check_run(run, medium);
 }

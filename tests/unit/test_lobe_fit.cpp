@@ -9,6 +9,9 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "../physics/lobe_fixtures.hpp"
 #include "scatterlab/core/error.hpp"
@@ -196,7 +199,6 @@ class LobeFitsFileTest : public ::testing::Test {
         lobe.mean.assign(grid.size(), 0.0);
         lobe.stderr_of_mean.assign(grid.size(), 0.0);
         if (bin == 4) lobe.mean[20] = 1.0, lobe.stderr_of_mean[20] = 1.0;
-        if (bin == 5) lobe.mean[5] = std::numeric_limits<double>::quiet_NaN();
       }
       radiance.mean.insert(radiance.mean.end(), lobe.mean.begin(), lobe.mean.end());
       radiance.stderr_of_mean.insert(radiance.stderr_of_mean.end(), lobe.stderr_of_mean.begin(),
@@ -208,6 +210,23 @@ class LobeFitsFileTest : public ::testing::Test {
     provenance.version = provenance.command = "test";
     provenance.created = "2024-01-01T00:00:00Z";
     write_simulation_file(path, spec, {radiance, flux}, provenance);
+    // The NaN goes in afterwards: the writer refuses one (check_finite_tally), but fit must cope
+    // with a file from elsewhere that holds one.
+    hdf5::File file = hdf5::File::open_read_write(path);
+    hdf5::Group tally = file.root().open_group("tallies/radiance");
+    hdf5::Array mean = tally.read_dataset("mean");
+    std::vector<std::pair<std::string, std::string>> attributes;
+    {
+      const hdf5::Dataset written = tally.open_dataset("mean");
+      for (const std::string& name : written.attribute_names()) {
+        attributes.emplace_back(name, written.read_string_attribute(name));
+      }
+    }
+    mean.values[5 * grid.size() + 5] = std::numeric_limits<double>::quiet_NaN();
+    tally.remove_member("mean");
+    hdf5::Dataset with_nan = tally.write_dataset("mean", mean.values, mean.shape);
+    for (const auto& [name, value] : attributes) with_nan.write_string_attribute(name, value);
+    file.close();
   }
 
   fit::LobeFitRun fit_file(int threads) {

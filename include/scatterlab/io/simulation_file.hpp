@@ -45,6 +45,12 @@ struct Provenance {
   int ranks = 1;
 };
 
+// The last guard before a tally reaches a file: throws std::runtime_error (exit status 1), naming
+// the tally, when a mean or standard error is NaN or infinite. Every writer of tallies calls it
+// before its file is created (write_simulation_file, write_searchlight_file, merge).
+void check_finite_tally(const std::string& name, const std::vector<double>& mean,
+                        const std::vector<double>& stderr_of_mean);
+
 // The current time as ISO 8601 UTC with second resolution: "YYYY-MM-DDTHH:MM:SSZ".
 std::string iso8601_now();
 

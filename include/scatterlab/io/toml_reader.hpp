@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/io/text_file.hpp"
 
 namespace scatterlab::toml_reading {
 
@@ -211,22 +212,9 @@ inline toml::table parse_toml(std::string_view toml_text, const std::string& ori
   }
 }
 
+// The scene file's text: a regular file of at most 1 MiB (io/text_file.hpp).
 inline std::string read_text(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  std::error_code code;
-  if (!std::filesystem::exists(path, code)) {
-    throw InputError("scene", fmt::format("'{}' does not exist", name), "a readable TOML file");
-  }
-  if (std::filesystem::is_directory(path, code)) {
-    throw InputError("scene", fmt::format("'{}' is a directory", name), "a readable TOML file");
-  }
-  std::ifstream in(path, std::ios::binary);
-  std::string text;
-  if (in) text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  if (!in.is_open() || in.bad()) {
-    throw InputError("scene", fmt::format("cannot read '{}'", name), "a readable TOML file");
-  }
-  return text;
+  return read_scene_file(path, "scene");
 }
 
 }  // namespace scatterlab::toml_reading

@@ -27,6 +27,22 @@ inline double mfp_per_length_unit(const Medium& medium) {
   return medium.length_unit == "mfp" ? 1.0 : medium.sigma_t;
 }
 
+// The span of a grid's length axes in mfp, so that every bin's width, ring area and shell volume,
+// and a tally divided by them, stay finite and non-zero doubles: ends within +-1e12 mfp, bins at
+// least 1e-12 mfp wide. (Past these, r.max = 1e-300 gives rings of zero area and NaN fluence, and
+// z in [-1e308, 1e308] bins of infinite width.)
+inline constexpr double max_grid_mfp = 1e12;
+inline constexpr double min_bin_mfp = 1e-12;
+
+// The one check of a length axis of any grid (r, z, rho), after its own (ends, bins): throws
+// InputError naming grid.<name>.min or grid.<name>.max, with the accepted range in the spec's unit,
+// unless the axis in mfp keeps to max_grid_mfp and min_bin_mfp.
+void check_length_axis_span(const UniformAxis& axis, const std::string& name, const Medium& medium);
+
+// A finite escape radius must stay finite in mfp: one that overflows would let photons of an
+// albedo-1 medium walk forever. Throws InputError naming run.escape_radius.
+void check_escape_radius_span(double escape_radius, const Medium& medium);
+
 // A length axis of the spec in mfp: its ends times `mfp_per_unit`, the same bins.
 UniformAxis length_axis_in_mfp(const UniformAxis& axis, double mfp_per_unit);
 

@@ -18,9 +18,32 @@ struct RunSettings {
   double escape_radius = std::numeric_limits<double>::infinity();
 };
 
-// Throws InputError ("run.photons", "run.batches", "run.threads", "run.escape_radius") for
-// settings no kernel can run; whether an infinite escape radius is allowed is the scene's call.
+// Throws InputError ("run.photons", "run.batches", "run.seed", "run.threads",
+// "run.escape_radius") for settings no kernel can run; whether an infinite escape radius is allowed
+// is the scene's call.
 void check_run_settings(const RunSettings& run);
+
+// The most threads any command may ask for: 4 per hardware thread
+// (std::thread::hardware_concurrency, taken as 1 when unknown). More only shares the same cores,
+// and a count far above it (100000) exhausts the process's stacks before a photon runs.
+int max_threads();
+
+// What every command accepts for a thread count, for its help text and errors.
+std::string threads_accepted();
+
+// The one check of a thread count, from any flag or key: throws InputError naming `field` unless
+// 0 <= threads <= max_threads(). 0 takes OpenMP's count (OMP_NUM_THREADS, else every hardware
+// thread), which is held to the same bound, naming OMP_NUM_THREADS.
+void check_threads(int threads, const std::string& field);
+
+// Seeds are what a scene file can hold (a TOML integer): [0, 2^63 - 1], on the command line too.
+inline constexpr std::uint64_t max_seed = (std::uint64_t{1} << 63) - 1;
+inline constexpr std::string_view seed_accepted = "an integer in [0, 2^63 - 1]";
+
+// The one check of a seed, from any flag or key: throws InputError naming `field` above max_seed.
+// A command that runs `count` seeds from `seed` upward (validate deon, report) needs all of them
+// in range, and says so.
+void check_seed(std::uint64_t seed, const std::string& field, std::uint64_t count = 1);
 
 // A run's identity for checkpoints, resumes and skipped sweep points: a 64-bit FNV-1a hash
 // (Fowler, Noll, Vo) of a canonical text of everything that shapes its tallies, as 16 hex

@@ -33,12 +33,16 @@ struct SearchlightTallies {
   bool fluence = true;
 };
 
+// The relative indices a searchlight accepts (SearchlightSpec::validate).
+inline constexpr double min_eta = 0.1;
+inline constexpr double max_eta = 10.0;
+
 struct SearchlightSpec {
   // Defaults: a nearly conservative isotropic medium (albedo 0.99, g = 0), the regime the
   // diffusion models are built for, behind the interface index 1.3 that Jensen et al. 2001 use
   // for all their measured materials.
   Medium medium{0.99, 1.0, 0.0, "mfp"};
-  double eta = 1.3;            // relative index n_medium / n_outside, > 0
+  double eta = 1.3;            // relative index n_medium / n_outside, in [min_eta, max_eta]
   double incidence_deg = 0.0;  // angle of the beam from the inward normal, in [0, 90)
   SearchlightGrid grid;
   SearchlightTallies tallies;
