@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Usage: hostile_values.sh SCATTERLAB SOURCE_DIR
-# Values no command may take silently (issue #14), each refused with one error naming the flag or
+# Values no command may take silently, each refused with one error naming the flag or
 # key and what is accepted, exit status 2, no hang, and every file that was there byte for byte
 # the same afterwards, with none added:
 #   threads beyond what the machine can honour (--threads, OMP_NUM_THREADS, run.threads),

@@ -1,4 +1,4 @@
-// The limits every command holds its values to, one check each (issue #14): thread counts and
+// The limits every command holds its values to, one check each: thread counts and
 // seeds (transport/run_settings.hpp), the span of a grid's length axes in mfp
 // (transport/length_units.hpp), scene files (io/text_file.hpp) and the last guard before a tally
 // reaches a file (io/simulation_file.hpp).
