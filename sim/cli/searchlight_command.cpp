@@ -13,7 +13,6 @@
 #include "prepare_outputs.hpp"
 #include "progress_bar.hpp"
 #include "run_options.hpp"
-#include "value_checks.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/output_plan.hpp"
 #include "scatterlab/io/scene.hpp"
@@ -21,6 +20,7 @@
 #include "scatterlab/models/chandrasekhar_h.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/validate/searchlight_models.hpp"
+#include "value_checks.hpp"
 
 namespace scatterlab::cli {
 namespace {
@@ -102,8 +102,8 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
                             World& world) {
   auto given = [&command](const char* flag) { return command.get_option(flag)->count() > 0; };
   SearchlightScene scene;
-  // Flags first, validation after, so that a flag can mend the scene.
-  if (given("--scene")) scene = load_searchlight_scene(o.scene, Validation::by_caller);
+  // The file valid on its own, then the flags over it, validated again below.
+  if (given("--scene")) scene = load_searchlight_scene(o.scene, Validation::on_read);
   SearchlightSpec& spec = scene.spec;
   const std::optional<double> material_eta = apply_medium_options(
       command, o.medium, o.albedo, o.g, o.sigma_t, scene.material, spec.medium, spec.material);

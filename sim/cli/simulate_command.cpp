@@ -15,13 +15,13 @@
 #include "prepare_outputs.hpp"
 #include "progress_bar.hpp"
 #include "run_options.hpp"
-#include "value_checks.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/output_plan.hpp"
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/parallel/world.hpp"
 #include "scatterlab/transport/simulate.hpp"
+#include "value_checks.hpp"
 
 namespace scatterlab::cli {
 namespace {
@@ -142,8 +142,9 @@ struct PlannedRun {
 std::vector<PlannedRun> plan_runs(CLI::App& command, const SimulateOptions& o,
                                   const LongRunOptions& long_run) {
   auto given = [&command](const char* flag) { return command.get_option(flag)->count() > 0; };
-  // Flags first, validation after (apply_flags), so that a flag can mend the scene.
-  std::vector<SweepPoint> points = given("--scene") ? load_sweep(o.scene, Validation::by_caller)
+  // Each point of the file valid on its own, then the flags over it, validated again
+  // (apply_flags).
+  std::vector<SweepPoint> points = given("--scene") ? load_sweep(o.scene, Validation::on_read)
                                                     : std::vector<SweepPoint>{SweepPoint{}};
   const bool sweep = points.size() > 1 || !points.front().label.empty();
   if (sweep && given("--out")) {

@@ -100,12 +100,23 @@ if [ $? -eq 2 ] && grep -q -- "--model" "$work/stderr" && grep -q "quantized_dif
 if "$exe" searchlight --scene "$source_dir/data/scenes/searchlight.toml" --photons 20000 --batches 8 \
   --out "$work/scene.h5" >/dev/null 2>&1 && "$exe" info "$work/scene.h5" | grep -q "eta *1.3"
 then pass; else fail "searchlight scene"; fi
-# Flags are applied before the scene is validated: a flag can mend what the file leaves invalid.
+# A scene file is valid on its own, before any flag: a flag cannot hide what the file gets wrong.
 printf '[medium]\nalbedo = 1\n' >"$work/conservative.toml"
-if "$exe" searchlight --scene "$work/conservative.toml" --escape-radius 5 --photons 2000 --batches 4 \
+expect_command_error searchlight scene_needs_radius run.escape_radius \
+  --scene "$work/conservative.toml" --escape-radius 5
+expect_command_error simulate scene_needs_radius_infinite run.escape_radius \
+  --scene "$work/conservative.toml" --escape-radius 5
+printf '[medium]\nalbedo = 1.5\n' >"$work/bad-albedo.toml"
+expect_command_error simulate flag_over_bad_key medium.albedo \
+  --scene "$work/bad-albedo.toml" --albedo 0.5
+# A valid file, and flags over it: validated again after them.
+printf '[medium]\nalbedo = 1\n[run]\nescape_radius = 5\n' >"$work/conservative.toml"
+if "$exe" searchlight --scene "$work/conservative.toml" --escape-radius 4 --photons 2000 --batches 4 \
   --no-fluence --out "$work/conservative-half.h5" >/dev/null 2>&1 &&
-  "$exe" simulate --scene "$work/conservative.toml" --escape-radius 5 --photons 2000 --batches 4 \
-    --out "$work/conservative.h5" >/dev/null 2>&1; then pass; else fail "flags mend a scene"; fi
+  "$exe" simulate --scene "$work/conservative.toml" --photons 2000 --batches 4 \
+    --out "$work/conservative.h5" >/dev/null 2>&1; then pass; else fail "complete scene"; fi
+expect_command_error simulate flag_breaks_scene "escape.radius" \
+  --scene "$work/conservative.toml" --escape-radius 0
 printf '[surface]\nindx = 1.3\n' >"$work/half-typo.toml"
 expect_searchlight_error searchlight_unknown_key surface.indx --scene "$work/half-typo.toml"
 expect_searchlight_error eta_zero surface.eta --eta 0

@@ -510,8 +510,9 @@ TEST(GeometryTable, NamesTheGeometryEachCommandRuns) {
   EXPECT_EQ(searchlight_field_of("[geometry]\neta = 1.3\n[surface]\neta = 1.4\n"), "surface.eta");
 }
 
-TEST(SceneValidation, ByTheCallerLeavesTheSpecForFlagsToMend) {
-  // Albedo 1 needs an escape radius, which the command line may give after reading.
+TEST(SceneValidation, ByTheCallerLeavesAPartialSpecToBeFilledIn) {
+  // Albedo 1 needs an escape radius, which code reading a partial scene may set after reading
+  // (the command line reads with on_read: its scene files must be valid on their own).
   EXPECT_EQ(field_of("[medium]\nalbedo = 1\n"), "run.escape_radius");
   Scene scene = parse_scene("[medium]\nalbedo = 1\n", "scene.toml", Validation::by_caller);
   EXPECT_THROW(scene.spec.validate(), InputError);

@@ -38,9 +38,9 @@
 
 namespace scatterlab {
 
-// Whether reading also validates the spec. The CLI reads with by_caller, applies its flags and
-// then validates, so that a flag can mend what the file alone leaves invalid (say
-// --escape-radius for a scene with albedo 1).
+// Whether reading also validates the spec. The CLI reads with on_read: a scene file must be valid
+// on its own, and flags override a valid file (then the result is validated again), never mend a
+// broken one. by_caller leaves a partial spec for code that fills it in before validating.
 enum class Validation { on_read, by_caller };
 
 struct Scene {
