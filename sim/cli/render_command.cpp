@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "commands.hpp"
@@ -86,19 +87,24 @@ Action add_render_command(CLI::App& app) {
                    "straight (Jensen 2001), walter (sample points), holzschuch (support "
                    "intervals) or pathtrace (Monte Carlo reference, needs light.radius > 0)")
       ->capture_default_str();
-  render->add_option("--width", options->width, "Image width in pixels (default: the scene's)");
-  render->add_option("--height", options->height, "Image height (default: the scene's)");
+  render->add_option("--width", options->width,
+                     "Image width in pixels, in [1, 16384] (default: the scene's)");
+  render->add_option("--height", options->height,
+                     "Image height in pixels, in [1, 16384] (default: the scene's)");
   render->add_option("--samples", options->samples,
-                     "Samples per eye ray, per interval for holzschuch (default: the scene's)");
-  render->add_option("--light-samples", options->light_samples,
-                     "Points on a sphere light for the deterministic methods");
+                     "Samples per eye ray, per interval for holzschuch, in [1, 2^20] (default: the "
+                     "scene's)");
+  render->add_option(
+      "--light-samples", options->light_samples,
+      "Points on a sphere light for the deterministic methods, in [1, 4096] (default: "
+      "the scene's)");
   render->add_option("--threads", options->threads, threads_help());
   render->add_option("--seed", options->seed, "Random seed (pathtrace), in [0, 2^63 - 1]");
   CLI::Option* out_option =
       render
           ->add_option("--out", options->out,
-                       "Output OpenEXR file; the PNG gets the same name (--study: the "
-                       "output directory, default render-study)")
+                       "Output OpenEXR file, NAME.exr; the PNG is written beside it as NAME.png "
+                       "(--study: the output directory, default render-study)")
           ->capture_default_str();
   render->add_option("--exposure", options->exposure, "PNG exposure in stops")
       ->capture_default_str();
@@ -109,7 +115,7 @@ Action add_render_command(CLI::App& app) {
                            "--exposure", "--gamma"}) {
     study->excludes(render->get_option(flag));
   }
-  return [options, out_option] {
+  return [options, out_option, render] {
     const RenderOptions& o = *options;
     if (o.study) return run_study(o, out_option->count() > 0 ? o.out : "render-study");
     if (o.quick) throw InputError("quick", "given without --study", "--quick with --study");
@@ -120,17 +126,20 @@ Action add_render_command(CLI::App& app) {
     RenderSettings settings;
     settings.method = parse_render_method(o.method);
     RenderScene scene = load_render_scene(o.scenes.front());
-    const auto at_least_one = [](int value, const char* name) {
-      if (value < 0) throw InputError(name, fmt::format("got {}", value), "an integer >= 1");
-    };
-    at_least_one(o.width, "width");
-    at_least_one(o.height, "height");
-    at_least_one(o.samples, "samples");
-    at_least_one(o.light_samples, "light-samples");
-    if (o.width > 0) scene.width = o.width;
-    if (o.height > 0) scene.height = o.height;
-    if (o.samples > 0) scene.samples = o.samples;
-    if (o.light_samples > 0) scene.light_samples = o.light_samples;
+    // A flag given overrides the scene's value, held to the same range (render_scene.hpp).
+    for (const auto& [flag, value, highest, target] :
+         {std::tuple{"--width", o.width, max_image_side, &scene.width},
+          std::tuple{"--height", o.height, max_image_side, &scene.height},
+          std::tuple{"--samples", o.samples, max_samples, &scene.samples},
+          std::tuple{"--light-samples", o.light_samples, max_light_samples,
+                     &scene.light_samples}}) {
+      if (render->get_option(flag)->count() == 0) continue;
+      if (value < 1 || value > highest) {
+        throw InputError(flag, fmt::format("got {}", value),
+                         fmt::format("an integer in [1, {}]", highest));
+      }
+      *target = value;
+    }
     check_threads(o.threads, "--threads");
     check_seed(o.seed, "--seed");
     if (!(o.gamma > 0.0)) throw InputError("gamma", fmt::format("got {}", o.gamma), "a number > 0");
@@ -148,6 +157,12 @@ Action add_render_command(CLI::App& app) {
     plan.output_file("--out", exr);
     plan.output_file("--out", png);  // the PNG beside the OpenEXR file
     prepare_outputs(plan);
+    // The image is written as OpenEXR under --out and as PNG beside it: a name that says another
+    // format would hold the wrong bytes.
+    if (exr.extension() != ".exr") {
+      throw InputError("--out", fmt::format("got '{}'", o.out),
+                       "a file name ending in .exr (the PNG is written beside it, as NAME.png)");
+    }
     { const AtomicOutput exr_check(exr), png_check(png); }
 
     ProgressBar bar("render " + o.method);

@@ -3,13 +3,50 @@
 #include <fmt/format.h>
 #include <tiny_obj_loader.h>
 
+#include <charconv>
 #include <cmath>
+#include <fstream>
 #include <map>
+#include <sstream>
+#include <string>
 #include <utility>
 
 #include "scatterlab/core/error.hpp"
 
 namespace scatterlab {
+
+namespace {
+
+// tinyobjloader reads a number it cannot parse ("nan", "inf", "1e999", "x") as 0, which would
+// move a vertex silently: every vertex line is read here first, and each of its coordinates must
+// be a finite decimal number.
+void check_vertex_lines(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  for (std::size_t number = 1; std::getline(in, line); ++number) {
+    std::istringstream fields(line);
+    std::string tag;
+    if (!(fields >> tag) || (tag != "v" && tag != "vn")) continue;
+    std::string text;
+    for (int c = 0; c < 3; ++c) {
+      double value = 0.0;
+      const bool read = static_cast<bool>(fields >> text);
+      const auto [end, error] =
+          read ? std::from_chars(text.data(), text.data() + text.size(), value)
+               : std::from_chars_result{text.data(), std::errc::invalid_argument};
+      if (!read || error != std::errc{} || end != text.data() + text.size() ||
+          !std::isfinite(value)) {
+        throw InputError(
+            "mesh.path",
+            fmt::format("'{}' line {}: coordinate {} of '{}' is {}", path.string(), number, c + 1,
+                        tag, read ? "'" + text + "', not finite" : "missing"),
+            "three finite decimal coordinates on every v and vn line");
+      }
+    }
+  }
+}
+
+}  // namespace
 
 TriangleMesh read_obj_mesh(const std::filesystem::path& path, bool interpolated_normals) {
   const std::string name = path.string();
@@ -18,6 +55,7 @@ TriangleMesh read_obj_mesh(const std::filesystem::path& path, bool interpolated_
     throw InputError("mesh.path", fmt::format("'{}' does not exist or is not a file", name),
                      "a readable Wavefront OBJ file");
   }
+  check_vertex_lines(path);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;

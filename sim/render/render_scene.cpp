@@ -3,10 +3,11 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <tuple>
 
-#include "scatterlab/io/toml_reader.hpp"
 #include "scatterlab/core/constants.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
+#include "scatterlab/io/toml_reader.hpp"
 #include "scatterlab/render/mesh_ray_tracer.hpp"
 #include "scatterlab/render/obj_mesh.hpp"
 
@@ -91,8 +92,9 @@ class RenderSceneReader : public TomlReader {
     }
     const bool smooth = normals == "interpolated";
     const double radius = positive(table, "radius", path, 1.0);
-    const auto rings = integer_as<int>(table, "rings", path, 3, "an integer in [3, 4096]");
-    const auto segments = integer_as<int>(table, "segments", path, 3, "an integer in [3, 4096]");
+    const auto rings = integer_as<int>(table, "rings", path, 3, "an integer in [3, 4096]", 4096);
+    const auto segments =
+        integer_as<int>(table, "segments", path, 3, "an integer in [3, 4096]", 4096);
     const Vec3 half = vec3(table, "half_size", path).value_or(Vec3(1.0, 1.0, 0.3));
     if (!(half.minCoeff() > 0.0)) {
       throw InputError("mesh.half_size", "not all > 0", "three finite numbers > 0");
@@ -108,7 +110,7 @@ class RenderSceneReader : public TomlReader {
                          "a number in [0, 0.5]");
       }
       const int frequency =
-          integer_as<int>(table, "frequency", path, 1, "an integer in [1, 64]").value_or(6);
+          integer_as<int>(table, "frequency", path, 1, "an integer in [1, 64]", 64).value_or(6);
       mesh = make_bumpy_sphere(radius, amplitude, frequency, rings.value_or(71),
                                segments.value_or(72));
       if (!smooth) mesh.normals.clear();
@@ -169,13 +171,16 @@ class RenderSceneReader : public TomlReader {
   void read_image(const toml::table& table, RenderScene& scene) const {
     const std::string path = "image";
     check_keys(table, path, {"width", "height", "samples", "light_samples"});
-    const std::string_view size = "an integer in [1, 16384]";
-    scene.width = integer_as<int>(table, "width", path, 1, size).value_or(scene.width);
-    scene.height = integer_as<int>(table, "height", path, 1, size).value_or(scene.height);
-    scene.samples =
-        integer_as<int>(table, "samples", path, 1, "an integer >= 1").value_or(scene.samples);
-    scene.light_samples = integer_as<int>(table, "light_samples", path, 1, "an integer >= 1")
-                              .value_or(scene.light_samples);
+    // The ranges of render_scene.hpp, as the flags that override these are held to.
+    const auto in_range = [&](std::string_view key, int highest, int fallback) {
+      return integer_as<int>(table, key, path, 1, fmt::format("an integer in [1, {}]", highest),
+                             highest)
+          .value_or(fallback);
+    };
+    scene.width = in_range("width", max_image_side, scene.width);
+    scene.height = in_range("height", max_image_side, scene.height);
+    scene.samples = in_range("samples", max_samples, scene.samples);
+    scene.light_samples = in_range("light_samples", max_light_samples, scene.light_samples);
   }
 
   std::filesystem::path base_;
@@ -225,6 +230,33 @@ void require_closed_mesh(const TriangleMesh& mesh) {
   }
 }
 
+void require_enclosed_volume(const TriangleMesh& mesh) {
+  // The mesh's extent sets the scale below which an area or a volume is round-off, not geometry.
+  Vec3 lowest = mesh.positions.front(), highest = lowest;
+  for (const Vec3& p : mesh.positions) {
+    lowest = lowest.cwiseMin(p);
+    highest = highest.cwiseMax(p);
+  }
+  const double extent = (highest - lowest).maxCoeff();
+  constexpr double relative = 1e-12;
+  // Divergence theorem: V = (1/6) sum over triangles of a . (b x c), exact for a closed mesh.
+  double six_volume = 0.0;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const Vec3 a = mesh.vertex(t, 0), b = mesh.vertex(t, 1), c = mesh.vertex(t, 2);
+    if (!((b - a).cross(c - a).norm() > relative * extent * extent)) {
+      throw InputError("mesh", fmt::format("triangle {} has zero area", t),
+                       "triangles whose three corners are distinct and not collinear");
+    }
+    six_volume += a.dot(b.cross(c));
+  }
+  if (!(six_volume > relative * extent * extent * extent)) {
+    throw InputError(
+        "mesh", fmt::format("encloses a volume of {:g} (extent {:g})", six_volume / 6.0, extent),
+        "a mesh enclosing a positive volume, counter-clockwise seen from outside (an inside-out "
+        "mesh has a negative one)");
+  }
+}
+
 TriangleMesh make_box(const Vec3& h) {
   TriangleMesh mesh;
   for (int k = 0; k < 8; ++k) {
@@ -248,10 +280,18 @@ void RenderScene::validate() const {
   if (!(eta > 0.0) || !std::isfinite(eta)) {
     throw InputError("medium.eta", fmt::format("got {}", eta), "a finite number > 0");
   }
-  if (width < 1 || height < 1 || samples < 1 || light_samples < 1) {
-    throw InputError("image", "width, height, samples and light_samples must be >= 1",
-                     "integers >= 1");
+  // A scene built in code reaches here without the reader's checks.
+  for (const auto& [name, value, highest] :
+       {std::tuple{"image.width", width, max_image_side},
+        std::tuple{"image.height", height, max_image_side},
+        std::tuple{"image.samples", samples, max_samples},
+        std::tuple{"image.light_samples", light_samples, max_light_samples}}) {
+    if (value < 1 || value > highest) {
+      throw InputError(name, fmt::format("got {}", value),
+                       fmt::format("an integer in [1, {}]", highest));
+    }
   }
+  require_enclosed_volume(mesh);
   const Vec3 forward = camera.look_at - camera.position;
   if (!(forward.norm() > 0.0) || !(forward.cross(camera.up).norm() > 1e-12 * forward.norm())) {
     throw InputError("camera", "look_at equals position, or up is parallel to the view",

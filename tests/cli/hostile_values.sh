@@ -219,5 +219,45 @@ expect_refused "validate searchlight --quick --photons" --quick \
 expect_refused "render --study --method" --method render --study --quick --method walter --out study
 expect_refused "render --study --width" --width render --study --quick --width 8 --out study
 
+# --- 7. render: meshes that enclose nothing, sizes outside their ranges, names of another format ---
+# mesh_scene NAME OBJ_TEXT: a render scene of the tile's settings on the mesh in NAME.obj.
+mesh_scene() {
+  printf '%b' "$2" >"$1.obj"
+  sed -e "s/tet.obj/$1.obj/" render.toml >"$1.toml"
+}
+tet_faces='f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n'
+mesh_scene nanvertex "v 0 0 0\nv nan 0 0\nv 0 1 0\nv 0 0 1\n$tet_faces"
+mesh_scene infvertex "v 0 0 0\nv 1 0 0\nv 0 inf 0\nv 0 0 1\n$tet_faces"
+mesh_scene flat "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n$tet_faces"
+mesh_scene insideout "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n"
+mesh_scene sliver "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0.5 0.5 0\n\
+f 1 3 5\nf 1 5 2\nf 2 5 3\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"
+rm -f t.exr t.png
+expect_refused "render: a NaN vertex" mesh render nanvertex.toml --out t.exr
+expect_refused "render: an infinite vertex" mesh render infvertex.toml --out t.exr
+expect_refused "render: a flat (zero-volume) mesh" mesh render flat.toml --out t.exr
+expect_refused "render: an inside-out mesh" mesh render insideout.toml --out t.exr
+expect_refused "render: a zero-area triangle" mesh render sliver.toml --out t.exr
+expect_refused "render --width 0" --width render render.toml --width 0 --out t.exr
+expect_refused "render --width 16385" --width render render.toml --width 16385 --out t.exr
+expect_refused "render --height -3" --height render render.toml --height -3 --out t.exr
+expect_refused "render --samples 2^20 + 1" --samples render render.toml --samples 1048577 --out t.exr
+expect_refused "render --light-samples 4097" --light-samples \
+  render render.toml --light-samples 4097 --out t.exr
+expect_refused "render --light-samples 0" --light-samples \
+  render render.toml --light-samples 0 --out t.exr
+sed -e 's/^width = .*/width = 20000/' render.toml >wide.toml
+expect_refused "render: image.width = 20000" image.width render wide.toml --out t.exr
+sed -e 's/^light_samples = .*/light_samples = 5000/' render.toml >lights.toml
+expect_refused "render: image.light_samples = 5000" image.light_samples render lights.toml --out t.exr
+sed -e 's/^\[mesh\]$/[mesh]\nshape = "bumpy_sphere"\nfrequency = 65/' -e '/^shape = "obj"/d' \
+  -e '/^path = /d' render.toml >bumpy.toml
+expect_refused "render: mesh.frequency = 65" mesh.frequency render bumpy.toml --out t.exr
+sed -e 's/^\[mesh\]$/[mesh]\nshape = "sphere"\nrings = 5000/' -e '/^shape = "obj"/d' \
+  -e '/^path = /d' render.toml >rings.toml
+expect_refused "render: mesh.rings = 5000" mesh.rings render rings.toml --out t.exr
+expect_refused "render --out x.png" --out render render.toml --out x.png
+expect_refused "render --out x (no extension)" --out render render.toml --out x
+
 if [ "$(cat notes.txt)" = "my notes" ]; then pass; else fail "notes.txt changed"; fi
 report hostile_values

@@ -220,6 +220,14 @@ TEST(Render, BadScenesGiveOneClearError) {
             0u);
   EXPECT_NE(error_of("[mesh]\nshape = \"obj\"\npath = \"nan.obj\"\n", dir).find("not finite"),
             std::string::npos);
+  {
+    std::ofstream far_vertex(dir / "far.obj");
+    far_vertex << "v 0 0 0\nv 1e999 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n";
+  }
+  // tinyobjloader would read 1e999 as 0; the vertex lines are checked before it reads them.
+  EXPECT_NE(error_of("[mesh]\nshape = \"obj\"\npath = \"far.obj\"\n", dir)
+                .find("line 2: coordinate 1 of 'v' is '1e999', not finite"),
+            std::string::npos);
   EXPECT_EQ(
       error_of("[mesh]\nshape = \"obj\"\npath = \"missing.obj\"\n", dir).rfind("mesh.path: ", 0),
       0u);

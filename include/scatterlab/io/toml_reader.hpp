@@ -162,16 +162,18 @@ class TomlReader {
     wrong_type(*node, dotted(path, key), accepted);
   }
 
-  // An integer converted to T, which must hold it; `lowest` (>= 0) is the least value accepted
-  // here (finer ranges are checked by SimulationSpec::validate()).
+  // An integer converted to T, which must hold it; `lowest` (>= 0) and `highest` bound the values
+  // accepted here (finer ranges are checked by each spec's validate()).
   template <typename T>
-  std::optional<T> integer_as(const toml::table& table, std::string_view key,
-                              const std::string& path, std::int64_t lowest,
-                              std::string_view accepted) const {
+  std::optional<T> integer_as(
+      const toml::table& table, std::string_view key, const std::string& path, std::int64_t lowest,
+      std::string_view accepted,
+      std::int64_t highest = std::numeric_limits<std::int64_t>::max()) const {
     const auto value = integer(table, key, path, accepted);
     if (!value) return std::nullopt;
     const bool fits =
-        *value >= lowest && *value >= static_cast<std::int64_t>(std::numeric_limits<T>::min()) &&
+        *value >= lowest && *value <= highest &&
+        *value >= static_cast<std::int64_t>(std::numeric_limits<T>::min()) &&
         static_cast<std::uint64_t>(*value) <= std::uint64_t{std::numeric_limits<T>::max()};
     if (!fits) {
       throw InputError(dotted(path, key), fmt::format("got {}{}", *value, at(*table.get(key))),

@@ -42,11 +42,18 @@ struct PinholeCamera {
   Vec3 ray_direction(int i, int j, int width, int height) const;
 };
 
+// The documented ranges of a render's sizes, from the scene file and the flags alike: an image
+// side of 16384 pixels is a 268-megapixel image already, and past these budgets a single image
+// runs for days without becoming more accurate than the methods themselves.
+inline constexpr int max_image_side = 16384;
+inline constexpr int max_samples = 1 << 20;     // per eye ray (or per support interval)
+inline constexpr int max_light_samples = 4096;  // points on the area light
+
 struct RenderScene {
-  TriangleMesh mesh;  // closed, consistently oriented, validated
+  TriangleMesh mesh;                // closed, consistently oriented, validated
   std::filesystem::path mesh_file;  // the OBJ file it was read from; empty for a built-in shape
-  Medium medium;      // sigma_t, albedo, g (length unit: that of the mesh)
-  double eta = 1.5;   // n_inside / n_outside
+  Medium medium;                    // sigma_t, albedo, g (length unit: that of the mesh)
+  double eta = 1.5;                 // n_inside / n_outside
   RenderLight light;
   PinholeCamera camera;
   int width = 64, height = 64;
@@ -54,7 +61,8 @@ struct RenderScene {
   int light_samples = 16;  // points on the area light for the deterministic methods
 
   // Checks what the mesh alone cannot: a closed mesh (every edge shared by exactly two triangles
-  // in opposite directions), the light and the camera outside it, sizes. Throws InputError.
+  // in opposite directions) with no triangle of zero area that encloses a positive volume, the
+  // light and the camera outside it, sizes within their ranges. Throws InputError.
   void validate() const;
 };
 
@@ -65,6 +73,10 @@ RenderScene load_render_scene(const std::filesystem::path& path);
 
 // Throws InputError("mesh", ...) naming the edge when the mesh is open or non-manifold.
 void require_closed_mesh(const TriangleMesh& mesh);
+
+// Throws InputError("mesh", ...) naming the triangle when one has zero area (relative to the
+// mesh's extent), and when the mesh encloses no positive volume (flat, or inside out).
+void require_enclosed_volume(const TriangleMesh& mesh);
 
 // An axis-aligned box of the given half sizes centred at the origin, flat facets (12 triangles).
 TriangleMesh make_box(const Vec3& half_size);
