@@ -20,6 +20,9 @@ int main(int argc, char** argv) {
   std::unique_ptr<scatterlab::World> world;
   try {
     world = std::make_unique<scatterlab::World>(argc, argv);
+  } catch (const scatterlab::InputError& e) {
+    fmt::print(stderr, "scatterlab: error: {}\n", e.what());
+    return 2;
   } catch (const std::exception& e) {
     fmt::print(stderr, "scatterlab: failed: {}\n", e.what());
     return 1;
