@@ -52,9 +52,14 @@ bool reader_gone(int error) {
 // nothing written. fmt::print reports a failed write by throwing (main's handlers end up here
 // too); CLI11's help and std::cout only mark the stream, so the end of main flushes and checks.
 int finish_standard_output(int status) {
+  // A write that failed earlier (CLI11's help, through std::cout) left its errno: nothing that
+  // runs between it and here sets errno; the final flush, if it fails, tells for itself.
+  const int earlier = errno;
   errno = 0;
   const bool flush_failed = std::fflush(stdout) != 0;  // std::cout writes through stdout
-  const int error = flush_failed ? errno : standard_output_error;
+  const int error = flush_failed                 ? errno
+                    : standard_output_error != 0 ? standard_output_error
+                                                 : earlier;
   if (!flush_failed && !std::ferror(stdout) && !std::cout.bad()) return status;
   if (reader_gone(error)) end_as_by_sigpipe();
   print_error("scatterlab: error: cannot write standard output: {}\n",
