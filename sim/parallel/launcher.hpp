@@ -3,11 +3,12 @@
 // 0 when the process was not started by an MPI launcher.
 //
 // A launcher sets a rank count and also the address of the server its ranks connect to
-// (PMIX_SERVER_URI*, PMI_FD or PMI_PORT, OMPI_MCA_orte_hnp_uri). A rank count without one was
-// not set by a launcher: exported by hand, or inherited from a job script. MPI_Init would then
-// look for a server that is not there (Open MPI aborts, or waits for it), and a build without
-// MPI would take the count for ranks it does not have; both builds refuse it alike, naming the
-// variable. Running as one process instead would hide that the run is not the one asked for.
+// (PMIX_SERVER_URI*; PMI_FD, PMI_PORT or Cray's PMI_CONTROL_PORT; OMPI_MCA_orte_hnp_uri). A rank
+// count without one was not set by a launcher: exported by hand, or inherited from a job script.
+// MPI_Init would then start a singleton (Open MPI: one process, whatever the count said), and a
+// build without MPI would take the count for ranks it does not have; both builds refuse it
+// alike, naming the variable. Running as one process instead would hide that the run is not the
+// one asked for.
 
 #include <unistd.h>
 
@@ -20,7 +21,7 @@
 namespace scatterlab::detail {
 
 inline bool launcher_server_known() {
-  for (const char* name : {"PMI_FD", "PMI_PORT", "OMPI_MCA_orte_hnp_uri"}) {
+  for (const char* name : {"PMI_FD", "PMI_PORT", "PMI_CONTROL_PORT", "OMPI_MCA_orte_hnp_uri"}) {
     if (std::getenv(name) != nullptr) return true;
   }
   for (char** entry = environ; *entry != nullptr; ++entry) {

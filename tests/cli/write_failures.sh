@@ -163,7 +163,7 @@ expect_directory_write_failure "report: a file over the size limit" report 1 \
 
 # A full filesystem: a small tmpfs, where this may mount one (root, outside most containers).
 mkdir -p "$full"
-if [ "$(id -u)" -eq 0 ] && mount -t tmpfs -o size=64k scatterlab-full "$full" 2>/dev/null; then
+if [ "$(id -u)" -eq 0 ] && mount -t tmpfs -o size=32k scatterlab-full "$full" 2>/dev/null; then
   cp old.h5 "$full/run.h5" 2>/dev/null || true
   sha_before=$(sha256sum <"$full/run.h5")
   "$exe" simulate "${tiny[@]}" "${large[@]}" --out "$full/run.h5" >/dev/null 2>"$scratch/stderr"
