@@ -143,7 +143,7 @@ expect_directory_write_failure() {
     fail "$name: exit $status, expected 1: $(cat "$scratch/stderr")"
   elif [ "${named#"$directory"/}" = "$named" ] || ! grep -q "File too large" "$scratch/stderr"
   then
-    fail "$name: the error does not name a file of $directory and the reason: $(cat "$scratch/stderr")"
+    fail "$name: the error names no file of $directory, or no reason: $(cat "$scratch/stderr")"
   elif [ "$(grep -c . "$scratch/stderr")" -ne 1 ]; then
     fail "$name: more than one line on stderr: $(cat "$scratch/stderr")"
   elif ! grep -q -F "  ${named#"$directory"/}" "$scratch/before" ||
@@ -164,18 +164,19 @@ expect_directory_write_failure "report: a file over the size limit" report 1 \
 # A full filesystem: a small tmpfs, where this may mount one (root, outside most containers).
 mkdir -p "$full"
 if [ "$(id -u)" -eq 0 ] && mount -t tmpfs -o size=32k scatterlab-full "$full" 2>/dev/null; then
-  cp old.h5 "$full/run.h5" 2>/dev/null || true
+  cp old.h5 "$full/run.h5" || fail "setup: old.h5 does not fit in the 32 kB tmpfs"
   sha_before=$(sha256sum <"$full/run.h5")
   "$exe" simulate "${tiny[@]}" "${large[@]}" --out "$full/run.h5" >/dev/null 2>"$scratch/stderr"
   status=$?
   if [ $status -eq 1 ] && grep -q "No space left on device" "$scratch/stderr" &&
-    grep -q -F "$full/run.h5" "$scratch/stderr" && [ "$(sha256sum <"$full/run.h5")" = "$sha_before" ] &&
+    grep -q -F "$full/run.h5" "$scratch/stderr" &&
+    [ "$(sha256sum <"$full/run.h5")" = "$sha_before" ] &&
     ! compgen -G "$full/*.tmp-*" >/dev/null; then pass; else
     fail "full tmpfs: exit $status: $(cat "$scratch/stderr"; ls "$full")"
   fi
   umount "$full"
 else
-  echo "write_failures: no tmpfs could be mounted here; the full-disk case is left to the size limit"
+  echo "write_failures: no tmpfs can be mounted here; the size limit stands in for a full disk"
 fi
 
 # --- outputs where no file can be made ----------------------------------------------------------
