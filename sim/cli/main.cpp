@@ -1,18 +1,73 @@
 // scatterlab: Monte Carlo transport of light in participating media, from the command line.
 #include <fmt/format.h>
+#include <poll.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
 #include <exception>
+#include <iostream>
 #include <memory>
 #include <string>
+#include <system_error>
+#include <utility>
 
 #include "commands.hpp"
-#include "value_checks.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/parallel/world.hpp"
+#include "value_checks.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+// A reader that stopped reading (`scatterlab info run.h5 | head`) is not an error: the run ends as
+// a write to a closed pipe ends it by default, by SIGPIPE, silently. This is reached only where
+// SIGPIPE was ignored (by the parent), so that the write failed with EPIPE instead.
+[[noreturn]] void end_as_by_sigpipe() {
+  std::signal(SIGPIPE, SIG_DFL);
+  std::raise(SIGPIPE);
+  std::_Exit(128 + SIGPIPE);
+}
+
+// Errors go to stderr through stdio, which does not throw: fmt::print throws when stderr itself
+// cannot be written (a full disk behind it), and from one of main's handlers that would abort.
+template <typename... Args>
+void print_error(fmt::format_string<Args...> format, Args&&... args) {
+  std::fputs(fmt::format(format, std::forward<Args>(args)...).c_str(), stderr);
+}
+
+// The errno of a write to standard output that failed during the command (fmt::print throws).
+int standard_output_error = 0;
+
+bool reader_gone(int error) {
+  if (error == EPIPE) return true;
+  pollfd out{STDOUT_FILENO, POLLOUT, 0};  // a pipe whose reader closed polls as POLLERR
+  return ::poll(&out, 1, 0) == 1 && (out.revents & POLLERR) != 0;
+}
+
+// Output that was lost is an error, as a file that could not be written is: a full disk or
+// /dev/full behind standard output ends with one line on stderr and status 1, not status 0 and
+// nothing written. fmt::print reports a failed write by throwing (main's handlers end up here
+// too); CLI11's help and std::cout only mark the stream, so the end of main flushes and checks.
+int finish_standard_output(int status) {
+  // A write that failed earlier (CLI11's help, through std::cout) left its errno: nothing that
+  // runs between it and here sets errno; the final flush, if it fails, tells for itself.
+  const int earlier = errno;
+  errno = 0;
+  const bool flush_failed = std::fflush(stdout) != 0;  // std::cout writes through stdout
+  const int error = flush_failed                 ? errno
+                    : standard_output_error != 0 ? standard_output_error
+                                                 : earlier;
+  if (!flush_failed && !std::ferror(stdout) && !std::cout.bad()) return status;
+  if (reader_gone(error)) end_as_by_sigpipe();
+  print_error("scatterlab: error: cannot write standard output: {}\n",
+              error != 0 ? std::strerror(error) : "part of it was lost");
+  return status == 0 ? 1 : status;
+}
+
+int run(int argc, char** argv) {
   std::string command_line = argv[0];
   for (int i = 1; i < argc; ++i) command_line += std::string(" ") + argv[i];
 
@@ -20,8 +75,11 @@ int main(int argc, char** argv) {
   std::unique_ptr<scatterlab::World> world;
   try {
     world = std::make_unique<scatterlab::World>(argc, argv);
+  } catch (const scatterlab::InputError& e) {
+    print_error("scatterlab: error: {}\n", e.what());
+    return 2;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "scatterlab: failed: {}\n", e.what());
+    print_error("scatterlab: failed: {}\n", e.what());
     return 1;
   }
 
@@ -29,6 +87,12 @@ int main(int argc, char** argv) {
                ": Monte Carlo light transport in participating media and the analytic models "
                "that approximate it"};
   app.set_version_flag("--version", SCATTERLAB_VERSION);
+  app.footer(
+      "Exit status: 0 done; 2 bad input, found before any work (a flag, a scene file, an output "
+      "whose directory takes no new files, a launcher's rank count such as OMPI_COMM_WORLD_SIZE "
+      "set without a launcher); 1 a failure while running (a write that failed, standard output "
+      "included: a full disk, /dev/full) or a report section that failed; 130 interrupted. A "
+      "reader that stops reading (| head) ends scatterlab quietly, by SIGPIPE.");
   app.require_subcommand(1);
   const auto simulate = scatterlab::cli::add_simulate_command(app, command_line, *world);
   const auto searchlight = scatterlab::cli::add_searchlight_command(app, command_line, *world);
@@ -51,7 +115,7 @@ int main(int argc, char** argv) {
     // Anything else is bad input, reported as every other: one line naming the flag, status 2.
     std::string message = e.what();
     std::replace(message.begin(), message.end(), '\n', ' ');
-    if (world->is_root()) fmt::print(stderr, "scatterlab: error: {} (see --help)\n", message);
+    if (world->is_root()) print_error("scatterlab: error: {} (see --help)\n", message);
     return 2;
   }
   try {
@@ -66,12 +130,27 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("invert")) return invert();
   } catch (const scatterlab::InputError& e) {
     // Bad input is found alike on every rank, before any of them waits on another.
-    if (world->is_root()) fmt::print(stderr, "scatterlab: error: {}\n", e.what());
+    if (world->is_root()) print_error("scatterlab: error: {}\n", e.what());
     return 2;
+  } catch (const std::system_error& e) {
+    // fmt::print's failed write to standard output: reported by finish_standard_output.
+    if (std::ferror(stdout)) {
+      standard_output_error = e.code().value();
+    } else {
+      print_error("scatterlab: failed: {}\n", e.what());
+    }
+    if (world->size() > 1) world->abort(1);
+    return 1;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "scatterlab: failed: {}\n", e.what());
+    print_error("scatterlab: failed: {}\n", e.what());
     if (world->size() > 1) world->abort(1);  // the other ranks may be waiting on this one
     return 1;
   }
   return 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return finish_standard_output(run(argc, argv));
 }

@@ -1,7 +1,6 @@
 #include "scatterlab/io/atomic_output.hpp"
 
-#include <fstream>
-
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/types.h>
 #include <unistd.h>
@@ -9,6 +8,8 @@
 #include <atomic>
 #include <cerrno>
 #include <cstdlib>
+#include <cstring>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -26,6 +27,11 @@ std::filesystem::path temporary_name(const std::filesystem::path& final_path) {
   std::filesystem::path name = final_path;
   name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
   return name;
+}
+
+[[noreturn]] void cannot_write(const std::filesystem::path& path, int error) {
+  throw std::runtime_error("cannot write '" + output_name(path).string() +
+                           "': " + std::strerror(error));
 }
 
 }  // namespace
@@ -91,14 +97,46 @@ std::vector<std::filesystem::path> remove_stale_temporaries(
 void write_text_file(const std::filesystem::path& path,
                      const std::function<void(std::ostream&)>& body) {
   AtomicOutput output(path);
-  {
-    std::ofstream file(output.temporary_path());
-    if (!file) throw std::runtime_error("cannot write " + output.temporary_path().string());
-    body(file);
-    file.flush();
-    if (!file) throw std::runtime_error("failed writing " + output.temporary_path().string());
-  }
+  std::ostringstream text;
+  body(text);
+  const std::string bytes = std::move(text).str();
+  write_whole_file(output.temporary_path(), bytes);
   output.commit();
+}
+
+void write_whole_file(const std::filesystem::path& path, std::span<const char> bytes) {
+  const int file = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (file < 0) cannot_write(path, errno);
+  std::size_t written = 0;
+  while (written < bytes.size()) {
+    const ssize_t count = ::write(file, bytes.data() + written, bytes.size() - written);
+    if (count < 0 && errno == EINTR) continue;
+    if (count <= 0) {
+      const int error = count < 0 ? errno : EIO;
+      ::close(file);
+      cannot_write(path, error);
+    }
+    written += static_cast<std::size_t>(count);
+  }
+  // Some filesystems (NFS, delayed allocation) report a full disk only when the data is synced.
+  if (::fsync(file) != 0 && errno != EINVAL) {
+    const int error = errno;
+    ::close(file);
+    cannot_write(path, error);
+  }
+  if (::close(file) != 0 && errno != EINTR) cannot_write(path, errno);
+}
+
+std::filesystem::path output_name(const std::filesystem::path& path) {
+  const std::string name = path.filename().string();
+  const std::string marker = ".tmp-" + std::to_string(::getpid()) + "-";
+  const std::size_t at = name.rfind(marker);
+  if (at == std::string::npos || at == 0) return path;
+  const std::string counter = name.substr(at + marker.size());
+  if (counter.empty() || counter.find_first_not_of("0123456789") != std::string::npos) {
+    return path;
+  }
+  return path.parent_path() / name.substr(0, at);
 }
 
 }  // namespace scatterlab

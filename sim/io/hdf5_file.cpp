@@ -4,9 +4,13 @@
 
 #include <algorithm>
 #include <functional>
+#include <memory>
+#include <span>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
+
+#include "scatterlab/io/atomic_output.hpp"
 
 namespace scatterlab::hdf5 {
 
@@ -517,19 +521,36 @@ std::vector<std::string> Group::member_names() const {
 // ---------------------------------------------------------------------------------------------
 // File
 
-File::File(std::filesystem::path path, Handle file, Group root)
-    : path_(std::move(path)), file_(std::move(file)), root_(std::move(root)) {}
+File::File(std::filesystem::path path, Handle file, Group root, bool writable)
+    : path_(std::move(path)), file_(std::move(file)), root_(std::move(root)), writable_(writable) {}
+
+namespace {
+
+// HDF5's core driver without a backing store: the file lives in memory, grown in steps of this
+// many bytes, and HDF5 itself never writes to the disk.
+constexpr std::size_t kMemoryIncrement = std::size_t{4} << 20;
+
+Handle in_memory_access(const std::string& where) {
+  Handle plist(check_id(H5Pcreate(H5P_FILE_ACCESS), "create a property list", where), H5Pclose);
+  check_status(H5Pset_fapl_core(plist.get(), kMemoryIncrement, false), "hold the file in memory",
+               where);
+  return plist;
+}
+
+}  // namespace
 
 File File::create(const std::filesystem::path& path) {
   silence_error_printing();
   const std::string name = path.string();
+  write_whole_file(path, {});  // the file is there (and can be made) from now on
   const Handle plist = group_creation_plist(H5P_FILE_CREATE);
-  Handle file(check_id(H5Fcreate(name.c_str(), H5F_ACC_TRUNC, plist.get(), H5P_DEFAULT),
+  const Handle access = in_memory_access(name);
+  Handle file(check_id(H5Fcreate(name.c_str(), H5F_ACC_TRUNC, plist.get(), access.get()),
                        "create file", name),
               H5Fclose);
   Handle root(check_id(H5Gopen2(file.get(), "/", H5P_DEFAULT), "open the root group", name),
               H5Gclose);
-  return File(path, std::move(file), Group(std::move(root), name, "/"));
+  return File(path, std::move(file), Group(std::move(root), name, "/"), true);
 }
 
 File File::open_read_only(const std::filesystem::path& path) {
@@ -539,27 +560,38 @@ File File::open_read_only(const std::filesystem::path& path) {
               H5Fclose);
   Handle root(check_id(H5Gopen2(file.get(), "/", H5P_DEFAULT), "open the root group", name),
               H5Gclose);
-  return File(path, std::move(file), Group(std::move(root), name, "/"));
-}
-
-void File::close() {
-  const std::string name = path_.string();
-  root_.close_now();
-  if (file_.get() >= 0) {
-    check_status(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush file", name);
-  }
-  if (!file_.reset()) fail("close file", name);
+  return File(path, std::move(file), Group(std::move(root), name, "/"), false);
 }
 
 File File::open_read_write(const std::filesystem::path& path) {
   silence_error_printing();
   const std::string name = path.string();
-  Handle file(check_id(H5Fopen(name.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), "open file for writing",
-                       name),
-              H5Fclose);
+  const Handle access = in_memory_access(name);
+  Handle file(
+      check_id(H5Fopen(name.c_str(), H5F_ACC_RDWR, access.get()), "open file for writing", name),
+      H5Fclose);
   Handle root(check_id(H5Gopen2(file.get(), "/", H5P_DEFAULT), "open the root group", name),
               H5Gclose);
-  return File(path, std::move(file), Group(std::move(root), name, "/"));
+  return File(path, std::move(file), Group(std::move(root), name, "/"), true);
+}
+
+void File::close() {
+  const std::string name = path_.string();
+  root_.close_now();
+  if (file_.get() < 0) return;
+  if (!writable_) {
+    if (!file_.reset()) fail("close file", name);
+    return;
+  }
+  check_status(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush file", name);
+  const ssize_t size = H5Fget_file_image(file_.get(), nullptr, 0);
+  if (size < 0) fail("size the file image", name);
+  const auto image = std::make_unique_for_overwrite<char[]>(static_cast<std::size_t>(size));
+  if (H5Fget_file_image(file_.get(), image.get(), static_cast<std::size_t>(size)) != size) {
+    fail("copy the file image", name);
+  }
+  if (!file_.reset()) fail("close file", name);
+  write_whole_file(path_, std::span<const char>(image.get(), static_cast<std::size_t>(size)));
 }
 
 bool is_hdf5_file(const std::filesystem::path& path) {

@@ -1,9 +1,14 @@
 #include "scatterlab/io/output_plan.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <cerrno>
 #include <climits>
+#include <cstring>
+#include <set>
 #include <system_error>
 #include <utility>
 
@@ -59,6 +64,33 @@ fs::path resolved(const fs::path& path) {
   if (error) absolute = path;
   fs::path canonical = fs::weakly_canonical(absolute, error);
   return error ? absolute.lexically_normal() : canonical;
+}
+
+// `directory` if it exists, else its nearest ancestor that does (where it would be made).
+fs::path existing_directory_at_or_above(const fs::path& directory) {
+  std::error_code error;
+  fs::path at = fs::absolute(directory, error);
+  if (error) at = directory;
+  while (!fs::is_directory(at, error) && at.has_relative_path()) at = at.parent_path();
+  return at;
+}
+
+// Whether this process can create a file in `directory`: it makes one (a name no other file has,
+// O_EXCL) and removes it at once. Permission bits alone would not say: root ignores them, and a
+// read-only mount, /proc or an ACL refuse root too. Returns 0, or the errno of the refusal.
+int creation_refused(const fs::path& directory) {
+  static std::atomic<unsigned> counter{0};
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    const fs::path probe =
+        directory / fmt::format(".scatterlab-write-test-{}-{}", ::getpid(), counter++);
+    const int file = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (file < 0 && errno == EEXIST) continue;  // another process's probe, or a stray file
+    if (file < 0) return errno;
+    ::close(file);
+    ::unlink(probe.c_str());
+    return 0;
+  }
+  return EEXIST;
 }
 
 std::string file_type_text(fs::file_type type) {
@@ -189,6 +221,24 @@ void OutputPlan::check() const {
                                    what, first.field, quoted(first.path)),
                        kDistinct);
     }
+  }
+  // Last, as the one check that writes (a file made and removed at once): every output's
+  // directory, or the one that will hold a directory still to be made, takes new files.
+  std::set<fs::path> writable;
+  for (const Entry& entry : entries_) {
+    if (is_input(entry.kind) && entry.kind != Kind::rewritten_input) continue;
+    const fs::path target = entry.kind == Kind::output_directory ? entry.path
+                            : entry.path.has_parent_path()       ? entry.path.parent_path()
+                                                                 : fs::path(".");
+    const fs::path directory = existing_directory_at_or_above(target);
+    if (writable.contains(directory)) continue;
+    if (const int refusal = creation_refused(directory)) {
+      throw InputError(entry.field,
+                       fmt::format("cannot create files in directory {} (for {}): {}",
+                                   quoted(directory), quoted(entry.path), std::strerror(refusal)),
+                       "a path in a directory this user can create files in");
+    }
+    writable.insert(directory);
   }
 }
 

@@ -3,10 +3,11 @@
 #include <plplot.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cmath>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -142,17 +143,23 @@ void write_png(const LinePlot& requested, const std::filesystem::path& path) {
   if (plot.y_scale == AxisScale::sqrt) yr.lo = std::max(yr.lo, 0.0);
 
   AtomicOutput output(path);
+  // PLplot ignores a failed write of its PNG: it draws into memory (the stream plend1 closes),
+  // and write_whole_file puts it on the disk, where a failure is reported.
+  char* image = nullptr;
+  std::size_t image_size = 0;
   {
     const std::lock_guard<std::mutex> lock(plplot_mutex);
     if (!device_available("pngcairo")) {
       throw std::runtime_error(
           "plot: PLplot has no pngcairo device (install plplot-driver-cairo)");
     }
+    std::FILE* memory = open_memstream(&image, &image_size);
+    if (memory == nullptr) throw std::runtime_error("plot: no memory for " + path.string());
     PLINT previous = 0, stream = 0;
     plgstrm(&previous);
     plmkstrm(&stream);
     plsdev("pngcairo");
-    plsfnam(output.temporary_path().c_str());
+    plsfile(memory);
     plspage(0.0, 0.0, plot.width, plot.height, 0, 0);
     plscolbg(255, 255, 255);
     for (int c = 0; c < palette_size; ++c) plscol0(c + 1, palette[c][0], palette[c][1], palette[c][2]);
@@ -224,10 +231,9 @@ void write_png(const LinePlot& requested, const std::filesystem::path& path) {
     plend1();
     plsstrm(previous);
   }
-  std::error_code error;
-  if (std::filesystem::file_size(output.temporary_path(), error) == 0 || error) {
-    throw std::runtime_error("plot: PLplot wrote nothing to " + output.temporary_path().string());
-  }
+  const std::unique_ptr<char, decltype(&std::free)> owned(image, &std::free);
+  if (image_size == 0) throw std::runtime_error("plot: PLplot drew nothing for " + path.string());
+  write_whole_file(output.temporary_path(), {image, image_size});
   output.commit();
 }
 

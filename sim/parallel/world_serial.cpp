@@ -9,9 +9,10 @@
 namespace scatterlab {
 
 World::World(int&, char**&) : communicator_(std::make_unique<SerialCommunicator>()) {
-  if (detail::launched_ranks() > 1) {
+  const int ranks = detail::launched_ranks();
+  if (ranks > 1) {
     throw std::runtime_error(
-        "started as " + std::to_string(detail::launched_ranks()) +
+        "started as " + std::to_string(ranks) +
         " MPI ranks, but this scatterlab was built without MPI: each rank would run the whole "
         "job; rebuild with libopenmpi-dev installed (SCATTERLAB_WITH_MPI=ON) or run one process");
   }

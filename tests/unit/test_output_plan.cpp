@@ -1,6 +1,7 @@
 // The output plan: outputs distinct from inputs and from each other by the file they name (not
-// the spelling), only regular files replaced, paths the filesystem can hold; and the temporaries
-// of killed runs removed, those of live ones kept.
+// the spelling), only regular files replaced, paths the filesystem can hold, directories this
+// process can create files in; and the temporaries of killed runs removed, those of live ones
+// kept.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -139,6 +140,48 @@ TEST_F(OutputPlanTest, SameFileComparesFilesNotSpellings) {
   EXPECT_TRUE(same_file(a, directory_ / "." / "a.h5"));
   EXPECT_FALSE(same_file(a, directory_ / "b.h5"));
   EXPECT_TRUE(same_file(directory_ / "x" / ".." / "new.h5", directory_ / "new.h5"));
+}
+
+// The InputError `plan.check()` throws, or "" when it passes.
+std::string refusal(const OutputPlan& plan) {
+  try {
+    plan.check();
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST_F(OutputPlanTest, DirectoryNoOneCanCreateFilesInIsRefusedForRootToo) {
+  // /proc takes no new files, whatever the permissions and whoever asks.
+  OutputPlan plan;
+  plan.output_file("--out", "/proc/scatterlab-run.h5");
+  const std::string message = refusal(plan);
+  EXPECT_NE(message.find("--out"), std::string::npos) << message;
+  EXPECT_NE(message.find("'/proc'"), std::string::npos) << message;
+  OutputPlan directory;
+  directory.output_directory("--out", "/proc/scatterlab-report");  // made under /proc
+  EXPECT_EQ(refused_field(directory), "--out");
+  EXPECT_FALSE(fs::exists("/proc/scatterlab-run.h5"));
+}
+
+TEST_F(OutputPlanTest, ReadOnlyDirectoryIsRefused) {
+  if (::geteuid() == 0) GTEST_SKIP() << "root ignores permission bits";
+  const fs::path locked = directory_ / "locked";
+  fs::create_directory(locked);
+  fs::permissions(locked, fs::perms::owner_read | fs::perms::owner_exec);
+  OutputPlan plan;
+  plan.output_file("--csv", locked / "table.csv");
+  EXPECT_EQ(refused_field(plan), "--csv");
+  fs::permissions(locked, fs::perms::owner_all);
+}
+
+TEST_F(OutputPlanTest, WritableDirectoriesPassAndKeepNoProbe) {
+  OutputPlan plan;
+  plan.output_file("--out", directory_ / "run.h5");
+  plan.output_directory("--out-dir", directory_ / "sweep" / "deeper");  // made by the command
+  EXPECT_EQ(refused_field(plan), "");
+  EXPECT_TRUE(fs::is_empty(directory_));
 }
 
 TEST_F(OutputPlanTest, StaleTemporariesOfDeadProcessesAreRemovedLiveOnesKept) {

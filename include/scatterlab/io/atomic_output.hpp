@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <ostream>
+#include <span>
 #include <vector>
 
 namespace scatterlab {
@@ -41,10 +42,21 @@ class AtomicOutput {
 std::vector<std::filesystem::path> remove_stale_temporaries(
     const std::filesystem::path& final_path);
 
-// A text file (CSV, Markdown) written the same way: `body` writes to a stream on the temporary
-// file, which is renamed into place once the stream reports no error. Throws
-// std::runtime_error naming the file otherwise (and InputError as AtomicOutput does).
+// A text file (CSV, Markdown) written the same way: `body` writes to a stream in memory, whose
+// text is then written whole to the temporary file (write_whole_file) and renamed into place.
+// Throws as write_whole_file does (and InputError as AtomicOutput does).
 void write_text_file(const std::filesystem::path& path,
                      const std::function<void(std::ostream&)>& body);
+
+// Every output's bytes reach the disk through this one function: `path` is created (or
+// truncated), `bytes` written and synced to the disk, so that a full disk, a quota, a file size
+// limit or an I/O error shows here, before the rename, and not as a short file later. Throws
+// std::runtime_error "cannot write '<output>': <the system's reason>", naming the output the user
+// asked for (output_name), with the temporary left for its AtomicOutput to remove.
+void write_whole_file(const std::filesystem::path& path, std::span<const char> bytes);
+
+// The output a path is written for: "<final>" for a temporary "<final>.tmp-<pid>-<n>" of this
+// process, the path itself otherwise. Messages name it: the user knows no temporary.
+std::filesystem::path output_name(const std::filesystem::path& path);
 
 }  // namespace scatterlab

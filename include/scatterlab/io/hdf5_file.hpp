@@ -134,29 +134,38 @@ class Group : public Object {
   using Object::Object;
 };
 
+// A file being written is built in memory and written to the disk whole by close(), with one
+// write of ours (write_whole_file, atomic_output.hpp): a full disk, a quota or a size limit is
+// then one error naming the file and the system's reason, and the destructor, on the error path,
+// only frees memory. Left to HDF5, a failed write surfaces in its flush, and HDF5 1.10 then
+// keeps a file it could not close, whose cleanup at exit crashes the process. The cost: a file
+// being written is held in memory (once more while close() writes it).
 class File {
  public:
-  // Creates (truncating) a file for writing.
+  // Creates (truncating) a file for writing: empty on the disk until close().
   static File create(const std::filesystem::path& path);
   static File open_read_only(const std::filesystem::path& path);
-  // Opens an existing file to add or replace groups; write to a copy and rename it into place
-  // (AtomicOutput) so that a failure leaves the original untouched.
+  // Opens an existing file to add or replace groups (read into memory; close() writes it back
+  // whole); write to a copy and rename it into place (AtomicOutput) so that a failure leaves the
+  // original untouched.
   static File open_read_write(const std::filesystem::path& path);
 
   Group& root() { return root_; }
   const Group& root() const { return root_; }
   const std::filesystem::path& path() const { return path_; }
 
-  // Flushes and closes now, throwing if that fails (the destructor closes too, but cannot
-  // report a failure). Open groups and datasets of this file must be closed first.
+  // Closes now, throwing if that fails; a file opened for writing is written to the disk here.
+  // The destructor closes too, but writes nothing: a file never closed is discarded. Open groups
+  // and datasets of this file must be closed first.
   void close();
 
  private:
-  File(std::filesystem::path path, detail::Handle file, Group root);
+  File(std::filesystem::path path, detail::Handle file, Group root, bool writable);
 
   std::filesystem::path path_;
   detail::Handle file_;
-  Group root_;  // declared after file_: closed before it
+  Group root_;     // declared after file_: closed before it
+  bool writable_;  // held in memory, written by close()
 };
 
 // True when `path` is a readable HDF5 file (checks the signature only).

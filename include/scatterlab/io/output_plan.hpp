@@ -3,7 +3,8 @@
 // it did not mean to write: every output must be distinct from every other output and from every
 // input (compared as the files they resolve to, by inode and device, not as spellings), an
 // output file must be a regular file or not exist yet (never a directory, device, FIFO or
-// socket), and every path must be printable text the filesystem can hold.
+// socket), every path must be printable text the filesystem can hold, and this process must be
+// able to create files where each output goes (tried, not read from permission bits).
 //
 //   OutputPlan plan;
 //   plan.input("--scene", scene);
@@ -36,7 +37,8 @@ class OutputPlan {
   // A directory the command writes files into (created if missing).
   void output_directory(std::string field, std::filesystem::path path);
 
-  // Throws InputError naming the first offending field; reads the filesystem, writes nothing.
+  // Throws InputError naming the first offending field. Reads the filesystem; the one trace it
+  // leaves is a file made and removed at once in each output directory, to know it takes files.
   void check() const;
 
   // Removes temporaries "<output>.tmp-<pid>-<n>" (atomic_output.hpp) of every output file whose

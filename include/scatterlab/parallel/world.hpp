@@ -13,7 +13,9 @@ namespace scatterlab {
 class World {
  public:
   // Initialises MPI when launched by an MPI launcher. Throws std::runtime_error when launched as
-  // several ranks by a build without MPI (each would run the whole job alone).
+  // several ranks by a build without MPI (each would run the whole job alone), and InputError
+  // naming the variable when a launcher's rank count is set without a launcher (a stray
+  // OMPI_COMM_WORLD_SIZE, say), in either build.
   World(int& argc, char**& argv);
   World(const World&) = delete;
   World& operator=(const World&) = delete;
