@@ -13,11 +13,14 @@ source "$(dirname "$0")/harness.sh"
 # wait_for FILE: until it exists (at most ~30 s).
 wait_for() { for _ in $(seq 1500); do [ -e "$1" ] && return 0; sleep 0.02; done; return 1; }
 
-# stop_within NAME SIGNAL PID: sends SIGNAL to PID and checks it exits with 130 within 2 s.
+# stop_within NAME SIGNAL PID: sends SIGNAL to PID and checks it exits with 130 within 2 s
+# (killed after 10 s, so that a run that does not stop fails the test rather than hanging it).
 stop_within() {
   local name=$1 signal=$2 pid=$3
   local start=$EPOCHREALTIME
   kill "-$signal" "$pid"
+  for _ in $(seq 100); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+  kill -KILL "$pid" 2>/dev/null && echo "$name: still running 10 s after SIG$signal: killed"
   wait "$pid"
   local status=$? elapsed
   elapsed=$(awk -v a="$start" -v b="$EPOCHREALTIME" 'BEGIN { printf "%.2f", b - a }')
