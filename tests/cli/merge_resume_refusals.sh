@@ -66,8 +66,9 @@ models() { "$exe" info "$1" | sed -n '/^models/,$p'; }
 if "$exe" merge h1.h5 h2.h5 -o hm.h5 >/dev/null 2>"$scratch/err" && [ ! -s "$scratch/err" ] &&
   [ -n "$(models h1.h5)" ] && [ "$(models hm.h5)" = "$(models h1.h5)" ]; then pass; else
   fail "models kept: $(cat "$scratch/err"; models hm.h5)"; fi
-model=$("$exe" info h2.h5 | sed -n '/^models/,$p' | awk 'NR > 1 && NF > 1 {print $1; exit}')
-curve=$("$exe" info h2.h5 | sed -n '/^models/,$p' | awk 'NR > 1 && NF > 1 {sub(",", "", $2); print $2; exit}')
+# The first model that has curves, and its first curve ("model   curve, curve, ...").
+read -r model curve < <(models h2.h5 |
+  awk 'NR > 1 && NF > 1 {sub(",", "", $2); print $1, $2; exit}')
 damaged h2-model.h5 h2.h5 element "models/$model" "$curve" 0 0.125
 if "$exe" merge h1.h5 h2-model.h5 -o hx.h5 >/dev/null 2>"$scratch/err" &&
   [ "$(grep -c . "$scratch/err")" -eq 1 ] && grep -q "left out /models.*$model" "$scratch/err" &&
@@ -90,7 +91,8 @@ damaged none.ckpt c.h5.checkpoint attribute / batches_folded int 0
 damaged events.ckpt c.h5.checkpoint attribute / scattering_events int -5
 damaged version.ckpt c.h5.checkpoint attribute / format_version int 2
 for bad in nan inf negative many none events version; do
-  expect_refused "resume: $bad" "--resume.*$bad.ckpt" "${run[@]}" --out c.h5 --checkpoint "$bad.ckpt" --resume
+  expect_refused "resume: $bad" "--resume.*$bad.ckpt" \
+    "${run[@]}" --out c.h5 --checkpoint "$bad.ckpt" --resume
 done
 
 report "merge and resume refusals"

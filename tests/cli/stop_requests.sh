@@ -67,7 +67,8 @@ if [ -n "$mpiexec" ]; then
   kill -USR1 $pid
   wait $pid
   if grep -q "interrupted after 2 of 4 batches" ranks.err &&
-    "$exe" "${run[@]}" --out ranks.h5 --resume >/dev/null 2>&1 && "$same" full.h5 ranks.h5 >/dev/null
+    "$exe" "${run[@]}" --out ranks.h5 --resume >/dev/null 2>&1 &&
+    "$same" full.h5 ranks.h5 >/dev/null
   then pass; else fail "two ranks stopped in mid-round: $(cat ranks.err)"; fi
 fi
 
