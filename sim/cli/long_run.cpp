@@ -17,6 +17,9 @@ namespace {
 
 constexpr double kDefaultIntervalSeconds = 600.0;
 constexpr int kInterruptedExit = 130;  // 128 + SIGINT, as shells report it
+// A partial file needs two batches: one says nothing about the spread (its standard error would
+// be NaN). A run stopped before then leaves only its checkpoint.
+constexpr std::uint64_t kFewestPartialBatches = 2;
 
 // Set from the signal handler: lock-free atomics are async-signal-safe.
 std::atomic<bool> stop_requested{false};
@@ -69,9 +72,12 @@ std::shared_ptr<LongRunOptions> add_long_run_options(CLI::App& command) {
   command.add_flag("--resume", options->resume,
                    "Continue from the checkpoint if there is one (same parameters and seed); the "
                    "result equals an uninterrupted run, bit for bit. Interrupted (SIGINT, SIGTERM, "
-                   "SIGUSR1), a run saves its checkpoint and writes OUT marked partial, but never "
-                   "over a complete file: then it writes OUT's name with .partial before the "
-                   "extension (run.partial.h5), removed when the resumed run completes");
+                   "SIGUSR1), a run stops within about a second, dropping the batches it had not "
+                   "finished, saves its checkpoint and writes OUT marked partial (when it holds "
+                   "two batches or more), but never over a complete file: then it writes OUT's "
+                   "name with .partial before the extension (run.partial.h5), removed when the "
+                   "resumed run completes. A damaged checkpoint (numbers that are not finite, "
+                   "negative squares, counts or sizes that do not fit the run) is refused");
   return options;
 }
 
@@ -141,6 +147,7 @@ LongRun::LongRun(const LongRunOptions& options, const std::filesystem::path& out
     throw InputError("--resume", "the root rank could not read the checkpoint", "see rank 0");
   }
   if (state_) control_.resume_from = &*state_;
+  control_.resume_source = checkpoint_path_.string();
   control_.communicator = &world;
   // The state is always saved when a run stops early, so that it can be resumed.
   control_.save_checkpoint = [this](const RunState& state) {
@@ -180,7 +187,9 @@ bool holds_partial_or_nothing(const std::filesystem::path& path) {
 
 std::optional<std::filesystem::path> LongRun::result_path(
     std::uint64_t batches_done, std::uint64_t batches, const std::filesystem::path& output) const {
-  if (batches_done == batches || holds_partial_or_nothing(output)) return output;
+  if (batches_done == batches) return output;
+  if (batches_done < kFewestPartialBatches) return std::nullopt;
+  if (holds_partial_or_nothing(output)) return output;
   const std::filesystem::path sibling = partial_sibling(output);
   if (holds_partial_or_nothing(sibling)) return sibling;
   return std::nullopt;
@@ -194,8 +203,16 @@ int LongRun::finish(std::uint64_t batches_done, std::uint64_t batches,
     return 0;
   }
   if (world_.is_root()) {
+    if (batches_done == 0) {
+      fmt::print(stderr,
+                 "scatterlab: interrupted before the first round of batches was complete: wrote "
+                 "no file and no checkpoint; rerun the same command to start again\n");
+      return kInterruptedExit;
+    }
     std::string what;
-    if (!written) {
+    if (batches_done < kFewestPartialBatches) {
+      what = "too few for a standard error, so wrote no file";
+    } else if (!written) {
       what = fmt::format("kept {} and {}, which are not partial results, and wrote no file",
                          output.string(), partial_sibling(output).string());
     } else if (*written != output) {

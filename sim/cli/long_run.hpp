@@ -46,7 +46,8 @@ class LongRun {
  public:
   // Reads the checkpoint on the root when resuming (every rank learns whether that failed, so
   // that an error stops all of them) and catches SIGINT, SIGTERM and SIGUSR1 (which mpirun
-  // forwards) until destroyed: the run then stops after the current round of batches.
+  // forwards) until destroyed: the run then stops within about a second, abandoning the batches
+  // it had not finished, and keeps the whole rounds folded before them.
   LongRun(const LongRunOptions& options, const std::filesystem::path& output,
           std::string fingerprint, Communicator& world);
   LongRun(const LongRun&) = delete;
@@ -61,7 +62,8 @@ class LongRun {
   // Where the file of a run that ran `batches_done` of `batches` goes. A complete run writes
   // `output`. A run stopped early never replaces a complete file (or any file that is not a
   // partial result): it then writes partial_sibling(output) instead, or, when that name is taken
-  // by such a file too, no file at all (nullopt): the checkpoint holds the run.
+  // by such a file too, no file at all (nullopt): the checkpoint holds the run. A run stopped
+  // before two batches were folded writes no file either (one batch has no standard error).
   std::optional<std::filesystem::path> result_path(std::uint64_t batches_done,
                                                    std::uint64_t batches,
                                                    const std::filesystem::path& output) const;

@@ -16,7 +16,10 @@ Action add_merge_command(CLI::App& app, const std::string& command_line) {
       "merge",
       "Pool independent runs of the same scene (different seeds) into one file: every batch of "
       "every run counts once in the mean and the standard error; photons add up. Refuses runs "
-      "that differ in anything but seed, photons, batches and threads.");
+      "that differ in anything but seed, photons, batches and threads; partial files (finish them "
+      "with --resume first), files of another format_version, files whose batch and photon "
+      "counts disagree, and tallies holding NaN or inf. Model curves (/models) are kept when "
+      "every input holds the same ones, and otherwise left out, saying so on stderr.");
   struct Options {
     std::vector<std::string> inputs;
     std::string out;
@@ -35,6 +38,9 @@ Action add_merge_command(CLI::App& app, const std::string& command_line) {
     const MergeSummary summary = merge_simulation_files(inputs, o->out, command_line);
     fmt::print("scatterlab merge: {} runs, {} photons in {} batches: wrote {}\n", inputs.size(),
                summary.photons, summary.batches, o->out);
+    if (!summary.models_dropped.empty()) {
+      fmt::print(stderr, "scatterlab merge: left out /models: {}\n", summary.models_dropped);
+    }
     if (summary.unequal_batches) {
       fmt::print(
           "  note: the runs differ in photons per batch; every batch weighs the same in "

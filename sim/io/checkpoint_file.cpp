@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
@@ -22,6 +23,32 @@ std::int64_t as_int64(std::uint64_t value) {
     throw std::invalid_argument("checkpoint: count does not fit in int64");
   }
   return static_cast<std::int64_t>(value);
+}
+
+// What makes a saved state unusable, whatever run it is resumed into (the runner checks that it
+// fits the run: batches and cell count); empty when nothing does.
+std::string state_problem(std::int64_t batches_folded, std::int64_t scattering_events,
+                          const RunState& state) {
+  if (batches_folded < 1) return fmt::format("batches_folded is {}, not 1 or more", batches_folded);
+  if (scattering_events < 0) {
+    return fmt::format("scattering_events is {}, not 0 or more", scattering_events);
+  }
+  if (state.mean.empty() || state.mean.size() != state.squares.size()) {
+    return fmt::format("welford_mean holds {} values and welford_squares {}, not the same number",
+                       state.mean.size(), state.squares.size());
+  }
+  for (std::size_t i = 0; i < state.mean.size(); ++i) {
+    if (!std::isfinite(state.mean[i])) {
+      return fmt::format("welford_mean[{}] is {}, not a finite number", i, state.mean[i]);
+    }
+    // Sums of squared deviations: never negative, and zero after a single batch.
+    const double square = state.squares[i];
+    if (!std::isfinite(square) || square < 0.0 || (batches_folded == 1 && square != 0.0)) {
+      return fmt::format("welford_squares[{}] is {}, not a finite number >= 0{}", i, square,
+                         batches_folded == 1 ? " (0 after one batch)" : "");
+    }
+  }
+  return {};
 }
 
 }  // namespace
@@ -90,15 +117,28 @@ RunState read_checkpoint(const std::filesystem::path& path, const std::string& s
                                    path.string(), written_for, spec_fingerprint),
                        accepted);
     }
+    const std::int64_t version =
+        root.has_attribute("format_version") ? root.read_int64_attribute("format_version") : 0;
+    if (version != kFormatVersion) {
+      throw InputError(field,
+                       fmt::format("'{}' has checkpoint format_version {}, this scatterlab reads "
+                                   "{}",
+                                   path.string(), version, kFormatVersion),
+                       accepted);
+    }
     RunState state;
-    state.batches_folded = static_cast<std::uint64_t>(root.read_int64_attribute("batches_folded"));
-    state.scattering_events =
-        static_cast<std::uint64_t>(root.read_int64_attribute("scattering_events"));
+    const std::int64_t batches_folded = root.read_int64_attribute("batches_folded");
+    const std::int64_t scattering_events = root.read_int64_attribute("scattering_events");
     state.mean = root.read_dataset("welford_mean").values;
     state.squares = root.read_dataset("welford_squares").values;
-    if (state.mean.size() != state.squares.size()) {
-      throw std::runtime_error("welford_mean and welford_squares differ in size");
+    const std::string problem = state_problem(batches_folded, scattering_events, state);
+    if (!problem.empty()) {
+      throw InputError(field,
+                       fmt::format("the checkpoint '{}' is damaged: {}", path.string(), problem),
+                       accepted);
     }
+    state.batches_folded = static_cast<std::uint64_t>(batches_folded);
+    state.scattering_events = static_cast<std::uint64_t>(scattering_events);
     return state;
   } catch (const InputError&) {
     throw;

@@ -106,6 +106,137 @@ double batches_of(const hdf5::File& file) {
   return static_cast<double>(count(root.open_group("parameters"), "batches"));
 }
 
+// A file merge can pool: complete, of the format this build reads, with counts that agree with
+// each other, and finite tallies. Merged files are inputs too: their totals obey the same rules.
+void check_input(const fs::path& path, const hdf5::File& file, const FileSummary& summary) {
+  const auto refuse = [&path](const std::string& problem) {
+    throw InputError("FILES", fmt::format("{} {}", path.string(), problem),
+                     "complete runs written by scatterlab simulate or searchlight (format_version "
+                     "1), with finite tallies");
+  };
+  if (summary.format_version != kSimulationFormatVersion) {
+    refuse(fmt::format("has format_version {}; this scatterlab reads {}", summary.format_version,
+                       kSimulationFormatVersion));
+  }
+  const hdf5::Group& root = file.root();
+  const hdf5::Group parameters = root.open_group("parameters");
+  const std::int64_t batches = parameters.read_int64_attribute("batches");
+  const std::int64_t photons = parameters.read_int64_attribute("photons");
+  const std::int64_t done =
+      root.has_attribute("batches_done") ? root.read_int64_attribute("batches_done") : batches;
+  if (summary.partial) {
+    refuse(
+        fmt::format("is partial ({} of {} batches, from a run that was stopped): finish it "
+                    "with --resume, then merge",
+                    done, batches));
+  }
+  if (batches < 1 || done != batches) {
+    refuse(
+        fmt::format("is inconsistent: batches_done {} but parameters.batches {}", done, batches));
+  }
+  if (summary.photons_run != photons || photons < batches) {
+    refuse(fmt::format("is inconsistent: photons_run {} but parameters.photons {} in {} batches",
+                       summary.photons_run, photons, batches));
+  }
+  if (summary.scattering_events < 0) {
+    refuse(fmt::format("is inconsistent: scattering_events {}", summary.scattering_events));
+  }
+  const hdf5::Group tallies = root.open_group("tallies");
+  for (const std::string& name : tallies.member_names()) {
+    for (const char* dataset : {"mean", "stderr"}) {
+      const std::vector<double> values = tallies.open_group(name).read_dataset(dataset).values;
+      const auto bad = std::find_if(values.begin(), values.end(), [&](double v) {
+        return !std::isfinite(v) || (std::string(dataset) == "stderr" && v < 0.0);
+      });
+      if (bad != values.end()) {
+        refuse(
+            fmt::format("has {} in tallies/{}/{}[{}]", *bad, name, dataset, bad - values.begin()));
+      }
+    }
+  }
+}
+
+// An attribute as text, to compare two files' models.
+std::string attribute_text(const hdf5::Object& object, const std::string& name) {
+  if (object.attribute_type(name) == hdf5::AttributeType::string) {
+    return object.read_string_attribute(name);
+  }
+  return fmt::format("{}", object.read_double_attribute(name));
+}
+
+// Each model under /models as text (its attributes, and every curve's shape, attributes and
+// values, exactly): two files' models agree when these are equal.
+std::map<std::string, std::string> model_texts(const hdf5::File& file) {
+  std::map<std::string, std::string> texts;
+  if (!file.root().has_member("models")) return texts;
+  const hdf5::Group models = file.root().open_group("models");
+  for (const std::string& model : models.member_names()) {
+    const hdf5::Group group = models.open_group(model);
+    std::string text;
+    for (const std::string& name : group.attribute_names()) {
+      text += fmt::format("@{}={}\n", name, attribute_text(group, name));
+    }
+    for (const std::string& curve : group.member_names()) {
+      const hdf5::Dataset dataset = group.open_dataset(curve);
+      const hdf5::Array array = dataset.read();
+      text += fmt::format("{} [{}] {}\n", curve, fmt::join(array.shape, ","),
+                          fmt::join(array.values, ","));
+      for (const std::string& name : dataset.attribute_names()) {
+        text += fmt::format("{}@{}={}\n", curve, name, attribute_text(dataset, name));
+      }
+    }
+    texts[model] = std::move(text);
+  }
+  return texts;
+}
+
+// Why the inputs' /models cannot be kept (the first model in which two inputs differ), or empty
+// when they all hold the same models.
+std::string models_disagreement(const std::vector<Input>& inputs) {
+  const std::map<std::string, std::string> first = model_texts(inputs.front().file);
+  for (std::size_t i = 1; i < inputs.size(); ++i) {
+    const std::map<std::string, std::string> other = model_texts(inputs[i].file);
+    if (other == first) continue;
+    std::string model;
+    for (const auto& [name, text] : first) {
+      const auto it = other.find(name);
+      if (it == other.end() || it->second != text) {
+        model = name;
+        break;
+      }
+    }
+    if (model.empty()) {
+      for (const auto& [name, text] : other) {
+        if (!first.count(name)) {
+          model = name;
+          break;
+        }
+      }
+    }
+    return fmt::format("{} and {} differ in /models/{}", inputs.front().path.string(),
+                       inputs[i].path.string(), model);
+  }
+  return {};
+}
+
+void copy_models(const hdf5::File& from, hdf5::Group& root) {
+  const hdf5::Group models = from.root().open_group("models");
+  hdf5::Group target = root.create_group("models");
+  for (const std::string& model : models.member_names()) {
+    const hdf5::Group group = models.open_group(model);
+    hdf5::Group node = target.create_group(model);
+    for (const std::string& name : group.attribute_names()) copy_attribute(group, node, name);
+    for (const std::string& curve : group.member_names()) {
+      const hdf5::Dataset dataset = group.open_dataset(curve);
+      const hdf5::Array array = dataset.read();
+      hdf5::Dataset copy = node.write_dataset(curve, array.values, array.shape);
+      for (const std::string& name : dataset.attribute_names()) {
+        copy_attribute(dataset, copy, name);
+      }
+    }
+  }
+}
+
 void check_grid(const Input& first, const Input& other) {
   const hdf5::Group a = first.file.root().open_group("grid");
   const hdf5::Group b = other.file.root().open_group("grid");
@@ -143,6 +274,7 @@ MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs
   for (const fs::path& path : paths) {
     FileSummary summary_of_input = read_file_summary(path);  // an InputError unless scatterlab's
     hdf5::File file = hdf5::File::open_read_only(path);
+    check_input(path, file, summary_of_input);
     const double batches = batches_of(file);
     if (batches < 2) {
       throw InputError("FILES", fmt::format("{} holds {} batch(es)", path.string(), batches),
@@ -180,6 +312,11 @@ MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs
                fmt::format("{}", fmt::join(tallies.member_names(), ",")));
     }
   }
+
+  // Models depend on the parameters and grid alone, which agree by now; files written by other
+  // versions of scatterlab may still hold other curves, and then none is kept.
+  summary.models_dropped = models_disagreement(inputs);
+  const bool keep_models = summary.models_dropped.empty() && first.file.root().has_member("models");
 
   hdf5::File file = hdf5::File::create(out.temporary_path());
   hdf5::Group& root = file.root();
@@ -273,6 +410,7 @@ MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs
       }
     }
   }
+  if (keep_models) copy_models(first.file, root);
   file.close();
   out.commit();
   return summary;

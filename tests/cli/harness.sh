@@ -33,3 +33,34 @@ expect_command_error() {
     pass
   fi
 }
+
+# snapshot: the sha256 of every file under the working directory, and every path in it.
+snapshot() {
+  find . -type f -print0 | sort -z | xargs -0 -r sha256sum
+  find . | sort
+}
+
+# expect_refused NAME FIELD COMMAND...: exit 2 (within a minute: no hang), FIELD named in the one
+# line on stderr with what is accepted, and nothing in the working directory changed, added or
+# removed. The script sets `scratch`, a directory outside the one watched, for the notes.
+expect_refused() {
+  local name=$1 field=$2
+  shift 2
+  snapshot >"$scratch/before"
+  timeout 60 "$exe" "$@" >"$scratch/stdout" 2>"$scratch/stderr"
+  local status=$?
+  snapshot >"$scratch/after"
+  if [ $status -ne 2 ]; then
+    fail "$name: exit $status, expected 2: $(cat "$scratch/stderr")"
+  elif ! grep -q -- "$field" "$scratch/stderr"; then
+    fail "$name: the error does not name $field: $(cat "$scratch/stderr")"
+  elif [ "$(grep -c . "$scratch/stderr")" -ne 1 ]; then
+    fail "$name: more than one line on stderr: $(cat "$scratch/stderr")"
+  elif ! grep -q "accepted" "$scratch/stderr"; then
+    fail "$name: the error does not say what is accepted: $(cat "$scratch/stderr")"
+  elif ! cmp -s "$scratch/before" "$scratch/after"; then
+    fail "$name: files changed: $(diff "$scratch/before" "$scratch/after")"
+  else
+    pass
+  fi
+}

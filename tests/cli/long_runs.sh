@@ -35,7 +35,8 @@ else
   kill -KILL $pid 2>/dev/null
 fi
 
-# SIGINT: finishes the round, writes a partial file, says so, exits 130; --resume completes it.
+# SIGINT: drops the round it cuts short, writes a partial file of the whole batches before it, says
+# so, exits 130; --resume completes it.
 "$exe" "${run[@]}" --out stopped.h5 --checkpoint-interval 4b >/dev/null 2>stopped.err &
 pid=$!
 wait_for stopped.h5.checkpoint

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -151,6 +152,34 @@ TEST_F(MergeTest, RefusesMismatchedParametersGridsTalliesAndSeeds) {
   expect_refused({a, write("tallies.h5", tallies)}, "tallies");
   expect_refused({a, write("again.h5", spec(1, 8))}, "parameters.seed");
   expect_refused({a}, "FILES");
+}
+
+// Files that agree with the others but not with themselves, or are not whole: refused naming
+// FILES, nothing written.
+TEST_F(MergeTest, RefusesPartialInconsistentAndUnknownInputs) {
+  const fs::path a = write("a.h5", spec(1, 4));
+  const SimulationSpec b = spec(2, 4);
+  const SimulationOutput out = simulate(b);
+  const auto written = [&](const std::string& name, std::uint64_t photons,
+                           std::optional<std::uint64_t> batches_done) {
+    const fs::path path = directory_ / name;
+    write_simulation_file(
+        path, b, out.tallies,
+        {"test", "test", iso8601_now(), 1.0, photons, out.scattering_events, batches_done, 1});
+    return path;
+  };
+  expect_refused({a, written("partial.h5", 1000, 2)}, "FILES");
+  expect_refused({a, written("photons.h5", 1999, std::nullopt)}, "FILES");
+  const fs::path version = written("version.h5", 2000, std::nullopt);
+  {
+    hdf5::File file = hdf5::File::open_read_write(version);
+    file.root().write_int64_attribute("format_version", kSimulationFormatVersion + 1);
+    file.close();
+  }
+  expect_refused({version, a}, "FILES");
+  // The same run, sound, merges.
+  EXPECT_NO_THROW(merge_simulation_files({a, written("sound.h5", 2000, std::nullopt)},
+                                         directory_ / "merged.h5", "merge"));
 }
 
 }  // namespace

@@ -15,6 +15,9 @@ struct MergeSummary {
   // True when the inputs hold different photons per batch: every batch still weighs the same in
   // the merged mean (unbiased, and so is its standard error), but not optimally.
   bool unequal_batches = false;
+  // Why the inputs' /models were left out of the merged file (they differ); empty when every
+  // input holds the same models (kept) or none.
+  std::string models_dropped;
 };
 
 // Reads every input, checks that they agree in every parameter other than seed, photons, batches
@@ -22,6 +25,12 @@ struct MergeSummary {
 // atomically. Mismatches are InputErrors naming the field ("parameters.albedo", "grid.r",
 // "tallies.radiance", "parameters.seed") and both files. `command` is recorded as provenance,
 // with the inputs.
+//
+// Every input must be complete (a partial file is refused: its run can still be finished with
+// --resume, and then merged whole, once), of this format
+// version, with batches_done, parameters.batches, photons_run and parameters.photons that agree,
+// and with finite tallies (InputError "FILES" naming the file and what is wrong). /models is kept
+// when every input holds the same models, and left out otherwise (see MergeSummary).
 MergeSummary merge_simulation_files(const std::vector<std::filesystem::path>& inputs,
                                     const std::filesystem::path& output,
                                     const std::string& command);

@@ -14,18 +14,25 @@
 // round, and its threads fold sub-slices in batch order. Memory per rank is independent of the
 // rank count: a buffer per thread, the round's received slices (threads x cells values) and the
 // statistics of its slice.
+//
+// A stop request is read between slices of every batch (detail::transport_batch), not only
+// between rounds: a round that a stop cuts short on any rank is abandoned on all of them, so a
+// stopped run holds exactly the whole rounds folded before it, and resumes to the same bits.
 
+#include <fmt/format.h>
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
 #include <functional>
-#include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "scatterlab/core/error.hpp"
 #include "scatterlab/tally/batch_statistics.hpp"
 #include "scatterlab/transport/communicator.hpp"
 #include "scatterlab/transport/run_control.hpp"
@@ -71,7 +78,28 @@ inline std::vector<std::size_t> cell_slices(std::size_t cells, int ranks) {
   return counts;
 }
 
-constexpr std::uint64_t kStopFlag = 1, kCheckpointFlag = 2;
+constexpr std::uint64_t kStopFlag = 1, kCheckpointFlag = 2, kAbandonFlag = 4;
+
+// Photons between two looks at the stop flag: a few milliseconds of transport at most, so that a
+// stop is honoured within a fraction of a second however long a batch is, and few enough looks
+// that their cost is lost in the walk's.
+constexpr std::uint64_t kStopPollPhotons = 1024;
+
+// Transports one batch into `sums` in slices of kStopPollPhotons photons, in photon order (the
+// same arithmetic as one call, so the same bits). Returns false when a stop was requested before
+// the batch was complete: its sums are then partial and must not be folded.
+template <class Walk, class Scratch>
+bool transport_batch(const Walk& walk, BatchRange range, double* sums, Scratch& scratch,
+                     const std::atomic<bool>* stop_requested, std::uint64_t& scatterings) {
+  for (std::uint64_t first = range.first; first < range.last; first += kStopPollPhotons) {
+    if (stop_requested != nullptr && stop_requested->load(std::memory_order_relaxed)) {
+      return false;
+    }
+    const std::uint64_t last = std::min(range.last, first + kStopPollPhotons);
+    scatterings += walk.run(first, last, sums, scratch);
+  }
+  return true;
+}
 
 }  // namespace detail
 
@@ -98,11 +126,23 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
   const std::vector<std::size_t> slices = detail::cell_slices(cells, ranks);
   const std::size_t slice = slices[rank];
 
-  // Resume: the root's saved state, dealt out slice by slice.
+  // Resume: the root's saved state, dealt out slice by slice. Whether it fits this run is checked
+  // on the root and agreed by all ranks, so that a refusal ends every rank rather than leaving
+  // the others waiting for the root.
   const RunState* resume = world.is_root() ? control.resume_from : nullptr;
-  if (resume != nullptr && (resume->mean.size() != cells || resume->squares.size() != cells ||
-                            resume->batches_folded > batches)) {
-    throw std::invalid_argument("run_batches: the state to resume from belongs to another run");
+  std::string misfit;
+  if (resume != nullptr && (resume->mean.size() != cells || resume->squares.size() != cells)) {
+    misfit = fmt::format("holds {} values per Welford array but this run's tallies have {} cells",
+                         resume->mean.size(), cells);
+  } else if (resume != nullptr && resume->batches_folded > batches) {
+    misfit =
+        fmt::format("has folded {} batches but this run has {}", resume->batches_folded, batches);
+  }
+  if (world.broadcast_from_root(misfit.empty() ? 0 : 1) != 0) {
+    throw InputError("--resume",
+                     fmt::format("the checkpoint '{}' {}", control.resume_source,
+                                 misfit.empty() ? "does not fit this run (see rank 0)" : misfit),
+                     "a checkpoint written by this run (same parameters and seed)");
   }
   const std::uint64_t start = world.broadcast_from_root(resume ? resume->batches_folded : 0);
   BatchStatistics statistics(slice);
@@ -117,6 +157,7 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
   // One score buffer per thread; with several ranks, the round's slices of every batch.
   std::vector<std::vector<double>> sums(thread_count, std::vector<double>(cells, 0.0));
   std::vector<std::uint64_t> scatterings(thread_count, 0);
+  std::vector<int> abandoned(thread_count, 0);  // by thread: its batch of the round was cut short
   if (resume != nullptr) scatterings[0] = resume->scattering_events;
   std::vector<double> send, received;
   std::vector<std::size_t> send_counts, receive_counts;
@@ -131,7 +172,7 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
   auto last_checkpoint = clock_start;
   std::uint64_t last_checkpoint_batches = start;
   std::uint64_t done = start;
-  std::uint64_t round_flags = 0;  // written by the master before the round's last barrier
+  std::uint64_t round_flags = 0;  // written by the master before the round's second barrier
   std::exception_ptr failure;
 
   // The whole state, gathered on the root (a collective: every rank calls it).
@@ -156,14 +197,49 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
     const std::size_t end = std::min(slice, begin + part);
     for (std::uint64_t first = start; first < batches; first += per_round) {
       const std::uint64_t batch = first + rank * thread_count + t;
+      const std::uint64_t end_of_round = std::min(batches, first + per_round);
+      std::uint64_t batch_scatterings = 0;
+      bool stopped = false;
       if (batch < batches) {
-        const BatchRange range = batch_range(photons, batches, batch);
-        scatterings[t] += walk.run(range.first, range.last, sums[t].data(), scratch);
+        stopped =
+            !detail::transport_batch(walk, batch_range(photons, batches, batch), sums[t].data(),
+                                     scratch, control.stop_requested, batch_scatterings);
       }
+      abandoned[t] = stopped ? 1 : 0;
 #pragma omp barrier
-      if (ranks > 1) {
+      // The master decides for the round on every rank at once, before anything is folded: a
+      // batch cut short anywhere abandons the round everywhere, so that all ranks fold the same
+      // batches and a stopped run holds whole batches only.
 #pragma omp master
-        {
+      {
+        std::uint64_t flags = 0;
+        if (std::find(abandoned.begin(), abandoned.end(), 1) != abandoned.end()) {
+          flags |= detail::kStopFlag | detail::kAbandonFlag;
+        }
+        if ((control.stop_requested != nullptr && control.stop_requested->load()) ||
+            failure != nullptr) {
+          flags |= detail::kStopFlag;
+        }
+        const auto now = std::chrono::steady_clock::now();
+        const CheckpointPolicy& policy = control.checkpoint;
+        const bool due =
+            (policy.every_batches > 0 &&
+             end_of_round - last_checkpoint_batches >= policy.every_batches) ||
+            (policy.every_seconds > 0.0 &&
+             std::chrono::duration<double>(now - last_checkpoint).count() >= policy.every_seconds);
+        if (world.is_root() && due && end_of_round < batches && control.save_checkpoint) {
+          flags |= detail::kCheckpointFlag;
+        }
+        flags = world.bitwise_or(flags);
+        const std::uint64_t held = (flags & detail::kAbandonFlag) ? done : end_of_round;
+        if (flags & detail::kAbandonFlag) flags &= ~detail::kCheckpointFlag;
+        // Stopping early saves the state too, so that the run can be resumed from there, unless
+        // the last checkpoint (or the one resumed from) already holds it.
+        if ((flags & detail::kStopFlag) && held < batches && held > last_checkpoint_batches &&
+            control.save_checkpoint) {
+          flags |= detail::kCheckpointFlag;
+        }
+        if (ranks > 1 && !(flags & detail::kAbandonFlag)) {
           // Pack [owner][thread][owner's cells], clearing the buffers for the next round.
           double* out = send.data();
           std::size_t offset = 0;
@@ -177,45 +253,28 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
           }
           world.all_to_all(send, send_counts, received, receive_counts);
         }
-#pragma omp barrier
-      }
-      for (std::uint64_t k = 0; k < per_round && first + k < batches; ++k) {
-        const BatchRange range = batch_range(photons, batches, first + k);
-        double* batch_sums = ranks > 1 ? received.data() + k * slice : sums[k].data();
-        statistics.add_batch(first + k, batch_sums, static_cast<double>(range.last - range.first),
-                             begin, end);
-      }
-      // The master decides before the barrier, so that every thread reads the decision after it
-      // without a barrier of its own; a checkpoint reads the statistics after the barrier, before
-      // the master's next batch (the others wait for it before folding again).
-#pragma omp master
-      {
-        done = std::min(batches, first + per_round);
-        std::uint64_t flags = 0;
-        if ((control.stop_requested != nullptr && control.stop_requested->load()) ||
-            failure != nullptr) {
-          flags |= detail::kStopFlag;
-        }
-        const auto now = std::chrono::steady_clock::now();
-        const CheckpointPolicy& policy = control.checkpoint;
-        const bool due =
-            (policy.every_batches > 0 && done - last_checkpoint_batches >= policy.every_batches) ||
-            (policy.every_seconds > 0.0 &&
-             std::chrono::duration<double>(now - last_checkpoint).count() >= policy.every_seconds);
-        if (world.is_root() && due && done < batches && control.save_checkpoint) {
-          flags |= detail::kCheckpointFlag;
-        }
-        flags = world.bitwise_or(flags);
-        // Stopping early saves the state too, so that the run can be resumed from there.
-        if ((flags & detail::kStopFlag) && done < batches && control.save_checkpoint) {
-          flags |= detail::kCheckpointFlag;
-        }
         round_flags = flags;
       }
 #pragma omp barrier
+      const bool folding = !(round_flags & detail::kAbandonFlag);
+      if (folding) {
+        scatterings[t] += batch_scatterings;
+        for (std::uint64_t k = 0; k < per_round && first + k < batches; ++k) {
+          const BatchRange range = batch_range(photons, batches, first + k);
+          double* batch_sums = ranks > 1 ? received.data() + k * slice : sums[k].data();
+          statistics.add_batch(first + k, batch_sums, static_cast<double>(range.last - range.first),
+                               begin, end);
+        }
+        // Every thread folds (and clears) parts of every buffer: all are done before any thread
+        // scores its next batch, or the master reads the state for a checkpoint.
+#pragma omp barrier
+      }
 #pragma omp master
       {
-        if (progress) progress(static_cast<double>(done) / static_cast<double>(batches));
+        if (folding) {
+          done = end_of_round;
+          if (progress) progress(static_cast<double>(done) / static_cast<double>(batches));
+        }
         if (round_flags & detail::kCheckpointFlag) {
           try {
             const RunState state = gather_state();

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "scatterlab/transport/communicator.hpp"
@@ -44,9 +45,12 @@ struct RunControl {
   // Read on the root rank only: continue from this state instead of batch 0. The caller checks
   // that it belongs to the same run (same parameters and seed).
   const RunState* resume_from = nullptr;
+  // Where resume_from was read (the checkpoint's path), for the error when it does not fit.
+  std::string resume_source;
 
-  // Polled at the end of every round of batches, on every rank; once any rank sees it set, all
-  // ranks stop after the round, and the outcome holds the batches folded so far.
+  // Polled every thousand photons or so within each batch and at the end of every round, on every
+  // rank. Once any rank sees it set, all ranks stop: a round that was cut short is abandoned
+  // everywhere, and the outcome holds the whole rounds folded before it.
   const std::atomic<bool>* stop_requested = nullptr;
 };
 
