@@ -17,34 +17,6 @@ trap 'rm -rf "$work" "$scratch"' EXIT
 tiny=(--photons 2000 --batches 4 --threads 1)
 grid=(--theta-bins 6 --phi-bins 8 --r-bins 4 --z-bins 4)
 
-# Every regular file with its digest, and every name (FIFOs and directories included).
-snapshot() {
-  find . -type f -print0 | sort -z | xargs -0 -r sha256sum
-  find . | sort
-}
-
-# expect_refused NAME FIELD COMMAND...: exit 2, FIELD named in one line on stderr, nothing in the
-# working directory changed, added or removed.
-expect_refused() {
-  local name=$1 field=$2
-  shift 2
-  snapshot >"$scratch/before"
-  "$exe" "$@" >/dev/null 2>"$scratch/stderr"
-  local status=$?
-  snapshot >"$scratch/after"
-  if [ $status -ne 2 ]; then
-    fail "$name: exit $status, expected 2: $(cat "$scratch/stderr")"
-  elif ! grep -q -- "$field" "$scratch/stderr"; then
-    fail "$name: the error does not name $field: $(cat "$scratch/stderr")"
-  elif [ "$(grep -c . "$scratch/stderr")" -ne 1 ]; then
-    fail "$name: more than one line on stderr: $(cat "$scratch/stderr")"
-  elif ! cmp -s "$scratch/before" "$scratch/after"; then
-    fail "$name: files changed: $(diff "$scratch/before" "$scratch/after")"
-  else
-    pass
-  fi
-}
-
 # The files a careless user has lying about.
 "$exe" simulate "${tiny[@]}" "${grid[@]}" --seed 1 --out a.h5 >/dev/null || fail "setup: a.h5"
 "$exe" simulate "${tiny[@]}" "${grid[@]}" --seed 2 --out b.h5 >/dev/null || fail "setup: b.h5"

@@ -41,13 +41,15 @@ snapshot() {
 }
 
 # expect_refused NAME FIELD COMMAND...: exit 2 (within a minute: no hang), FIELD named in the one
-# line on stderr with what is accepted, and nothing in the working directory changed, added or
-# removed. The script sets `scratch`, a directory outside the one watched, for the notes.
+# line on stderr with what is accepted (or the flag it excludes), and nothing in the working
+# directory changed, added or removed. The script sets `scratch`, a directory outside the one
+# watched, for the notes. ENV_SET, when set, is passed to `env` for the command.
 expect_refused() {
   local name=$1 field=$2
   shift 2
   snapshot >"$scratch/before"
-  timeout 60 "$exe" "$@" >"$scratch/stdout" 2>"$scratch/stderr"
+  # shellcheck disable=SC2086 # ENV_SET is a list of NAME=VALUE words
+  timeout 60 env ${ENV_SET:-} "$exe" "$@" >"$scratch/stdout" 2>"$scratch/stderr"
   local status=$?
   snapshot >"$scratch/after"
   if [ $status -ne 2 ]; then
@@ -56,7 +58,7 @@ expect_refused() {
     fail "$name: the error does not name $field: $(cat "$scratch/stderr")"
   elif [ "$(grep -c . "$scratch/stderr")" -ne 1 ]; then
     fail "$name: more than one line on stderr: $(cat "$scratch/stderr")"
-  elif ! grep -q "accepted" "$scratch/stderr"; then
+  elif ! grep -q "accepted\|excludes\|--help" "$scratch/stderr"; then
     fail "$name: the error does not say what is accepted: $(cat "$scratch/stderr")"
   elif ! cmp -s "$scratch/before" "$scratch/after"; then
     fail "$name: files changed: $(diff "$scratch/before" "$scratch/after")"

@@ -20,36 +20,6 @@ trap 'rm -rf "$work" "$scratch"' EXIT
 tiny=(--photons 2000 --batches 4 --threads 1)
 grid=(--theta-bins 6 --phi-bins 8 --r-bins 4 --z-bins 4)
 
-snapshot() {
-  find . -type f -print0 | sort -z | xargs -0 -r sha256sum
-  find . | sort
-}
-
-# expect_refused NAME FIELD COMMAND...: exit 2 (within a minute: no hang), FIELD named in the one
-# line on stderr, nothing in the working directory changed, added or removed. The environment
-# variable ENV_SET, when set, is exported to the command.
-expect_refused() {
-  local name=$1 field=$2
-  shift 2
-  snapshot >"$scratch/before"
-  timeout 60 env ${ENV_SET:-} "$exe" "$@" >"$scratch/stdout" 2>"$scratch/stderr"
-  local status=$?
-  snapshot >"$scratch/after"
-  if [ $status -ne 2 ]; then
-    fail "$name: exit $status, expected 2: $(cat "$scratch/stderr")"
-  elif ! grep -q -- "$field" "$scratch/stderr"; then
-    fail "$name: the error does not name $field: $(cat "$scratch/stderr")"
-  elif [ "$(grep -c . "$scratch/stderr")" -ne 1 ]; then
-    fail "$name: more than one line on stderr: $(cat "$scratch/stderr")"
-  elif ! grep -q "accepted\|excludes\|--help" "$scratch/stderr"; then
-    fail "$name: the error does not say what is accepted: $(cat "$scratch/stderr")"
-  elif ! cmp -s "$scratch/before" "$scratch/after"; then
-    fail "$name: files changed: $(diff "$scratch/before" "$scratch/after")"
-  else
-    pass
-  fi
-}
-
 # The files lying about, which must come out untouched.
 "$exe" simulate "${tiny[@]}" "${grid[@]}" --out a.h5 >/dev/null || fail "setup: a.h5"
 cp "$source_dir/data/scenes/paper-beam.toml" scene.toml
