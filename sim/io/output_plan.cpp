@@ -93,6 +93,8 @@ int creation_refused(const fs::path& directory) {
   return EEXIST;
 }
 
+}  // namespace
+
 std::string file_type_text(fs::file_type type) {
   switch (type) {
     case fs::file_type::directory:
@@ -109,8 +111,6 @@ std::string file_type_text(fs::file_type type) {
       return "not a regular file";
   }
 }
-
-}  // namespace
 
 void check_path_text(const std::string& field, const fs::path& path) {
   const std::string& text = path.native();

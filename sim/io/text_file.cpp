@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/io/output_plan.hpp"
 
 namespace scatterlab {
 namespace {
@@ -14,23 +15,6 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::string accepted = "a regular TOML file of at most 1 MiB";
-
-std::string kind_of(fs::file_type type) {
-  switch (type) {
-    case fs::file_type::directory:
-      return "a directory";
-    case fs::file_type::block:
-      return "a block device";
-    case fs::file_type::character:
-      return "a character device";
-    case fs::file_type::fifo:
-      return "a FIFO";
-    case fs::file_type::socket:
-      return "a socket";
-    default:
-      return "not a regular file";
-  }
-}
 
 }  // namespace
 
@@ -41,7 +25,7 @@ void check_scene_file(const fs::path& path, const std::string& field) {
     throw InputError(field, fmt::format("'{}' does not exist", path.string()), accepted);
   }
   if (!fs::is_regular_file(status)) {
-    throw InputError(field, fmt::format("'{}' is {}", path.string(), kind_of(status.type())),
+    throw InputError(field, fmt::format("'{}' is {}", path.string(), file_type_text(status.type())),
                      accepted);
   }
   const std::uintmax_t size = fs::file_size(path, error);

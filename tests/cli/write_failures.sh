@@ -72,10 +72,11 @@ expect_write_failure() {
   fi
 }
 
-# expect_refused NAME FIELD TEXT COMMAND...: exit 2 within a minute, one line on stderr naming
+# expect_refused_saying NAME FIELD TEXT COMMAND...: as the harness's expect_refused, but the line
+# must also say TEXT (and need not say what is accepted): exit 2 within a minute, one line naming
 # FIELD and TEXT, nothing in the working directory changed, added or removed. ENV_SET, when set,
 # is exported to the command.
-expect_refused() {
+expect_refused_saying() {
   local name=$1 field=$2 text=$3
   shift 3
   snapshot >"$scratch/before"
@@ -183,30 +184,30 @@ else
 fi
 
 # --- outputs where no file can be made ----------------------------------------------------------
-expect_refused "simulate: --out in /proc" --out "'/proc'" \
+expect_refused_saying "simulate: --out in /proc" --out "'/proc'" \
   simulate "${tiny[@]}" --out /proc/scatterlab.h5
-expect_refused "simulate: --checkpoint in /proc" --checkpoint "'/proc'" \
+expect_refused_saying "simulate: --checkpoint in /proc" --checkpoint "'/proc'" \
   simulate "${tiny[@]}" --out new.h5 --checkpoint /proc/scatterlab.ckpt
-expect_refused "simulate: --out-dir under /proc" --out-dir "'/proc'" \
+expect_refused_saying "simulate: --out-dir under /proc" --out-dir "'/proc'" \
   simulate "${tiny[@]}" --out-dir /proc/scatterlab-sweep
-expect_refused "searchlight: --out in /proc" --out "'/proc'" \
+expect_refused_saying "searchlight: --out in /proc" --out "'/proc'" \
   searchlight "${tiny[@]}" --out /proc/scatterlab.h5
-expect_refused "merge: --out in /proc" --out "'/proc'" merge a.h5 b.h5 -o /proc/scatterlab.h5
-expect_refused "fit: --csv in /proc" --csv "'/proc'" fit a.h5 --csv /proc/scatterlab.csv
-expect_refused "render: --out in /proc" --out "'/proc'" render render.toml --out /proc/s.exr
-expect_refused "render --study: --out under /proc" --out "'/proc'" \
+expect_refused_saying "merge: --out in /proc" --out "'/proc'" merge a.h5 b.h5 -o /proc/scatterlab.h5
+expect_refused_saying "fit: --csv in /proc" --csv "'/proc'" fit a.h5 --csv /proc/scatterlab.csv
+expect_refused_saying "render: --out in /proc" --out "'/proc'" render render.toml --out /proc/s.exr
+expect_refused_saying "render --study: --out under /proc" --out "'/proc'" \
   render --study --quick render.toml --out /proc/scatterlab-study
-expect_refused "report: --out under /proc" --out "'/proc'" report --quick --out /proc/scatterlab
-expect_refused "validate deon: --out under /proc" --out "'/proc'" \
+expect_refused_saying "report: --out under /proc" --out "'/proc'" report --quick --out /proc/scatterlab
+expect_refused_saying "validate deon: --out under /proc" --out "'/proc'" \
   validate deon --quick --out /proc/scatterlab
-expect_refused "validate searchlight: --out under /proc" --out "'/proc'" \
+expect_refused_saying "validate searchlight: --out under /proc" --out "'/proc'" \
   validate searchlight --quick --out /proc/scatterlab
 if [ "$(id -u)" -ne 0 ]; then
   mkdir locked
   chmod 0555 locked
-  expect_refused "simulate: --out in a 0555 directory" --out "locked'" \
+  expect_refused_saying "simulate: --out in a 0555 directory" --out "locked'" \
     simulate "${tiny[@]}" --out locked/run.h5
-  expect_refused "report: --out under a 0555 directory" --out "locked'" \
+  expect_refused_saying "report: --out under a 0555 directory" --out "locked'" \
     report --quick --out locked/report
   chmod 0755 locked
   rmdir locked
@@ -254,10 +255,10 @@ fi
 # --- a launcher's variables without a launcher --------------------------------------------------
 for variable in OMPI_COMM_WORLD_SIZE=4 PMI_SIZE=2 PMIX_SIZE=2 MPI_LOCALNRANKS=2 PMIX_RANK=0 \
   OMPI_COMM_WORLD_SIZE=1; do
-  ENV_SET=$variable expect_refused "stray $variable" "${variable%%=*}" "no MPI launcher" \
+  ENV_SET=$variable expect_refused_saying "stray $variable" "${variable%%=*}" "no MPI launcher" \
     simulate "${tiny[@]}" --out stray.h5
 done
-ENV_SET="OMPI_COMM_WORLD_SIZE=four PMIX_SERVER_URI2=nowhere" expect_refused \
+ENV_SET="OMPI_COMM_WORLD_SIZE=four PMIX_SERVER_URI2=nowhere" expect_refused_saying \
   "a launcher's rank count that is not a number" OMPI_COMM_WORLD_SIZE "four" \
   simulate "${tiny[@]}" --out stray.h5
 

@@ -25,6 +25,10 @@ void check_path_text(const std::string& field, const std::filesystem::path& path
 // The same file: by inode and device when both exist, else by their resolved absolute paths.
 bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
 
+// What a file of this type is called in messages: "a directory", "a FIFO", ... ("not a regular
+// file" for the rest).
+std::string file_type_text(std::filesystem::file_type type);
+
 class OutputPlan {
  public:
   // A file the command reads.
