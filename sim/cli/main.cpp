@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <exception>
 #include <memory>
+#include <new>
 #include <string>
 
 #include "commands.hpp"
@@ -68,6 +69,13 @@ int main(int argc, char** argv) {
     // Bad input is found alike on every rank, before any of them waits on another.
     if (world->is_root()) fmt::print(stderr, "scatterlab: error: {}\n", e.what());
     return 2;
+  } catch (const std::bad_alloc&) {
+    // Past every estimate (core/memory_budget.hpp): still one line and status 1, not an abort.
+    fmt::print(stderr,
+               "scatterlab: failed: out of memory (an allocation was refused; --memory-limit "
+               "makes the estimates refuse such a run before it starts)\n");
+    if (world->size() > 1) world->abort(1);
+    return 1;
   } catch (const std::exception& e) {
     fmt::print(stderr, "scatterlab: failed: {}\n", e.what());
     if (world->size() > 1) world->abort(1);  // the other ranks may be waiting on this one

@@ -189,6 +189,9 @@ TransportProblem transport_problem(const SearchlightSpec& given) {
   problem.estimator = Estimator::collision;
   problem.photon_power = 1.0 - specular;
   problem.run = spec.run;
+  problem.size_fields = spec.tallies.fluence
+                            ? "grid.r.bins x grid.z.bins (fluence), grid.theta_o.bins, run.threads"
+                            : "grid.r.bins x grid.theta_o.bins, run.threads";
   return problem;
 }
 
