@@ -294,8 +294,8 @@ Action add_simulate_command(CLI::App& app, const std::string& command_line, Worl
   command
       ->add_option("--out-dir", o->out_dir,
                    "Directory for the output: needed for a sweep (a scene whose keys hold lists "
-                   "of values), one file per combination named from its values; done "
-                   "combinations are skipped. Not with --out")
+                   "of values), one file per combination named from its values, at most "
+                   "1000 combinations; done combinations are skipped. Not with --out")
       ->excludes(out);
   command->add_option("--source", o->source, "Source: beam (along +z) or point (isotropic)")
       ->check(CLI::IsMember({"beam", "point"}));
