@@ -33,3 +33,34 @@ expect_command_error() {
     pass
   fi
 }
+
+# expect_refused_untouched NAME FIELD COMMAND...: exit status 2 within a minute (no hang, no
+# allocation that swaps), one line on stderr naming FIELD and what is accepted, and every file
+# under the working directory byte for byte as before, with none added or removed.
+notes="$work/.refusal-notes"  # the check's own files, left out of what it watches
+tree_digest() {
+  find . -path ./.refusal-notes -prune -o -type f -print0 | sort -z | xargs -0 -r sha256sum
+  find . -path ./.refusal-notes -prune -o -print | sort
+}
+expect_refused_untouched() {
+  local name=$1 field=$2
+  shift 2
+  mkdir -p "$notes"
+  tree_digest >"$notes/before"
+  timeout 60 "$exe" "$@" >"$notes/stdout" 2>"$notes/stderr"
+  local status=$?
+  tree_digest >"$notes/after"
+  if [ $status -ne 2 ]; then
+    fail "$name: exit $status, expected 2: $(cat "$notes/stderr")"
+  elif ! grep -q -- "$field" "$notes/stderr"; then
+    fail "$name: the error does not name $field: $(cat "$notes/stderr")"
+  elif [ "$(grep -c . "$notes/stderr")" -ne 1 ]; then
+    fail "$name: more than one line on stderr: $(cat "$notes/stderr")"
+  elif ! grep -q "accepted\|--help" "$notes/stderr"; then
+    fail "$name: the error does not say what is accepted: $(cat "$notes/stderr")"
+  elif ! cmp -s "$notes/before" "$notes/after"; then
+    fail "$name: files changed: $(diff "$notes/before" "$notes/after")"
+  else
+    pass
+  fi
+}
