@@ -19,7 +19,7 @@ void add_memory_limit_option(CLI::App& command) {
           return std::string(e.what()).substr(e.field().size() + 2);  // CLI11 names the flag
         }
       },
-      "SIZE");
+      "");
   command
       .add_option_function<std::string>(
           "--memory-limit",
@@ -30,6 +30,7 @@ void add_memory_limit_option(CLI::App& command) {
           "physical memory, or its cgroup's limit when lower]. The run's peak (tallies, a buffer "
           "per thread, images, datasets read) is estimated before anything is allocated, and a "
           "run over the limit is refused, naming the fields that size it")
+      ->type_name("SIZE")
       ->check(size);
 }
 
