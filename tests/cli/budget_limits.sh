@@ -93,7 +93,7 @@ with h5py.File("crafted.h5", "r+") as f:
 PY
   size=$(stat -c %s crafted.h5)
   if [ "$size" -gt 1000000 ]; then fail "setup: crafted.h5 is $size bytes"; fi
-  timeout 60 "$exe" info crafted.h5 >"$notes/stdout" 2>"$notes/stderr"
+  timeout -k 10 60 "$exe" info crafted.h5 >"$notes/stdout" 2>"$notes/stderr"
   status=$?
   if [ $status -ne 2 ]; then
     fail "info of an 8 TB declared dataset: exit $status: $(cat "$notes/stderr")"
@@ -157,7 +157,7 @@ if ldd "$exe" | grep -q libasan; then
 else
 (
   ulimit -v 4000000
-  exec timeout 60 "$exe" simulate "${tiny[@]}" --tallies fluence --r-bins 100000 \
+  exec timeout -k 10 60 "$exe" simulate "${tiny[@]}" --tallies fluence --r-bins 100000 \
     --z-bins 10000 --memory-limit 1T --out oom.h5
 ) >"$notes/stdout" 2>"$notes/stderr"
 status=$?

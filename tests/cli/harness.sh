@@ -47,7 +47,7 @@ expect_refused_untouched() {
   shift 2
   mkdir -p "$notes"
   tree_digest >"$notes/before"
-  timeout 60 "$exe" "$@" >"$notes/stdout" 2>"$notes/stderr"
+  timeout -k 10 60 "$exe" "$@" >"$notes/stdout" 2>"$notes/stderr"
   local status=$?
   tree_digest >"$notes/after"
   if [ $status -ne 2 ]; then
