@@ -39,24 +39,29 @@ std::optional<std::uint64_t> cgroup_value(const std::string& path) {
   }
 }
 
-// This process's cgroup v2 directory, from the "0::/path" line of /proc/self/cgroup.
-std::string cgroup_v2_directory() {
+// The memory limits of this process's cgroups: from the lines of /proc/self/cgroup, v2's
+// "0::/path" (memory.max) and v1's "N:memory:/path" (memory.limit_in_bytes), and those of the
+// hierarchies' roots, which are the process's own inside a container.
+std::optional<std::uint64_t> cgroup_limit() {
+  std::optional<std::uint64_t> lowest;
+  auto take = [&lowest](const std::string& path) {
+    const std::optional<std::uint64_t> value = cgroup_value(path);
+    if (value && (!lowest || *value < *lowest)) lowest = value;
+  };
   std::ifstream file("/proc/self/cgroup");
   std::string line;
   while (std::getline(file, line)) {
-    if (line.rfind("0::", 0) == 0) return "/sys/fs/cgroup" + line.substr(3);
+    const std::size_t first = line.find(':'), second = line.find(':', first + 1);
+    if (first == std::string::npos || second == std::string::npos) continue;
+    const std::string controllers = line.substr(first + 1, second - first - 1);
+    const std::string path = line.substr(second + 1);
+    if (controllers.empty()) take("/sys/fs/cgroup" + path + "/memory.max");
+    if (("," + controllers + ",").find(",memory,") != std::string::npos) {
+      take("/sys/fs/cgroup/memory" + path + "/memory.limit_in_bytes");
+    }
   }
-  return "/sys/fs/cgroup";
-}
-
-std::optional<std::uint64_t> cgroup_limit() {
-  std::optional<std::uint64_t> lowest;
-  auto take = [&lowest](std::optional<std::uint64_t> value) {
-    if (value && (!lowest || *value < *lowest)) lowest = value;
-  };
-  take(cgroup_value(cgroup_v2_directory() + "/memory.max"));
-  take(cgroup_value("/sys/fs/cgroup/memory.max"));
-  take(cgroup_value("/sys/fs/cgroup/memory/memory.limit_in_bytes"));
+  take("/sys/fs/cgroup/memory.max");
+  take("/sys/fs/cgroup/memory/memory.limit_in_bytes");
   return lowest;
 }
 
