@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/core/memory_budget.hpp"
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
 #include "scatterlab/io/simulation_file.hpp"
@@ -211,6 +212,17 @@ const ModelFits* find_model(const LobeFitRun& run, LobeModel model) {
   return nullptr;
 }
 
+// The radiance's mean and standard error are held whole while its bins are fitted, with the
+// flux beside them and a model's values for a bin per thread: three arrays of the radiance at
+// most. Checked from the declared shape before either is read (core/memory_budget.hpp).
+void check_fit_memory(const hdf5::Dataset& radiance) {
+  std::uint64_t values = 1;
+  for (const std::size_t extent : radiance.shape()) values = saturating_product(values, extent);
+  MemoryEstimate need;
+  need.add_doubles(fmt::format("radiance arrays of {} values", values), values, 3);
+  check_memory(need, radiance.location(), "a smaller radiance tally");
+}
+
 }  // namespace
 
 LobeData RadianceLobes::lobe(std::size_t r, std::size_t z) const {
@@ -245,6 +257,7 @@ RadianceLobes read_radiance_lobes(const std::filesystem::path& path) {
     lobes.z_edges = grid.read_dataset("z").values;
     lobes.theta_edges = grid.read_dataset("theta").values;
     lobes.phi_edges = grid.read_dataset("phi").values;
+    check_fit_memory(root.open_dataset("tallies/radiance/mean"));
     hdf5::Array mean = root.read_dataset("tallies/radiance/mean");
     hdf5::Array error = root.read_dataset("tallies/radiance/stderr");
     const std::vector<std::size_t> expected = {lobes.r_edges.size() - 1, lobes.z_edges.size() - 1,

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "memory_limit_option.hpp"
 #include "prepare_outputs.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
@@ -55,6 +56,7 @@ Action add_fit_command(CLI::App& app) {
                       "Summary CSV path [default: FILE without .h5 + -fits.csv; for a directory "
                       "DIR/fits-table.csv]");
   command->add_option("--threads", options->threads, threads_help());
+  add_memory_limit_option(*command);
   command
       ->add_option("--quadrature", options->quadrature,
                    "Gauss-Legendre points per angular bin and axis that average a model over "

@@ -11,6 +11,7 @@
 #include <exception>
 #include <iostream>
 #include <memory>
+#include <new>
 #include <string>
 #include <system_error>
 #include <utility>
@@ -139,6 +140,11 @@ int run(int argc, char** argv) {
     } else {
       print_error("scatterlab: failed: {}\n", e.what());
     }
+  } catch (const std::bad_alloc&) {
+    // Past every estimate (core/memory_budget.hpp): still one line and status 1, not an abort.
+    print_error(
+        "scatterlab: failed: out of memory (an allocation was refused; --memory-limit "
+        "makes the estimates refuse such a run before it starts)\n");
     if (world->size() > 1) world->abort(1);
     return 1;
   } catch (const std::exception& e) {

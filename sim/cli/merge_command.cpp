@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "memory_limit_option.hpp"
 #include "prepare_outputs.hpp"
 #include "scatterlab/io/merge.hpp"
 
@@ -29,6 +30,7 @@ Action add_merge_command(CLI::App& app, const std::string& command_line) {
       ->required()
       ->check(CLI::ExistingFile);
   merge->add_option("-o,--out", o->out, "Merged HDF5 file")->required();
+  add_memory_limit_option(*merge);
   return [o, command_line] {
     const std::vector<std::filesystem::path> inputs(o->inputs.begin(), o->inputs.end());
     OutputPlan plan;

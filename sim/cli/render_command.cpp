@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "memory_limit_option.hpp"
 #include "prepare_outputs.hpp"
 #include "progress_bar.hpp"
 #include "run_options.hpp"
@@ -99,6 +100,7 @@ Action add_render_command(CLI::App& app) {
       "Points on a sphere light for the deterministic methods, in [1, 4096] (default: "
       "the scene's)");
   render->add_option("--threads", options->threads, threads_help());
+  add_memory_limit_option(*render);
   render->add_option("--seed", options->seed, "Random seed (pathtrace), in [0, 2^63 - 1]");
   CLI::Option* out_option =
       render
@@ -145,6 +147,7 @@ Action add_render_command(CLI::App& app) {
     if (!(o.gamma > 0.0)) throw InputError("gamma", fmt::format("got {}", o.gamma), "a number > 0");
     settings.threads = o.threads;
     settings.seed = o.seed;
+    check_render_memory(scene, settings);
     const std::filesystem::path exr(o.out);
     std::filesystem::path png = exr;
     png.replace_extension(".png");

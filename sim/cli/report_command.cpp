@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "memory_limit_option.hpp"
 #include "prepare_outputs.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
@@ -37,6 +38,7 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
   command->add_option("--out", options->out, "Directory to write (created if missing)")
       ->capture_default_str();
   command->add_option("--threads", options->profile.threads, threads_help());
+  add_memory_limit_option(*command);
   command
       ->add_option("--seed", options->profile.seed,
                    "Seed of the first run (the next runs take the next seeds), in [0, 2^63 - 2^20]")

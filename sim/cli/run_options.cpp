@@ -7,7 +7,11 @@
 namespace scatterlab::cli {
 
 void add_run_options(CLI::App& command, RunOptions& o, const std::string& default_photons) {
-  command.add_option("--photons", o.photons, "Number of photons [" + default_photons + "]");
+  command.add_option("--photons", o.photons,
+                     "Number of photons, at most 2^53 (counts exact as doubles); with the "
+                     "expected events per photon, min(1 / (1 - albedo), 1 + (escape radius in "
+                     "mfp)^2), at most 2^53 events in all (years on one thread) [" +
+                         default_photons + "]");
   command.add_option("--batches", o.batches, "Batches for the standard error, >= 2 [64]");
   command.add_option("--seed", o.seed, "Random seed, in [0, 2^63 - 1] [1]");
   command.add_option("--threads", o.threads, threads_help());

@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "long_run.hpp"
 #include "medium_options.hpp"
+#include "memory_limit_option.hpp"
 #include "prepare_outputs.hpp"
 #include "progress_bar.hpp"
 #include "run_options.hpp"
@@ -126,6 +127,7 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
                                            : "given with the scene's tallies.fluence = false",
                      "--model-fluence with the fluence tally on (no --no-fluence)");
   }
+  check_transport_memory(transport_problem(spec), world.size(), long_run_options.resume);
 
   const std::string path = given("--out") ? o.out : scene.output_path.value_or("searchlight.h5");
   OutputPlan plan;
@@ -206,6 +208,7 @@ Action add_searchlight_command(CLI::App& app, const std::string& command_line, W
                     "Skip the fluence phi(r, z) (its bin lookup costs time at every event); not "
                     "with --model-fluence");
   const auto long_run = add_long_run_options(*command);
+  add_memory_limit_option(*command);
   return [command, o, long_run, command_line, &world] {
     return run_searchlight_command(*command, *o, *long_run, command_line, world);
   };

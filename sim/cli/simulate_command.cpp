@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "long_run.hpp"
 #include "medium_options.hpp"
+#include "memory_limit_option.hpp"
 #include "prepare_outputs.hpp"
 #include "progress_bar.hpp"
 #include "run_options.hpp"
@@ -229,6 +230,10 @@ int run_one(PlannedRun run, const LongRunOptions& options, const std::string& co
 int run_simulate(CLI::App& command, const SimulateOptions& o, const LongRunOptions& long_run,
                  const std::string& command_line, World& world) {
   const std::vector<PlannedRun> runs = plan_runs(command, o, long_run);
+  // Every run's memory before any starts (engine.hpp): a sweep is refused whole, not halfway.
+  for (const PlannedRun& run : runs) {
+    check_transport_memory(transport_problem(run.spec), world.size(), long_run.resume);
+  }
   OutputPlan plan;
   if (!o.scene.empty()) plan.input("--scene", o.scene);
   if (!o.out_dir.empty()) plan.output_directory("--out-dir", o.out_dir);
@@ -290,8 +295,8 @@ Action add_simulate_command(CLI::App& app, const std::string& command_line, Worl
   command
       ->add_option("--out-dir", o->out_dir,
                    "Directory for the output: needed for a sweep (a scene whose keys hold lists "
-                   "of values), one file per combination named from its values; done "
-                   "combinations are skipped. Not with --out")
+                   "of values), one file per combination named from its values, at most "
+                   "1000 combinations; done combinations are skipped. Not with --out")
       ->excludes(out);
   command->add_option("--source", o->source, "Source: beam (along +z) or point (isotropic)")
       ->check(CLI::IsMember({"beam", "point"}));
@@ -321,6 +326,7 @@ Action add_simulate_command(CLI::App& app, const std::string& command_line, Worl
                       "Spherical-shell grid extent, in the length unit [10 mfp]");
   command->add_option("--rho-bins", o->rho_bins, "Spherical shells [200]");
   const auto long_run = add_long_run_options(*command);
+  add_memory_limit_option(*command);
   return [command, o, long_run, command_line, &world] {
     return run_simulate(*command, *o, *long_run, command_line, world);
   };

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "memory_limit_option.hpp"
 #include "prepare_outputs.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
@@ -169,6 +170,7 @@ Action add_validate_command(CLI::App& app) {
                  "2e4 photons per albedo, for tests; not with --photons")
       ->excludes(deon_photons);
   deon->add_option("--threads", options->threads, threads_help());
+  add_memory_limit_option(*deon);
   deon->add_option("--seed", options->seed,
                    "Random seed of the first albedo (the next take the next seeds), in "
                    "[0, 2^63 - 7]")
@@ -190,6 +192,7 @@ Action add_validate_command(CLI::App& app) {
   searchlight->add_flag("--quick", half_space->quick, "1e5 photons, for tests; not with --photons")
       ->excludes(searchlight_photons);
   searchlight->add_option("--threads", half_space->threads, threads_help());
+  add_memory_limit_option(*searchlight);
   searchlight->add_option("--seed", half_space->seed, "Random seed, in [0, 2^63 - 1]")
       ->capture_default_str();
   return [options, deon, half_space, searchlight] {

@@ -1,5 +1,6 @@
 #include "scatterlab/io/hdf5_file.hpp"
 
+#include <fmt/format.h>
 #include <hdf5.h>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "scatterlab/core/memory_budget.hpp"
 #include "scatterlab/io/atomic_output.hpp"
 
 namespace scatterlab::hdf5 {
@@ -367,6 +369,40 @@ std::vector<std::size_t> Dataset::shape() const {
   return {dims.begin(), dims.end()};
 }
 
+namespace {
+
+// A stored chunk inflates at most 1032-fold under deflate (its limit, for a run of one byte), and
+// shuffle does not compress: a dataset that declares more than twice that of what the file
+// stores is a damaged or hostile file, whatever the memory.
+constexpr std::uint64_t kMostInflation = 2 * 1032;
+// Contiguous, compact and scalar datasets store what they declare; this absorbs their headers.
+constexpr std::uint64_t kStorageSlack = 64 * 1024;
+
+// Before the values are allocated: the declared shape must be one the file can hold and the
+// process can afford (core/memory_budget.hpp).
+void check_declared_size(hid_t dataset, const std::vector<std::size_t>& shape,
+                         const std::string& where) {
+  std::uint64_t values = 1;
+  std::string extents;
+  for (const std::size_t extent : shape) {
+    values = saturating_product(values, extent);
+    extents += (extents.empty() ? "" : " x ") + std::to_string(extent);
+  }
+  const std::uint64_t bytes = saturating_product(values, sizeof(double));
+  const std::uint64_t stored = H5Dget_storage_size(dataset);
+  if (bytes > saturating_product(stored, kMostInflation) + kStorageSlack) {
+    throw std::runtime_error(fmt::format(
+        "HDF5: dataset declares shape [{}] ({} values, {}) but the file stores {} of it, more "
+        "than deflate can inflate ({})",
+        extents, values, format_bytes(bytes), format_bytes(stored), where));
+  }
+  MemoryEstimate need;
+  need.add(fmt::format("dataset of shape [{}]", extents), bytes);
+  check_memory(need, where, "smaller datasets");
+}
+
+}  // namespace
+
 Array Dataset::read() const {
   const Handle type(check_id(H5Dget_type(id()), "get the type", location()), H5Tclose);
   const H5T_class_t type_class = H5Tget_class(type.get());
@@ -375,6 +411,7 @@ Array Dataset::read() const {
   }
   Array array;
   array.shape = shape();
+  check_declared_size(id(), array.shape, location());
   std::size_t values = 1;
   for (const std::size_t extent : array.shape) values *= extent;
   array.values.resize(values);

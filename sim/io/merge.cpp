@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/core/memory_budget.hpp"
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
 #include "scatterlab/io/simulation_file.hpp"
@@ -259,6 +260,23 @@ void check_grid(const Input& first, const Input& other) {
   }
 }
 
+// Before the merged file is begun: the largest tally is held at once as the first input's mean,
+// one input's mean and stderr, the pooled batch sets and the pooled error (below).
+void check_merge_memory(const hdf5::Group& tallies) {
+  std::uint64_t largest = 0;
+  for (const std::string& name : tallies.member_names()) {
+    std::uint64_t values = 1;
+    for (const std::size_t extent : tallies.open_group(name).open_dataset("mean").shape()) {
+      values = saturating_product(values, extent);
+    }
+    largest = std::max(largest, values);
+  }
+  MemoryEstimate need;
+  need.add_doubles(fmt::format("arrays of the largest tally ({} values)", largest), largest,
+                   4 + sizeof(BatchSet) / sizeof(double));
+  check_memory(need, "FILES", "smaller tallies");
+}
+
 }  // namespace
 
 MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs::path& output,
@@ -313,6 +331,7 @@ MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs
     }
   }
 
+  check_merge_memory(first_tallies);
   // Models depend on the parameters and grid alone, which agree by now; files written by other
   // versions of scatterlab may still hold other curves, and then none is kept.
   summary.models_dropped = models_disagreement(inputs);

@@ -346,6 +346,32 @@ std::string key_label(const std::vector<SweptKey>& swept, std::size_t index) {
   return last;
 }
 
+// The table of `document` that holds `key` (find_lists found it there, so every table exists).
+toml::table& holder(toml::table& document, const SweptKey& key) {
+  toml::table* table = &document;
+  for (std::size_t depth = 0; depth + 1 < key.path.size(); ++depth) {
+    table = table->get(key.path[depth])->as_table();
+  }
+  return *table;
+}
+
+// From the lengths of the lists, before any point is made.
+void check_sweep_size(const std::vector<SweptKey>& swept, const std::string& origin) {
+  double points = 1.0;
+  std::string keys, lengths;
+  for (const SweptKey& key : swept) {
+    points *= static_cast<double>(key.values->size());
+    keys += (keys.empty() ? "" : " x ") + join_path(key.path);
+    lengths += (lengths.empty() ? "" : " x ") + std::to_string(key.values->size());
+  }
+  if (points <= static_cast<double>(max_sweep_points)) return;
+  throw InputError(
+      keys, fmt::format("the lists make {} = {:.0f} combinations ({})", lengths, points, origin),
+      fmt::format("at most {} combinations in one sweep file (one run and one file "
+                  "each): split the study into several files",
+                  max_sweep_points));
+}
+
 }  // namespace
 
 Scene parse_scene(std::string_view toml_text, const std::string& origin, Validation validation) {
@@ -362,19 +388,20 @@ std::vector<SweepPoint> parse_sweep(std::string_view toml_text, const std::strin
   std::vector<SweptKey> swept;
   std::vector<std::string> path;
   find_lists(root, path, swept, origin);
+  check_sweep_size(swept, origin);
+  // Each point copies the scene with one value in place of each list, not the lists themselves,
+  // so that a sweep costs its points times the size of one scene.
+  toml::table scene = root;
+  for (const SweptKey& key : swept) holder(scene, key).insert_or_assign(key.path.back(), 0);
   std::vector<SweepPoint> points;
   // Odometer over the lists, the last fastest.
   std::vector<std::size_t> index(swept.size(), 0);
   while (true) {
-    toml::table point = root;
+    toml::table point = scene;
     std::string label;
     for (std::size_t k = 0; k < swept.size(); ++k) {
-      toml::table* table = &point;
-      for (std::size_t depth = 0; depth + 1 < swept[k].path.size(); ++depth) {
-        table = table->get(swept[k].path[depth])->as_table();
-      }
       const toml::node& value = *swept[k].values->get(index[k]);
-      table->insert_or_assign(swept[k].path.back(), value);
+      holder(point, swept[k]).insert_or_assign(swept[k].path.back(), value);
       label +=
           fmt::format("{}{}={}", label.empty() ? "" : "_", key_label(swept, k), value_label(value));
     }

@@ -317,6 +317,14 @@ SupportStats& SupportStats::operator+=(const SupportStats& o) {
   return *this;
 }
 
+std::uint64_t RefractedLight::table_bytes(std::size_t triangles, std::size_t nodes, bool smooth) {
+  constexpr std::uint64_t most_planes = 33;  // per triangle (add_beam_planes)
+  const std::uint64_t per_triangle = (smooth ? 21 : 1) * sizeof(DirectionCone) +
+                                     2 * most_planes * sizeof(BeamPlane) +
+                                     2 * sizeof(std::size_t);  // beam_first_, plane counts
+  return triangles * per_triangle + nodes * 2 * sizeof(DirectionCone);
+}
+
 RefractedLight::RefractedLight(const RefractiveSolver& solver, const Light& light)
     : solver_(&solver), light_(light) {
   const double eta = solver.eta();

@@ -1,5 +1,6 @@
 #include "scatterlab/render/single_scatter_renderer.hpp"
 
+#include <fmt/format.h>
 #include <omp.h>
 
 #include <algorithm>
@@ -402,12 +403,39 @@ class Renderer {
 
 }  // namespace
 
+MemoryEstimate render_memory(const RenderScene& scene, const RenderSettings& settings) {
+  const auto pixels =
+      static_cast<std::uint64_t>(scene.width) * static_cast<std::uint64_t>(scene.height);
+  const auto lights =
+      static_cast<std::uint64_t>(scene.light.radius == 0.0 ? 1 : scene.light_samples);
+  MemoryEstimate need;
+  // The image and its standard error, and the PNG's and OpenEXR's copies when written.
+  need.add_doubles(fmt::format("images of {} x {} pixels", scene.width, scene.height), pixels, 4);
+  need.add(fmt::format("{} light points", lights), saturating_product(lights, sizeof(LightPoint)));
+  if (settings.method == RenderMethod::holzschuch) {
+    const std::size_t triangles = scene.mesh.triangle_count();
+    // The position-normal tree has fewer nodes than twice the triangles.
+    const std::uint64_t per_light =
+        RefractedLight::table_bytes(triangles, 2 * triangles, scene.mesh.has_shading_normals());
+    need.add(fmt::format("{} light tables of {} triangles", lights, triangles),
+             saturating_product(lights, per_light));
+  }
+  return need;
+}
+
+void check_render_memory(const RenderScene& scene, const RenderSettings& settings) {
+  check_memory(render_memory(scene, settings),
+               "image.width x image.height, image.light_samples, mesh triangles",
+               "a smaller image, fewer light samples or a coarser mesh");
+}
+
 RenderResult render_single_scatter(const RenderScene& scene, const RenderSettings& settings,
                                    const std::function<void(double)>& progress) {
   if (settings.method == RenderMethod::pathtrace && !(scene.light.radius > 0.0)) {
     throw InputError("light.radius", "0 (a point light) with method pathtrace",
                      "a sphere light of radius > 0 for the path-traced reference");
   }
+  check_render_memory(scene, settings);
   const auto start = std::chrono::steady_clock::now();
   RenderResult result;
   result.image = Image(scene.width, scene.height);

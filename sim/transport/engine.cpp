@@ -66,9 +66,41 @@ struct Kernel {
 
 }  // namespace
 
+MemoryEstimate transport_memory(const TransportProblem& problem, int ranks, bool resuming) {
+  const TallyBook book(problem.tallies, problem.split_by_order);
+  MemoryEstimate need = batch_memory(book.size(), batch_threads(problem.run), ranks, resuming);
+  // The declarations' bin measures, held by the problem and by the book.
+  std::uint64_t measures = 0;
+  for (const TallyDeclaration& d : problem.tallies) {
+    for (const Filter& f : d.filters) measures += f.bins();
+  }
+  need.add_doubles("copies of the bin measures", measures, 2);
+  // The track-length estimator's crossings, per thread (Scorer::make_crossing_scratch).
+  if (problem.estimator == Estimator::track_length && book.scores_volume()) {
+    const TallyAxes& a = problem.axes;
+    const auto crossings =
+        static_cast<std::uint64_t>(2 * a.r.bins + a.z.bins + a.phi.bins + 2 * a.rho.bins + 8);
+    need.add_doubles("crossing lists (one per thread)", crossings,
+                     static_cast<std::uint64_t>(batch_threads(problem.run)));
+  }
+  // Specs, names, shapes and the scorer's tables: small, whatever the grid.
+  need.add("the run's small state", std::uint64_t{1} << 20);
+  return need;
+}
+
+void check_transport_memory(const TransportProblem& problem, int ranks, bool resuming) {
+  check_memory(transport_memory(problem, ranks, resuming), problem.size_fields,
+               "fewer bins or tallies, or fewer threads");
+}
+
 TransportOutput transport(const TransportProblem& problem, const ProgressCallback& progress,
                           const RunControl& control) {
   const auto start = std::chrono::steady_clock::now();
+  // Every rank decides on the root's figure (it alone holds a resumed state), so that all stop.
+  SerialCommunicator serial;
+  Communicator& world = control.communicator != nullptr ? *control.communicator : serial;
+  const bool resuming = world.broadcast_from_root(control.resume_from != nullptr ? 1 : 0) != 0;
+  check_transport_memory(problem, world.size(), resuming);
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
   const BatchOutcome outcome = Kernel{problem, book, scorer, progress, control}.select();

@@ -11,8 +11,9 @@
 namespace scatterlab {
 
 void check_run_settings(const RunSettings& run) {
-  if (run.photons < 1) {
-    throw InputError("run.photons", fmt::format("got {}", run.photons), "an integer >= 1");
+  if (run.photons < 1 || run.photons > max_photons) {
+    throw InputError("run.photons", fmt::format("got {}", run.photons),
+                     "an integer in [1, 2^53 = 9007199254740992] (counts exact as doubles)");
   }
   if (run.batches < 2 || run.batches > run.photons) {
     throw InputError("run.batches",
@@ -25,6 +26,34 @@ void check_run_settings(const RunSettings& run) {
     throw InputError("run.escape_radius", fmt::format("got {}", run.escape_radius),
                      "a number > 0 (mfp), or inf");
   }
+}
+
+double expected_events_per_photon(double albedo, double escape_radius_mfp) {
+  const double absorbed_after = 1.0 / (1.0 - albedo);  // inf at albedo 1
+  const double escaped_after = 1.0 + escape_radius_mfp * escape_radius_mfp;
+  return std::min(absorbed_after, escaped_after);
+}
+
+void check_run_length(const RunSettings& run, double albedo, double escape_radius_mfp) {
+  const double per_photon = expected_events_per_photon(albedo, escape_radius_mfp);
+  const double events = static_cast<double>(run.photons) * per_photon;
+  if (events <= max_run_events) return;
+  const std::string accepted =
+      "photons x min(1 / (1 - medium.albedo), 1 + (run.escape_radius in mfp)^2), the expected "
+      "events of the run, at most 2^53 (9.0e15; years on one thread): fewer photons, a lower "
+      "albedo or a smaller escape radius";
+  if (per_photon > max_run_events) {
+    throw InputError("medium.albedo, run.escape_radius",
+                     fmt::format("a photon would take about {:.3g} events before it is absorbed "
+                                 "or escapes (albedo {}, escape radius {:g} mfp)",
+                                 per_photon, albedo, escape_radius_mfp),
+                     accepted);
+  }
+  throw InputError("run.photons",
+                   fmt::format("got {} photons of about {:.3g} events each (albedo {}, escape "
+                               "radius {:g} mfp): {:.3g} events in all",
+                               run.photons, per_photon, albedo, escape_radius_mfp, events),
+                   accepted);
 }
 
 int max_threads() {

@@ -62,6 +62,7 @@ void check_run(const RunSettings& run, const Medium& medium) {
                      "finite mean; set run.escape_radius",
                      "a finite number > 0 (mfp) when medium.albedo = 1");
   }
+  check_run_length(run, medium.albedo, run.escape_radius * mfp_per_length_unit(medium));
 }
 
 // The beam arrives in the x-z plane at `incidence_deg` from the inward normal +z.
@@ -189,6 +190,9 @@ TransportProblem transport_problem(const SearchlightSpec& given) {
   problem.estimator = Estimator::collision;
   problem.photon_power = 1.0 - specular;
   problem.run = spec.run;
+  problem.size_fields = spec.tallies.fluence
+                            ? "grid.r.bins x grid.z.bins (fluence), grid.theta_o.bins, run.threads"
+                            : "grid.r.bins x grid.theta_o.bins, run.threads";
   return problem;
 }
 

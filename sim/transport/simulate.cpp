@@ -76,6 +76,20 @@ std::vector<TallyDeclaration> declare_tallies(const SimulationSpec& spec) {
   return tallies;
 }
 
+// The fields a memory error names: the bins of the tallies asked for, and what multiplies them.
+std::string size_fields(const SimulationSpec& spec) {
+  const TallyRequest& want = spec.tallies;
+  std::string fields;
+  auto add = [&fields](const std::string& more) { fields += (fields.empty() ? "" : ", ") + more; };
+  if (want.radiance) add("grid.r.bins x grid.z.bins x grid.theta.bins x grid.phi.bins");
+  if (!want.radiance && (want.fluence || want.flux)) add("grid.r.bins x grid.z.bins");
+  if (want.fluence_spherical) add("grid.rho.bins");
+  add("tallies");
+  if (want.split_by_order) add("tallies.split_by_order");
+  add("run.threads");
+  return fields;
+}
+
 }  // namespace
 
 TransportProblem transport_problem(const SimulationSpec& given) {
@@ -100,6 +114,7 @@ TransportProblem transport_problem(const SimulationSpec& given) {
   problem.split_by_order = spec.tallies.split_by_order;
   problem.estimator = spec.tallies.estimator;
   problem.run = spec.run;
+  problem.size_fields = size_fields(spec);
   return problem;
 }
 

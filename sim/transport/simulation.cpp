@@ -141,6 +141,7 @@ void check_run(const RunSettings& run, const Medium& medium) {
                      "never end; set run.escape_radius",
                      "a finite number > 0 (mfp) when medium.albedo = 1");
   }
+  check_run_length(run, medium.albedo, run.escape_radius * mfp_per_length_unit(medium));
 }
 
 }  // namespace

@@ -49,7 +49,7 @@ expect_refused() {
   shift 2
   snapshot >"$scratch/before"
   # shellcheck disable=SC2086 # ENV_SET is a list of NAME=VALUE words
-  timeout 60 env ${ENV_SET:-} "$exe" "$@" >"$scratch/stdout" 2>"$scratch/stderr"
+  timeout -k 10 60 env ${ENV_SET:-} "$exe" "$@" >"$scratch/stdout" 2>"$scratch/stderr"
   local status=$?
   snapshot >"$scratch/after"
   if [ $status -ne 2 ]; then

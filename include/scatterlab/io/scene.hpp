@@ -26,6 +26,7 @@
 // naming the dotted key (e.g. "medium.albdo") and what is accepted; a TOML syntax error is an
 // InputError for "scene" whose message starts "<origin>:<line>:<column>:".
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -70,6 +71,13 @@ struct SweepPoint {
   Scene scene;
 };
 
+// A sweep is one run and one output file per point, and every output is checked against every
+// other before the first run (io/output_plan.hpp): a minute for 1000 points, hours for 10000.
+// Past this many, a study is split into several sweep files. The count is taken from the lengths
+// of the lists before any point is made.
+inline constexpr std::uint64_t max_sweep_points = 1'000;
+
+// Throws InputError naming the swept keys when their lists make more than max_sweep_points.
 std::vector<SweepPoint> parse_sweep(std::string_view toml_text, const std::string& origin,
                                     Validation validation = Validation::on_read);
 std::vector<SweepPoint> load_sweep(const std::filesystem::path& path,

@@ -100,6 +100,11 @@ class RefractedLight {
  public:
   RefractedLight(const RefractiveSolver& solver, const Light& light);
 
+  // The most bytes one light's tables take for `triangles` triangles and `nodes` tree nodes
+  // (planes at their bound per triangle, the per-thread chunks and the joined table both held),
+  // so that a renderer can budget its lights before it builds them (core/memory_budget.hpp).
+  static std::uint64_t table_bytes(std::size_t triangles, std::size_t nodes, bool smooth);
+
   const RefractiveSolver& solver() const { return *solver_; }
   const Light& light() const { return light_; }
   // A tree node's cones: of the directions to the light from its ball, and of the refracted ones.

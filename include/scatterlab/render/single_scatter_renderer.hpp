@@ -37,6 +37,7 @@
 #include <functional>
 #include <string>
 
+#include "scatterlab/core/memory_budget.hpp"
 #include "scatterlab/io/image_file.hpp"
 #include "scatterlab/render/render_scene.hpp"
 
@@ -73,8 +74,15 @@ struct RenderResult {
   double seconds = 0.0;
 };
 
+// What render_single_scatter holds at its peak: the image and its standard error, the light
+// points and, for holzschuch, one light table per point (RefractedLight::table_bytes).
+MemoryEstimate render_memory(const RenderScene& scene, const RenderSettings& settings);
+// Throws InputError naming the image and light fields when render_memory does not fit.
+void check_render_memory(const RenderScene& scene, const RenderSettings& settings);
+
 // progress(fraction) is called from one thread as tiles finish. Throws InputError for a
-// pathtrace run with a point light (radius 0).
+// pathtrace run with a point light (radius 0), and for one whose render_memory does not fit
+// (core/memory_budget.hpp), before anything is allocated.
 RenderResult render_single_scatter(const RenderScene& scene, const RenderSettings& settings,
                                    const std::function<void(double)>& progress = {});
 

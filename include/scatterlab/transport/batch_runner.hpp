@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/core/memory_budget.hpp"
 #include "scatterlab/tally/batch_statistics.hpp"
 #include "scatterlab/transport/communicator.hpp"
 #include "scatterlab/transport/run_control.hpp"
@@ -67,6 +68,30 @@ struct BatchOutcome {
 
   bool complete(const RunSettings& run) const { return batches_done == run.batches; }
 };
+
+// The threads of each rank: run.threads, or OpenMP's count for 0; never more than the batches.
+inline int batch_threads(const RunSettings& run) {
+  const int asked = run.threads > 0 ? run.threads : omp_get_max_threads();
+  return static_cast<int>(std::min<std::uint64_t>(run.batches, static_cast<std::uint64_t>(asked)));
+}
+
+// What run_batches holds at its peak on the root rank, for `cells` values per batch: a score
+// buffer per thread; the statistics of the rank's slice (mean and sum of squares); at the end the
+// whole state gathered on the root and its standard error; with several ranks, the round's send
+// and receive buffers (a thread's worth of every cell each); when resuming, the saved state the
+// caller holds (RunControl::resume_from).
+inline MemoryEstimate batch_memory(std::size_t cells, int threads, int ranks, bool resuming) {
+  const auto values = static_cast<std::uint64_t>(cells);
+  const auto per_rank = static_cast<std::uint64_t>(threads);
+  MemoryEstimate need;
+  need.add_doubles(fmt::format("score buffers of {} tally values (one per thread)", values), values,
+                   per_rank);
+  need.add_doubles(fmt::format("arrays of {} tally values (batch statistics and results)", values),
+                   values, 5);
+  if (ranks > 1) need.add_doubles("exchange buffers (two per thread)", values, 2 * per_rank);
+  if (resuming) need.add_doubles("arrays of the checkpoint resumed from", values, 2);
+  return need;
+}
 
 namespace detail {
 
@@ -118,8 +143,8 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
   const std::uint64_t photons = run.photons;
   const std::uint64_t batches = run.batches;
   // Every rank uses the root's thread count, so that all agree on which batch is whose.
-  const int threads = static_cast<int>(world.broadcast_from_root(std::min<std::uint64_t>(
-      batches, static_cast<std::uint64_t>(run.threads > 0 ? run.threads : omp_get_max_threads()))));
+  const int threads =
+      static_cast<int>(world.broadcast_from_root(static_cast<std::uint64_t>(batch_threads(run))));
   const auto thread_count = static_cast<std::size_t>(threads);
   const std::uint64_t per_round = static_cast<std::uint64_t>(ranks) * thread_count;
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "scatterlab/core/memory_budget.hpp"
 #include "scatterlab/tally/tally_result.hpp"
 #include "scatterlab/transport/batch_runner.hpp"
 #include "scatterlab/transport/transport_problem.hpp"
@@ -27,6 +28,16 @@ struct TransportOutput {
     return batches_done == spec.run.batches;
   }
 };
+
+// What transport() holds at its peak on the root rank: the batch runner's buffers for every
+// tally value of the problem (batch_memory in batch_runner.hpp), the tally declarations and the
+// finished tallies. `ranks` and `resuming` as the run will have them.
+MemoryEstimate transport_memory(const TransportProblem& problem, int ranks, bool resuming);
+
+// Throws InputError naming problem.size_fields and the figure when transport_memory does not fit
+// in the memory limit (core/memory_budget.hpp). transport() checks this itself before it
+// allocates; commands call it for every run they plan before any of them starts.
+void check_transport_memory(const TransportProblem& problem, int ranks, bool resuming);
 
 // Bitwise identical for any thread and rank count, and when resumed (batch_runner.hpp).
 // Throws std::invalid_argument for a problem no kernel runs (the track-length estimator in a

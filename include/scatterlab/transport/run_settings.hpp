@@ -18,6 +18,21 @@ struct RunSettings {
   double escape_radius = std::numeric_limits<double>::infinity();
 };
 
+// Counts of photons and of expected events stay below 2^53, where a double still holds every
+// whole number (per-batch means divide by photon counts as doubles, rates print as doubles) and
+// where a run is already about three years of one thread at 10 ns per event.
+inline constexpr std::uint64_t max_photons = std::uint64_t{1} << 53;
+inline constexpr double max_run_events = 0x1p53;
+
+// The mean number of events (collisions) a photon takes, from above: a walk ends by absorption
+// after 1 / (1 - albedo) collisions on average, and at the latest, with albedo 1, when it passes
+// the escape radius R, which a diffusing photon reaches after about R^2 collisions (R in mfp).
+double expected_events_per_photon(double albedo, double escape_radius_mfp);
+
+// Throws InputError unless photons x expected_events_per_photon is at most max_run_events:
+// naming "medium.albedo, run.escape_radius" when one photon alone is over, else "run.photons".
+void check_run_length(const RunSettings& run, double albedo, double escape_radius_mfp);
+
 // Throws InputError ("run.photons", "run.batches", "run.seed", "run.threads",
 // "run.escape_radius") for settings no kernel can run; whether an infinite escape radius is allowed
 // is the scene's call.

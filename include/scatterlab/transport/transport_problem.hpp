@@ -5,6 +5,7 @@
 // it needs (engine.hpp). Lengths are in mean free paths (sigma_t = 1).
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "scatterlab/tally/tally_axes.hpp"
@@ -33,6 +34,8 @@ struct TransportProblem {
   // The power each photon carries, per unit incident power: what entered through the surface.
   double photon_power = 1.0;
   RunSettings run;
+  // The spec's fields that size the tallies, as a memory error names them (engine.hpp).
+  std::string size_fields = "tallies";
 };
 
 }  // namespace scatterlab
