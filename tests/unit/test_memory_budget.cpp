@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "input_error_field.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/memory_budget.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
@@ -31,16 +32,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The field an InputError names, or "" when `action` throws none.
-template <typename Action>
-std::string field_of(Action&& action) {
-  try {
-    action();
-  } catch (const InputError& e) {
-    return e.field();
-  }
-  return "";
-}
+using test_support::field_of;
 
 // Sets --memory-limit for one test and restores the machine's limit after it.
 struct ScopedMemoryLimit {

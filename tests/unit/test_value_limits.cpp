@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "input_error_field.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/io/text_file.hpp"
@@ -29,16 +30,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The field an InputError names, or "" when `action` throws none.
-template <typename Action>
-std::string field_of(Action&& action) {
-  try {
-    action();
-  } catch (const InputError& e) {
-    return e.field();
-  }
-  return "";
-}
+using test_support::field_of;
 
 TEST(ValueLimits, ThreadsUpToFourPerHardwareThread) {
   EXPECT_GE(max_threads(), 4);
@@ -114,10 +106,14 @@ TEST(ValueLimits, GridsWhoseBinsUnderflowOrOverflowAreRefused) {
 TEST(ValueLimits, TheSpanIsInMeanFreePaths) {
   // 1 mm at sigma_t = 1e-12 / mm is 1e-12 mfp: 15 bins of it are too narrow; at 1 / mm it is fine.
   const UniformAxis r{0.0, 1.0, 15};
-  EXPECT_EQ(field_of([&] { check_length_axis_span(r, "r", Medium{0.5, 1e-12, 0.0, "mm"}); }),
+  EXPECT_EQ(field_of([&] {
+              check_length_axis_span(r, "r", Medium{0.5, 1e-12, 0.0, "mm"});
+            }),
             "grid.r.max");
   EXPECT_EQ(field_of([&] { check_length_axis_span(r, "r", Medium{0.5, 1.0, 0.0, "mm"}); }), "");
-  EXPECT_EQ(field_of([&] { check_length_axis_span(r, "r", Medium{0.5, 1e13, 0.0, "mm"}); }),
+  EXPECT_EQ(field_of([&] {
+              check_length_axis_span(r, "r", Medium{0.5, 1e13, 0.0, "mm"});
+            }),
             "grid.r.max");
 }
 
@@ -135,9 +131,9 @@ TEST(ValueLimits, AnEscapeRadiusThatOverflowsInMfpIsRefused) {
 class SceneFiles : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("scatterlab-scene-files-" + std::to_string(::getpid()) + "-" +
-            std::to_string(reinterpret_cast<std::uintptr_t>(this)));
+    dir_ =
+        fs::temp_directory_path() / ("scatterlab-scene-files-" + std::to_string(::getpid()) + "-" +
+                                     std::to_string(reinterpret_cast<std::uintptr_t>(this)));
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }
