@@ -10,8 +10,6 @@ set -u
 exe=$(realpath "$1")
 source_dir=$(realpath "$2")
 source "$(dirname "$0")/harness.sh"
-scratch=$(mktemp -d)  # the test's own notes, outside the directory it watches
-trap 'rm -rf "$work" "$scratch"' EXIT
 
 # Small runs: every refusal must come before any photon, so these only need to be valid.
 tiny=(--photons 2000 --batches 4 --threads 1)

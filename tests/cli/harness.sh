@@ -1,7 +1,9 @@
-# Sourced by the CLI test scripts: a scratch directory (removed on exit) to work in, and
-# pass/fail counting; `report NAME` prints the tally and returns non-zero on any failure.
+# Sourced by the CLI test scripts: a scratch directory (removed on exit) to work in, another for
+# the checks' own notes (outside the one they watch), and pass/fail counting; `report NAME`
+# prints the tally and returns non-zero on any failure.
 work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+scratch=$(mktemp -d)
+trap 'rm -rf "$work" "$scratch"' EXIT
 cd "$work" || exit 1
 failures=0 passed=0
 pass() { passed=$((passed + 1)); }

@@ -14,8 +14,6 @@ set -u
 exe=$(realpath "$1")
 source_dir=$(realpath "$2")
 source "$(dirname "$0")/harness.sh"
-scratch=$(mktemp -d)  # the test's own notes, outside the directory it watches
-trap 'rm -rf "$work" "$scratch"' EXIT
 
 tiny=(--photons 2000 --batches 4 --threads 1)
 grid=(--theta-bins 6 --phi-bins 8 --r-bins 4 --z-bins 4)

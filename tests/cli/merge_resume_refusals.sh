@@ -11,8 +11,6 @@ set -u
 exe=$(realpath "$1")
 tamper=$(realpath "$2")
 source "$(dirname "$0")/harness.sh"
-scratch=$(mktemp -d)  # the test's own notes, outside the directory it watches
-trap 'rm -rf "$work" "$scratch"' EXIT
 
 tiny=(--photons 4000 --batches 4 --threads 1 --theta-bins 6 --phi-bins 8 --r-bins 4 --z-bins 4)
 "$exe" simulate "${tiny[@]}" --seed 1 --out s1.h5 >/dev/null || fail "setup: s1.h5"

@@ -15,7 +15,6 @@ set -u
 exe=$(realpath "$1")
 source_dir=$(realpath "$2")
 source "$(dirname "$0")/harness.sh"
-scratch=$(mktemp -d)  # the test's own notes, outside the directory it watches
 full=$scratch/full    # a small tmpfs, where one can be mounted
 trap 'umount "$full" 2>/dev/null; rm -rf "$work" "$scratch"' EXIT
 
