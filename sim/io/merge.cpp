@@ -8,6 +8,8 @@
 #include <map>
 #include <set>
 #include <stdexcept>
+#include <string_view>
+#include <utility>
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/memory_budget.hpp"
@@ -107,13 +109,15 @@ double batches_of(const hdf5::File& file) {
   return static_cast<double>(count(root.open_group("parameters"), "batches"));
 }
 
+const char* const input_accepted =
+    "complete runs written by scatterlab simulate or searchlight (format_version 1), with finite "
+    "tallies";
+
 // A file merge can pool: complete, of the format this build reads, with counts that agree with
 // each other, and finite tallies. Merged files are inputs too: their totals obey the same rules.
 void check_input(const fs::path& path, const hdf5::File& file, const FileSummary& summary) {
   const auto refuse = [&path](const std::string& problem) {
-    throw InputError("FILES", fmt::format("{} {}", path.string(), problem),
-                     "complete runs written by scatterlab simulate or searchlight (format_version "
-                     "1), with finite tallies");
+    throw InputError("FILES", fmt::format("{} {}", path.string(), problem), input_accepted);
   };
   if (summary.format_version != kSimulationFormatVersion) {
     refuse(fmt::format("has format_version {}; this scatterlab reads {}", summary.format_version,
@@ -142,18 +146,32 @@ void check_input(const fs::path& path, const hdf5::File& file, const FileSummary
   if (summary.scattering_events < 0) {
     refuse(fmt::format("is inconsistent: scattering_events {}", summary.scattering_events));
   }
-  const hdf5::Group tallies = root.open_group("tallies");
-  for (const std::string& name : tallies.member_names()) {
-    for (const char* dataset : {"mean", "stderr"}) {
-      const std::vector<double> values = tallies.open_group(name).read_dataset(dataset).values;
-      const auto bad = std::find_if(values.begin(), values.end(), [&](double v) {
-        return !std::isfinite(v) || (std::string(dataset) == "stderr" && v < 0.0);
-      });
-      if (bad != values.end()) {
-        refuse(
-            fmt::format("has {} in tallies/{}/{}[{}]", *bad, name, dataset, bad - values.begin()));
-      }
+}
+
+// An input's tally as it is pooled: finite means, finite and non-negative standard errors.
+void check_input_tally(const fs::path& path, const std::string& name, const hdf5::Array& mean,
+                       const hdf5::Array& stderr_of_mean) {
+  for (const auto& [values, dataset] :
+       {std::pair{&mean.values, "mean"}, std::pair{&stderr_of_mean.values, "stderr"}}) {
+    const bool is_error = std::string_view(dataset) == "stderr";
+    const auto bad = std::find_if(values->begin(), values->end(), [&](double v) {
+      return !std::isfinite(v) || (is_error && v < 0.0);
+    });
+    if (bad != values->end()) {
+      throw InputError("FILES",
+                       fmt::format("{} has {} in tallies/{}/{}[{}]", path.string(), *bad, name,
+                                   dataset, bad - values->begin()),
+                       input_accepted);
     }
+  }
+}
+
+// A dataset copied whole into `to` under its own name: values, shape and attributes.
+void copy_dataset(const hdf5::Dataset& from, hdf5::Group& to, const std::string& name) {
+  const hdf5::Array array = from.read();
+  hdf5::Dataset copy = to.write_dataset(name, array.values, array.shape);
+  for (const std::string& attribute : from.attribute_names()) {
+    copy_attribute(from, copy, attribute);
   }
 }
 
@@ -228,12 +246,7 @@ void copy_models(const hdf5::File& from, hdf5::Group& root) {
     hdf5::Group node = target.create_group(model);
     for (const std::string& name : group.attribute_names()) copy_attribute(group, node, name);
     for (const std::string& curve : group.member_names()) {
-      const hdf5::Dataset dataset = group.open_dataset(curve);
-      const hdf5::Array array = dataset.read();
-      hdf5::Dataset copy = node.write_dataset(curve, array.values, array.shape);
-      for (const std::string& name : dataset.attribute_names()) {
-        copy_attribute(dataset, copy, name);
-      }
+      copy_dataset(group.open_dataset(curve), node, curve);
     }
   }
 }
@@ -387,9 +400,7 @@ MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs
     for (const std::string& name : first_grid.attribute_names())
       copy_attribute(first_grid, grid, name);
     for (const std::string& axis : first_grid.member_names()) {
-      const hdf5::Dataset from = first_grid.open_dataset(axis);
-      hdf5::Dataset to = grid.write_dataset(axis, from.read().values);
-      for (const std::string& name : from.attribute_names()) copy_attribute(from, to, name);
+      copy_dataset(first_grid.open_dataset(axis), grid, axis);
     }
 
     hdf5::Group tallies = root.create_group("tallies");
@@ -407,6 +418,7 @@ MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs
           mismatch(fmt::format("tallies.{}", name), first.path, "another shape", input.path,
                    "this shape");
         }
+        check_input_tally(input.path, name, m, e);
         for (std::size_t i = 0; i < pooled.size(); ++i) {
           const BatchSet run =
               BatchSet::from_standard_error(m.values[i], e.values[i], input.batches);
