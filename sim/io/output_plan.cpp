@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -11,6 +12,7 @@
 #include <set>
 #include <system_error>
 #include <utility>
+#include <vector>
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
@@ -140,13 +142,35 @@ void check_path_text(const std::string& field, const fs::path& path) {
   }
 }
 
-bool same_file(const fs::path& a, const fs::path& b) {
-  std::error_code error;
-  if (fs::exists(a, error) && fs::exists(b, error)) {
-    const bool equivalent = fs::equivalent(a, b, error);  // same device and inode
-    if (!error) return equivalent;
+namespace {
+
+// What same_file compares, found once per path: the device and inode of a file that exists, else
+// its resolved path. Two paths are the same file exactly when their identities are equal (a path
+// that exists never resolves to the same path as one that does not).
+struct FileIdentity {
+  bool exists = false;
+  dev_t device = 0;
+  ino_t inode = 0;
+  fs::path path;
+
+  explicit FileIdentity(const fs::path& of) {
+    struct stat status {};
+    exists = ::stat(of.c_str(), &status) == 0;
+    if (exists) {
+      device = status.st_dev;
+      inode = status.st_ino;
+    } else {
+      path = resolved(of);
+    }
   }
-  return resolved(a) == resolved(b);
+
+  bool operator==(const FileIdentity&) const = default;
+};
+
+}  // namespace
+
+bool same_file(const fs::path& a, const fs::path& b) {
+  return FileIdentity(a) == FileIdentity(b);
 }
 
 void OutputPlan::input(std::string field, fs::path path) {
@@ -167,6 +191,10 @@ void OutputPlan::output_directory(std::string field, fs::path path) {
 
 void OutputPlan::check() const {
   for (const Entry& entry : entries_) check_path_text(entry.field, entry.path);
+  std::set<fs::path> made_directories;
+  for (const Entry& entry : entries_) {
+    if (entry.kind == Kind::output_directory) made_directories.insert(resolved(entry.path));
+  }
   for (const Entry& entry : entries_) {
     std::error_code error;
     const fs::file_status status = fs::status(entry.path, error);
@@ -190,12 +218,7 @@ void OutputPlan::check() const {
     }
     // The directory must be there, or be one this command makes.
     const fs::path parent = entry.path.has_parent_path() ? entry.path.parent_path() : fs::path(".");
-    bool made_here = false;
-    for (const Entry& other : entries_) {
-      made_here = made_here || (other.kind == Kind::output_directory &&
-                                resolved(other.path) == resolved(parent));
-    }
-    if (!made_here && !fs::is_directory(parent, error)) {
+    if (!fs::is_directory(parent, error) && !made_directories.contains(resolved(parent))) {
       throw InputError(
           entry.field,
           fmt::format("directory {} of {} does not exist", quoted(parent), quoted(entry.path)),
@@ -207,6 +230,9 @@ void OutputPlan::check() const {
   const auto is_input = [](Kind kind) {
     return kind == Kind::input || kind == Kind::rewritten_input;
   };
+  std::vector<FileIdentity> identities;
+  identities.reserve(entries_.size());
+  for (const Entry& entry : entries_) identities.emplace_back(entry.path);
   for (std::size_t j = 0; j < entries_.size(); ++j) {
     for (std::size_t i = 0; i < entries_.size(); ++i) {
       if (i == j) continue;
@@ -214,7 +240,7 @@ void OutputPlan::check() const {
       const Entry& second = entries_[j];
       if (is_input(second.kind)) continue;           // named through the output instead
       if (!is_input(first.kind) && i > j) continue;  // each pair of outputs once
-      if (!same_file(first.path, second.path)) continue;
+      if (!(identities[i] == identities[j])) continue;
       const std::string what = is_input(first.kind) ? "input" : "output";
       throw InputError(second.field,
                        fmt::format("{} is the same file as the {} {} ({})", quoted(second.path),

@@ -71,9 +71,9 @@ struct SweepPoint {
   Scene scene;
 };
 
-// A sweep is one run and one output file per point, and every output is checked against every
-// other before the first run (io/output_plan.hpp): a minute for 1000 points, hours for 10000.
-// Past this many, a study is split into several sweep files. The count is taken from the lengths
+// A sweep is one run and one output file per point, all planned (and every memory estimate
+// checked) before the first run starts, and a directory of a thousand files is already more than
+// one study reads. Past this many, a study is split into several sweep files. The count is taken from the lengths
 // of the lists before any point is made.
 inline constexpr std::uint64_t max_sweep_points = 1'000;
 
