@@ -216,8 +216,7 @@ const ModelFits* find_model(const LobeFitRun& run, LobeModel model) {
 // flux beside them and a model's values for a bin per thread: three arrays of the radiance at
 // most. Checked from the declared shape before either is read (core/memory_budget.hpp).
 void check_fit_memory(const hdf5::Dataset& radiance) {
-  std::uint64_t values = 1;
-  for (const std::size_t extent : radiance.shape()) values = saturating_product(values, extent);
+  const std::uint64_t values = value_count(radiance.shape());
   MemoryEstimate need;
   need.add_doubles(fmt::format("radiance arrays of {} values", values), values, 3);
   check_memory(need, radiance.location(), "a smaller radiance tally");

@@ -91,6 +91,12 @@ std::uint64_t saturating_product(std::uint64_t a, std::uint64_t b) {
   return a > saturated / b ? saturated : a * b;
 }
 
+std::uint64_t value_count(std::span<const std::size_t> shape) {
+  std::uint64_t values = 1;
+  for (const std::size_t extent : shape) values = saturating_product(values, extent);
+  return values;
+}
+
 void MemoryEstimate::add(std::string what, std::uint64_t bytes) {
   total_ = saturating_sum(total_, bytes);
   parts_.push_back({std::move(what), bytes});

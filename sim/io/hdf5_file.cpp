@@ -1,6 +1,7 @@
 #include "scatterlab/io/hdf5_file.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <hdf5.h>
 
 #include <algorithm>
@@ -382,12 +383,8 @@ constexpr std::uint64_t kStorageSlack = 64 * 1024;
 // process can afford (core/memory_budget.hpp).
 void check_declared_size(hid_t dataset, const std::vector<std::size_t>& shape,
                          const std::string& where) {
-  std::uint64_t values = 1;
-  std::string extents;
-  for (const std::size_t extent : shape) {
-    values = saturating_product(values, extent);
-    extents += (extents.empty() ? "" : " x ") + std::to_string(extent);
-  }
+  const std::uint64_t values = value_count(shape);
+  const std::string extents = fmt::format("{}", fmt::join(shape, " x "));
   const std::uint64_t bytes = saturating_product(values, sizeof(double));
   const std::uint64_t stored = H5Dget_storage_size(dataset);
   if (bytes > saturating_product(stored, kMostInflation) + kStorageSlack) {
@@ -466,15 +463,15 @@ namespace {
 
 // One writer for every element type: `file_type` is what the file stores, `memory_type` what
 // `values` points at.
-Handle write_array(hid_t group, const std::string& key, const std::string& where,
-                   hid_t file_type, hid_t memory_type, const void* values, std::size_t count,
+Handle write_array(hid_t group, const std::string& key, const std::string& where, hid_t file_type,
+                   hid_t memory_type, const void* values, std::size_t count,
                    const std::vector<std::size_t>& shape) {
   std::size_t expected = 1;
   for (const std::size_t extent : shape) expected *= extent;
   if (expected != count) {
     throw std::invalid_argument("HDF5: dataset shape holds " + std::to_string(expected) +
-                                " values but " + std::to_string(count) + " were given (" +
-                                where + ")");
+                                " values but " + std::to_string(count) + " were given (" + where +
+                                ")");
   }
   const std::vector<hsize_t> dims(shape.begin(), shape.end());
   const Handle space =

@@ -278,11 +278,7 @@ void check_grid(const Input& first, const Input& other) {
 void check_merge_memory(const hdf5::Group& tallies) {
   std::uint64_t largest = 0;
   for (const std::string& name : tallies.member_names()) {
-    std::uint64_t values = 1;
-    for (const std::size_t extent : tallies.open_group(name).open_dataset("mean").shape()) {
-      values = saturating_product(values, extent);
-    }
-    largest = std::max(largest, values);
+    largest = std::max(largest, value_count(tallies.open_group(name).open_dataset("mean").shape()));
   }
   MemoryEstimate need;
   need.add_doubles(fmt::format("arrays of the largest tally ({} values)", largest), largest,

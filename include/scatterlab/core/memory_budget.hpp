@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,9 @@ class MemoryEstimate {
 
 // a * b, or 2^64 - 1 when the product does not fit.
 std::uint64_t saturating_product(std::uint64_t a, std::uint64_t b);
+
+// The values in an array of this shape (1 for none), or 2^64 - 1 when they do not fit.
+std::uint64_t value_count(std::span<const std::size_t> shape);
 
 struct MemoryLimit {
   std::uint64_t bytes;
