@@ -22,7 +22,8 @@ std::vector<std::pair<std::string_view, std::string_view>> material_table_texts(
 
 namespace {
 
-void check_keys(const toml::table& table, const std::string& path, const std::set<std::string>& accepted) {
+void check_keys(const toml::table& table, const std::string& path,
+                const std::set<std::string>& accepted) {
   for (const auto& [key, node] : table) {
     if (!accepted.contains(std::string(key.str()))) {
       std::string list;
@@ -50,7 +51,8 @@ std::vector<double> numbers_at(const toml::table& table, const std::string& path
   }
   const toml::array* array = node->as_array();
   const std::string accepted = std::to_string(expected) + " " + range + ", one per channel";
-  if (array == nullptr || array->size() != expected) throw InputError(field, "wrong shape", accepted);
+  if (array == nullptr || array->size() != expected)
+    throw InputError(field, "wrong shape", accepted);
   std::vector<double> values;
   for (const toml::node& element : *array) {
     const auto value = element.value<double>();
@@ -108,7 +110,8 @@ MaterialLibrary parse_material_library(std::string_view toml_text, const std::st
   library.length_unit = string_at(*source, "source", "length_unit");
   if (library.length_unit != "um" && library.length_unit != "mm" && library.length_unit != "cm" &&
       library.length_unit != "m") {
-    throw InputError("source.length_unit", "got \"" + library.length_unit + "\"", "um, mm, cm or m");
+    throw InputError("source.length_unit", "got \"" + library.length_unit + "\"",
+                     "um, mm, cm or m");
   }
   const auto eta = source->get_as<double>("eta");
   if (eta == nullptr || !(eta->get() >= 0.5 && eta->get() <= 2.5)) {
@@ -205,16 +208,8 @@ ResolvedMaterial resolve_material(const MaterialRequest& request, const Material
     accepted.push_back(library.id + ": " + join(names, ", "));
   }
   if (found.empty()) {
-    std::string nearest;
-    std::size_t best = wanted.size() / 3 + 2;  // suggest only what is a few edits away
-    for (const std::string& candidate : candidates) {
-      const std::size_t distance = toml_reading::edit_distance(wanted, candidate);
-      if (distance < best) {
-        best = distance;
-        nearest = candidate;
-      }
-    }
-    const std::string hint = nearest.empty() ? "" : " (did you mean \"" + nearest + "\"?)";
+    const auto nearest = nearest_name(wanted, candidates);
+    const std::string hint = nearest ? " (did you mean \"" + *nearest + "\"?)" : "";
     throw InputError(fields.material, "no material named \"" + request.name + "\"" + hint,
                      "a name from a table in data/materials, optionally qualified as "
                      "table/name: " +

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/core/spelling.hpp"
 #include "scatterlab/io/text_file.hpp"
 
 namespace scatterlab::toml_reading {
@@ -41,30 +42,9 @@ inline std::string dotted(const std::string& path, std::string_view key) {
   return path.empty() ? std::string(key) : path + "." + std::string(key);
 }
 
-// Levenshtein distance, to suggest the key a typo was meant to be.
-inline std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
 inline std::string suggestion(std::string_view key, Keys accepted) {
-  for (const auto candidate : accepted) {
-    // At most one edit per three characters: "albdo" -> "albedo", but not "min" -> "max".
-    if (3 * edit_distance(key, candidate) <= key.size()) {
-      return fmt::format(", did you mean \"{}\"?", candidate);
-    }
-  }
-  return "";
+  const auto nearest = nearest_name(key, accepted);
+  return nearest ? fmt::format(", did you mean \"{}\"?", *nearest) : "";
 }
 
 // A value as the user wrote it, for messages: `a string ("abc")`, `an integer (-3)`.
