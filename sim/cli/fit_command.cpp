@@ -41,27 +41,25 @@ Action add_fit_command(CLI::App& app) {
   command
       ->add_option("FILE", options->path,
                    "File written by scatterlab simulate (radiance tally), or a sweep directory "
-                   "(simulate --out-dir): every .h5 file in it, and one table of parameters "
+                   "(simulate --out DIR): every .h5 file in it, and one table of parameters "
                    "against (r, z, albedo, g)")
       ->required();
+  command->add_option(
+      "--models", options->models,
+      "Comma-separated: sg (spherical Gaussian, axis E), sg_free (axis fitted), "
+      "dexp_paper (the paper's four-step double-exponential estimate, not solved), "
+      "dexp (double exponential), adexp (anisotropic double exponential), asg "
+      "(anisotropic spherical Gaussian, Xu et al. 2013), adexp_ridge (adexp plus the "
+      "ridge of once-scattered light on phi = 0)");
   command
-      ->add_option("--models", options->models,
-                   "Comma-separated: sg (spherical Gaussian, axis E), sg_free (axis fitted), "
-                   "dexp_paper (the paper's four-step double-exponential estimate, not solved), "
-                   "dexp (double exponential), adexp (anisotropic double exponential), asg "
-                   "(anisotropic spherical Gaussian, Xu et al. 2013), adexp_ridge (adexp plus the "
-                   "ridge of once-scattered light on phi = 0)")
-      ->capture_default_str();
-  command->add_option("--csv", options->csv,
-                      "Summary CSV path [default: FILE without .h5 + -fits.csv; for a directory "
-                      "DIR/fits-table.csv]");
+      ->add_option("--csv", options->csv,
+                   "Summary CSV path; for a directory DIR, DIR/fits-table.csv by default")
+      ->default_str("FILE-fits.csv");
   command->add_option("--threads", options->threads, threads_help());
   add_memory_limit_option(*command);
-  command
-      ->add_option("--quadrature", options->quadrature,
-                   "Gauss-Legendre points per angular bin and axis that average a model over "
-                   "the bin, in [1, 8]")
-      ->capture_default_str();
+  command->add_option("--quadrature", options->quadrature,
+                      "Gauss-Legendre points per angular bin and axis that average a model over "
+                      "the bin, in [1, 8]");
   return [options] {
     const std::vector<fit::LobeModel> models = fit::parse_lobe_models(options->models);
     check_threads(options->threads, "--threads");

@@ -33,14 +33,14 @@ int run_invert(const InvertOptions& o) {
   }
   std::vector<InvertedCoefficients> results;
   for (std::size_t i = 0; i < o.total_reflectance.size(); ++i) {
-    results.push_back(invert_reflectance(model, o.total_reflectance[i],
-                                         o.diffuse_mean_free_path[i], o.eta, o.g));
+    results.push_back(
+        invert_reflectance(model, o.total_reflectance[i], o.diffuse_mean_free_path[i], o.eta, o.g));
   }
   const std::string& unit = o.length_unit;
-  fmt::print("scatterlab invert: model {}, eta {}, g {}; lengths in {}\n", to_string(model),
-             o.eta, o.g, unit);
-  fmt::print("  {:>8} {:>10} {:>10} {:>14} {:>14} {:>14} {:>10} {:>10}\n", "channel", "R_dr",
-             "l_d", "alpha'", fmt::format("sigma_a /{}", unit), fmt::format("sigma_s /{}", unit),
+  fmt::print("scatterlab invert: model {}, eta {}, g {}; lengths in {}\n", to_string(model), o.eta,
+             o.g, unit);
+  fmt::print("  {:>8} {:>10} {:>10} {:>14} {:>14} {:>14} {:>10} {:>10}\n", "channel", "R_dr", "l_d",
+             "alpha'", fmt::format("sigma_a /{}", unit), fmt::format("sigma_s /{}", unit),
              "R_dr back", "l_d back");
   for (std::size_t i = 0; i < results.size(); ++i) {
     const InvertedCoefficients& c = results[i];
@@ -50,8 +50,8 @@ int run_invert(const InvertOptions& o) {
     const double back_l =
         1.0 / (sigma_t_reduced * transport_to_extinction_ratio(model, c.reduced_albedo));
     fmt::print("  {:>8} {:>10.6g} {:>10.6g} {:>14.10f} {:>14.8g} {:>14.8g} {:>10.6g} {:>10.6g}\n",
-               i, o.total_reflectance[i], o.diffuse_mean_free_path[i], c.reduced_albedo,
-               c.sigma_a, c.sigma_s, back_r, back_l);
+               i, o.total_reflectance[i], o.diffuse_mean_free_path[i], c.reduced_albedo, c.sigma_a,
+               c.sigma_s, back_r, back_l);
   }
   return 0;
 }
@@ -65,24 +65,23 @@ Action add_invert_command(CLI::App& app) {
       "Half-space parameters from appearance (Bitterli §3.4): total diffuse reflectance R_dr and "
       "diffuse mean free path l_d = 1 / sigma_tr to sigma_a and sigma_s, by bisection on the "
       "model's R_dr(alpha'). Give one value, or one per channel (--Rd 0.8 0.6 0.3 --ld 8 4 2).");
-  command->add_option("--Rd", o->total_reflectance,
-                      "Total diffuse reflectance R_dr, in (0, what the model reaches at alpha' = 1)")
+  command
+      ->add_option("--Rd", o->total_reflectance,
+                   "Total diffuse reflectance R_dr, in (0, what the model reaches at alpha' = 1)")
       ->required();
-  command->add_option("--ld", o->diffuse_mean_free_path,
-                      "Diffuse mean free path l_d = 1 / sigma_tr, > 0, in --unit")
+  command
+      ->add_option("--ld", o->diffuse_mean_free_path,
+                   "Diffuse mean free path l_d = 1 / sigma_tr, > 0, in --unit")
       ->required();
-  command->add_option("--eta", o->eta, "Relative index n_medium / n_outside, in [0.5, 2.5]")
-      ->capture_default_str();
-  command->add_option("--g", o->g, "Henyey-Greenstein g; sigma_s = sigma_s' / (1 - g)")
-      ->capture_default_str();
+  command->add_option("--eta", o->eta, "Relative index n_medium / n_outside, in [0.5, 2.5]");
+  command->add_option("--g", o->g, "Henyey-Greenstein g; sigma_s = sigma_s' / (1 - g)");
   std::string names;
   for (const HalfSpaceModel model : all_half_space_models) {
     names += (names.empty() ? "" : ", ") + to_string(model);
   }
-  command->add_option("--model", o->model, "Half-space model: " + names)->capture_default_str();
+  command->add_option("--model", o->model, "Half-space model: " + names);
   command->add_option("--unit", o->length_unit,
-                      "Length unit of l_d, and so of the coefficients (a label: mm, cm, mfp, ...)")
-      ->capture_default_str();
+                      "Length unit of l_d, and so of the coefficients (a label: mm, cm, mfp, ...)");
   return [o] { return run_invert(*o); };
 }
 

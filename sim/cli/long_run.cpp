@@ -62,13 +62,19 @@ void refuse_foreign_checkpoint(const std::filesystem::path& checkpoint,
 
 std::shared_ptr<LongRunOptions> add_long_run_options(CLI::App& command) {
   auto options = std::make_shared<LongRunOptions>();
-  command.add_option("--checkpoint", options->checkpoint,
-                     "Save the run's state here periodically, atomically [OUT.checkpoint]: a path "
-                     "where no file is yet, or this run's own checkpoint, which is removed when "
-                     "the run completes; any other file there stops the run before it starts");
-  command.add_option("--checkpoint-interval", options->interval,
-                     "Checkpoint every INTERVAL: seconds (600, 600s, 10m, 2h) or batches (8b); "
-                     "checkpoints are off unless this, --checkpoint or --resume is given [10m]");
+  // Both defaults follow from other input (the output's name; whether checkpoints are on), so
+  // the help shows what they come to rather than an empty value.
+  command
+      .add_option("--checkpoint", options->checkpoint,
+                  "Save the run's state here periodically, atomically: a path where no file is "
+                  "yet, or this run's own checkpoint, which is removed when the run completes; "
+                  "any other file there stops the run before it starts")
+      ->default_str("OUT.checkpoint");
+  command
+      .add_option("--checkpoint-interval", options->interval,
+                  "Checkpoint every INTERVAL: seconds (600, 600s, 10m, 2h) or batches (8b); "
+                  "checkpoints are off unless this, --checkpoint or --resume is given")
+      ->default_str(fmt::format("{:g}s", kDefaultIntervalSeconds));
   command.add_flag("--resume", options->resume,
                    "Continue from the checkpoint if there is one (same parameters and seed); the "
                    "result equals an uninterrupted run, bit for bit. Interrupted (SIGINT, SIGTERM, "

@@ -12,12 +12,15 @@
 #include <iostream>
 #include <memory>
 #include <new>
+#include <optional>
 #include <string>
 #include <system_error>
 #include <utility>
+#include <vector>
 
 #include "commands.hpp"
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/core/spelling.hpp"
 #include "scatterlab/parallel/world.hpp"
 #include "value_checks.hpp"
 
@@ -68,6 +71,61 @@ int finish_standard_output(int status) {
   return status == 0 ? 1 : status;
 }
 
+// The command that was being read when parsing stopped: the deepest subcommand given.
+const CLI::App& innermost_command(const CLI::App& app) {
+  for (const CLI::App* sub : app.get_subcommands()) return innermost_command(*sub);
+  return app;
+}
+
+// The nearest accepted spelling of `typed`: a flag of `command` when it starts with '-', else
+// one of its subcommands.
+std::optional<std::string> nearest_spelling(const CLI::App& command, const std::string& typed) {
+  std::vector<std::string> accepted;
+  if (typed.rfind("-", 0) == 0) {
+    for (const CLI::Option* option : command.get_options()) {
+      for (const std::string& name : option->get_lnames()) accepted.push_back("--" + name);
+      for (const std::string& name : option->get_snames()) accepted.push_back("-" + name);
+    }
+  } else {
+    for (const CLI::App* sub : command.get_subcommands([](const CLI::App*) { return true; })) {
+      accepted.push_back(sub->get_name());
+    }
+  }
+  return scatterlab::nearest_name(typed, accepted);
+}
+
+// What a command line that did not parse gets, with its likely meaning as the scene's keys get
+// one: an unexpected `--albdo` or `--albdo=0.3` is named first, whatever else CLI11 found (the
+// value after a mistyped flag lands on a positional argument and may fail there), with the flag
+// it was near; a mistyped command, with the command.
+std::string parse_error_text(const CLI::App& app, const CLI::ParseError& error) {
+  std::string message = error.what();
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  const CLI::App& command = innermost_command(app);
+  for (const std::string& argument : command.remaining()) {
+    const bool flag = argument.rfind("-", 0) == 0;
+    const std::string typed = flag ? argument.substr(0, argument.find('=')) : argument;
+    const auto nearest = nearest_spelling(command, typed);
+    if (flag) {
+      return fmt::format("{}: not a flag of {}{}", typed, command.get_display_name(),
+                         nearest ? fmt::format(" (did you mean {}?)", *nearest) : "");
+    }
+    // CLI11 does not name a mistyped command ("A subcommand is required").
+    if (nearest) return fmt::format("{} (\"{}\": did you mean {}?)", message, typed, *nearest);
+  }
+  return message;
+}
+
+// A list that starts empty (--section, --Rd) has no default to show: not "=[]".
+void hide_empty_list_defaults(CLI::App& app) {
+  for (CLI::Option* option : app.get_options()) {
+    if (option->get_default_str() == "[]") option->default_str("");
+  }
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+    hide_empty_list_defaults(*sub);
+  }
+}
+
 int run(int argc, char** argv) {
   std::string command_line = argv[0];
   for (int i = 1; i < argc; ++i) command_line += std::string(" ") + argv[i];
@@ -88,6 +146,10 @@ int run(int argc, char** argv) {
                ": Monte Carlo light transport in participating media and the analytic models "
                "that approximate it"};
   app.set_version_flag("--version", SCATTERLAB_VERSION);
+  // Every option's help shows its built-in default the one way CLI11 does (--albedo FLOAT=0.5),
+  // taken from the value the option starts with; an option whose default follows from other
+  // input (a scene's value, the output's name) says so in its default string.
+  app.option_defaults()->always_capture_default();
   app.footer(
       "Exit status: 0 done; 2 bad input, found before any work (a flag, a scene file, an output "
       "whose directory takes no new files, a launcher's rank count such as OMPI_COMM_WORLD_SIZE "
@@ -105,6 +167,7 @@ int run(int argc, char** argv) {
   const auto render = scatterlab::cli::add_render_command(app);
   const auto invert = scatterlab::cli::add_invert_command(app);
   scatterlab::cli::check_numeric_values(app);
+  hide_empty_list_defaults(app);
 
   try {
     app.parse(argc, argv);
@@ -114,9 +177,9 @@ int run(int argc, char** argv) {
       return world->is_root() ? app.exit(e) : 0;
     }
     // Anything else is bad input, reported as every other: one line naming the flag, status 2.
-    std::string message = e.what();
-    std::replace(message.begin(), message.end(), '\n', ' ');
-    if (world->is_root()) print_error("scatterlab: error: {} (see --help)\n", message);
+    if (world->is_root()) {
+      print_error("scatterlab: error: {} (see --help)\n", parse_error_text(app, e));
+    }
     return 2;
   }
   try {

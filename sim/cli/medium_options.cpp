@@ -14,7 +14,7 @@ void add_medium_options(CLI::App& command, MediumOptions& o) {
                      "The material's colour channel: red, green or blue (one run per channel)");
   command.add_option("--length-unit", o.length_unit,
                      "Unit of the grid, the escape radius and 1/sigma_t: mfp (sigma_t = 1), um, "
-                     "mm, cm or m [mfp; a material's table unit]");
+                     "mm, cm or m; with a material, its table's unit unless given");
 }
 
 std::optional<double> apply_medium_options(const CLI::App& command, const MediumOptions& o,

@@ -26,11 +26,12 @@ void add_memory_limit_option(CLI::App& command) {
           [](const std::string& text) {
             set_memory_limit(parse_memory_size(text, "--memory-limit"), text);
           },
-          "Memory the run may use, e.g. 512M or 4G (K, M, G, T: powers of 1024) [the machine's "
-          "physical memory, or its cgroup's limit when lower]. The run's peak (tallies, a buffer "
-          "per thread, images, datasets read) is estimated before anything is allocated, and a "
-          "run over the limit is refused, naming the fields that size it")
+          "Memory the run may use, e.g. 512M or 4G (K, M, G, T: powers of 1024); by default the "
+          "machine's physical memory, or its cgroup's limit when lower. The run's peak "
+          "(tallies, a buffer per thread, images, datasets read) is estimated before anything "
+          "is allocated, and a run over the limit is refused, naming the fields that size it")
       ->type_name("SIZE")
+      ->default_str(format_bytes(machine_memory_limit().bytes))
       ->check(size);
 }
 

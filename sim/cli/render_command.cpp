@@ -50,6 +50,7 @@ int run_study(const RenderOptions& o, const std::filesystem::path& out_dir) {
   for (const std::string& path : paths) {
     scenes.push_back({std::filesystem::path(path).stem().string(), load_render_scene(path)});
   }
+  plan.make_output_directories();
   RenderStudyOptions options = o.quick ? RenderStudyOptions::quick() : RenderStudyOptions{};
   options.threads = o.threads;
   options.seed = o.seed;
@@ -74,43 +75,44 @@ Action add_render_command(CLI::App& app) {
   auto* render = app.add_subcommand(
       "render", "Single-scatter image of a refractive mesh (OpenEXR, linear, and a PNG beside it)");
   auto options = std::make_shared<RenderOptions>();
-  render->add_option("SCENE", options->scenes,
-                     "Render scene (TOML; see data/scenes/tile.toml); with --study, the scenes "
-                     "to study (default: data/scenes/bumpy-sphere.toml data/scenes/tile.toml)");
+  render
+      ->add_option("SCENE,--scene", options->scenes,
+                   "Render scene (TOML; see data/scenes/tile.toml); with --study, the scenes "
+                   "to study (by default data/scenes/bumpy-sphere.toml and "
+                   "data/scenes/tile.toml)")
+      ->default_str("");
   render->add_flag("--study", options->study,
                    "Error against run time: every method at increasing budgets against a "
                    "converged reference (holzschuch, many samples); writes render_study.csv, "
                    "<scene>_error.png and <scene>_images.png into --out (a directory); not with "
                    "--method, --width, --height, --samples, --light-samples, --exposure, --gamma");
   render->add_flag("--quick", options->quick, "With --study: tiny images and budgets");
+  render->add_option("--method", options->method,
+                     "straight (Jensen 2001), walter (sample points), holzschuch (support "
+                     "intervals) or pathtrace (Monte Carlo reference, needs light.radius > 0)");
+  // These default to the scene's values, which --help cannot know.
+  render->add_option("--width", options->width, "Image width in pixels, in [1, 16384]")
+      ->default_str("the scene's");
+  render->add_option("--height", options->height, "Image height in pixels, in [1, 16384]")
+      ->default_str("the scene's");
   render
-      ->add_option("--method", options->method,
-                   "straight (Jensen 2001), walter (sample points), holzschuch (support "
-                   "intervals) or pathtrace (Monte Carlo reference, needs light.radius > 0)")
-      ->capture_default_str();
-  render->add_option("--width", options->width,
-                     "Image width in pixels, in [1, 16384] (default: the scene's)");
-  render->add_option("--height", options->height,
-                     "Image height in pixels, in [1, 16384] (default: the scene's)");
-  render->add_option("--samples", options->samples,
-                     "Samples per eye ray, per interval for holzschuch, in [1, 2^20] (default: the "
-                     "scene's)");
-  render->add_option(
-      "--light-samples", options->light_samples,
-      "Points on a sphere light for the deterministic methods, in [1, 4096] (default: "
-      "the scene's)");
+      ->add_option("--samples", options->samples,
+                   "Samples per eye ray, per interval for holzschuch, in [1, 2^20]")
+      ->default_str("the scene's");
+  render
+      ->add_option("--light-samples", options->light_samples,
+                   "Points on a sphere light for the deterministic methods, in [1, 4096]")
+      ->default_str("the scene's");
   render->add_option("--threads", options->threads, threads_help());
   add_memory_limit_option(*render);
   render->add_option("--seed", options->seed, "Random seed (pathtrace), in [0, 2^63 - 1]");
   CLI::Option* out_option =
-      render
-          ->add_option("--out", options->out,
-                       "Output OpenEXR file, NAME.exr; the PNG is written beside it as NAME.png "
-                       "(--study: the output directory, default render-study)")
-          ->capture_default_str();
-  render->add_option("--exposure", options->exposure, "PNG exposure in stops")
-      ->capture_default_str();
-  render->add_option("--gamma", options->gamma, "PNG gamma")->capture_default_str();
+      render->add_option("--out", options->out,
+                         "Output OpenEXR file, NAME.exr; the PNG is written beside it as NAME.png "
+                         "(--study: the output directory, made if missing, by default "
+                         "render-study)");
+  render->add_option("--exposure", options->exposure, "PNG exposure in stops");
+  render->add_option("--gamma", options->gamma, "PNG gamma");
   // The study chooses its own methods, sizes, budgets and plots: these would be ignored.
   CLI::Option* study = render->get_option("--study");
   for (const char* flag : {"--method", "--width", "--height", "--samples", "--light-samples",

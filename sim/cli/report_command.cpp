@@ -35,14 +35,12 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
       "fails");
   auto options = std::make_shared<ReportOptions>();
   command->add_flag("--quick", options->quick, "Small budgets, for the test suite (minutes)");
-  command->add_option("--out", options->out, "Directory to write (created if missing)")
-      ->capture_default_str();
+  command->add_option("--out", options->out, "Directory to write (created if missing)");
   command->add_option("--threads", options->profile.threads, threads_help());
   add_memory_limit_option(*command);
-  command
-      ->add_option("--seed", options->profile.seed,
-                   "Seed of the first run (the next runs take the next seeds), in [0, 2^63 - 2^20]")
-      ->capture_default_str();
+  command->add_option(
+      "--seed", options->profile.seed,
+      "Seed of the first run (the next runs take the next seeds), in [0, 2^63 - 2^20]");
 
   // Each section by its id (its CSV stem), in the order of the report.
   using Suite = std::function<report::Section(const report::Profile&)>;
@@ -57,8 +55,9 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
           {"refractive_solver", report::refractive_solver_accuracy}});
   std::string names;
   for (const auto& [name, suite] : *suites) names += (names.empty() ? "" : ", ") + name;
-  command->add_option("--section", options->sections,
-                      "Run only these sections (repeat, or a comma-separated list): " + names)
+  command
+      ->add_option("--section", options->sections,
+                   "Run only these sections (repeat, or a comma-separated list): " + names)
       ->delimiter(',');
 
   return [options, command_line, suites, names] {
@@ -74,6 +73,7 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
     OutputPlan plan;
     plan.output_directory("--out", options->out);
     prepare_outputs(plan);
+    plan.make_output_directories();
     std::vector<report::Section> sections;
     int failed = 0;
     for (const auto& [name, suite] : *suites) {

@@ -18,8 +18,11 @@ struct RunOptions {
   double escape_radius = 0;
 };
 
-// Registers the flags, read into `options`; `default_photons` is the help text's default ("1e8").
-void add_run_options(CLI::App& command, RunOptions& options, const std::string& default_photons);
+// The flags at a command's built-in run settings, which --help shows as the defaults.
+RunOptions run_options_of(const RunSettings& run);
+
+// Registers the flags, read into `options`.
+void add_run_options(CLI::App& command, RunOptions& options);
 
 // The help text of every command's --threads: the bound and what 0 means (run_settings.hpp).
 std::string threads_help();

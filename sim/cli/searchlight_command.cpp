@@ -21,13 +21,15 @@
 #include "scatterlab/models/chandrasekhar_h.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/validate/searchlight_models.hpp"
-#include "value_checks.hpp"
+#include "scene_option.hpp"
 
 namespace scatterlab::cli {
 namespace {
 
+// Every flag, starting at the built-in default (a default SearchlightSpec's), which --help shows;
+// only the flags given override the scene.
 struct SearchlightOptions {
-  std::string scene, out;
+  std::string scene, out = "searchlight.h5", tallies;
   double albedo = 0, g = 0, sigma_t = 0, eta = 0, incidence = 0;
   RunOptions run;        // --photons, --batches, --seed, --threads, --escape-radius
   MediumOptions medium;  // --material, --channel, --length-unit
@@ -36,6 +38,40 @@ struct SearchlightOptions {
   bool no_fluence = false;
   bool model_fluence = false;
 };
+
+// --tallies names the optional tallies, as simulate's does; the surface tallies (R_d(r), the
+// exitant radiance and the totals) cost one bin lookup per exit and are always on.
+std::string tally_list(const SearchlightTallies& tallies) {
+  return tallies.fluence ? "fluence" : "none";
+}
+
+void apply_tally_list(const std::string& list, SearchlightTallies& tallies) {
+  if (list != "fluence" && list != "none") {
+    throw InputError("--tallies", fmt::format("got \"{}\"", list),
+                     "fluence or none (R_d(r), the exitant radiance and the totals are always "
+                     "tallied)");
+  }
+  tallies.fluence = list == "fluence";
+}
+
+SearchlightOptions default_options() {
+  const SearchlightSpec spec;
+  SearchlightOptions o;
+  o.tallies = tally_list(spec.tallies);
+  o.albedo = spec.medium.albedo;
+  o.g = spec.medium.g;
+  o.sigma_t = spec.medium.sigma_t;
+  o.medium.length_unit = spec.medium.length_unit;
+  o.eta = spec.eta;
+  o.incidence = spec.incidence_deg;
+  o.run = run_options_of(spec.run);
+  o.r_max = spec.grid.r.max;
+  o.z_max = spec.grid.z.max;
+  o.r_bins = spec.grid.r.bins;
+  o.z_bins = spec.grid.z.bins;
+  o.theta_bins = spec.grid.theta_o.bins;
+  return o;
+}
 
 // A scalar tally's value and its standard error in *error; 0 and 0 when the run has none.
 double scalar(const std::vector<TallyResult>& tallies, const std::string& name, double* error) {
@@ -118,14 +154,16 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
   if (given("--z-max")) spec.grid.z.max = o.z_max;
   if (given("--z-bins")) spec.grid.z.bins = o.z_bins;
   if (given("--theta-bins")) spec.grid.theta_o.bins = o.theta_bins;
+  if (given("--tallies")) apply_tally_list(o.tallies, spec.tallies);
   if (given("--no-fluence")) spec.tallies.fluence = false;
   spec.validate();
   // The models' phi(r, z) goes beside the Monte Carlo's: without it there is nothing to model.
   if (o.model_fluence && !spec.tallies.fluence) {
     throw InputError("--model-fluence",
-                     given("--no-fluence") ? "given with --no-fluence"
-                                           : "given with the scene's tallies.fluence = false",
-                     "--model-fluence with the fluence tally on (no --no-fluence)");
+                     given("--no-fluence") || given("--tallies")
+                         ? "given without the fluence tally (--tallies none, --no-fluence)"
+                         : "given with the scene's tallies.fluence = false",
+                     "--model-fluence with the fluence tally on (--tallies fluence)");
   }
   check_transport_memory(transport_problem(spec), world.size(), long_run_options.resume);
 
@@ -176,39 +214,37 @@ Action add_searchlight_command(CLI::App& app, const std::string& command_line, W
       "eta (Bitterli 2014, §2.3): diffuse reflectance R_d(r), exitant radiance L(r, theta_o), "
       "fluence phi(r, z) and the totals, each split by scattering order, with standard errors, "
       "to HDF5. Without flags: albedo 0.99, g 0, eta 1.3, normal incidence.");
-  auto o = std::make_shared<SearchlightOptions>();
+  auto o = std::make_shared<SearchlightOptions>(default_options());
   command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  command
-      ->add_option("--scene", o->scene,
-                   "TOML scene file, a regular file of at most 1 MiB (see "
-                   "data/scenes/searchlight.toml)")
-      ->check(scene_file());
-  command->add_option("--out", o->out, "Output HDF5 file [searchlight.h5]");
-  command->add_option("--albedo", o->albedo, "Single-scattering albedo in [0, 1] [0.99]");
-  command->add_option("--g", o->g, "Henyey-Greenstein mean cosine, |g| < 1 [0]");
-  command->add_option("--sigma-t", o->sigma_t,
-                      "Extinction coefficient in 1/length-unit (1 in mfp, the default unit) [1]");
+  command->add_option("--out", o->out,
+                      "Output HDF5 file (default: the scene's output.path when it has one)");
+  command->add_option("--albedo", o->albedo, "Single-scattering albedo in [0, 1]");
+  command->add_option("--g", o->g, "Henyey-Greenstein mean cosine, |g| < 1");
+  command->add_option("--sigma-t", o->sigma_t, "Extinction coefficient in 1/length-unit");
   add_medium_options(*command, o->medium);
   command->add_option("--eta", o->eta,
-                      "Relative index n_medium / n_outside, in [0.1, 10]; 1 for no interface "
-                      "[1.3; a material's table value]");
+                      "Relative index n_medium / n_outside, in [0.1, 10]; 1 for no interface; "
+                      "with a material, its table's value unless given");
   command->add_option("--incidence", o->incidence,
-                      "Beam angle from the surface normal, degrees in [0, 90) [0]");
-  add_run_options(*command, o->run, "1e7");
-  command->add_option("--r-max", o->r_max, "Radial grid extent, in the length unit [10 mfp]");
-  command->add_option("--r-bins", o->r_bins, "Radial bins [200]");
-  command->add_option("--z-max", o->z_max,
-                      "Depth grid extent of the fluence, in the length unit [10 mfp]");
-  command->add_option("--z-bins", o->z_bins, "Depth bins of the fluence [100]");
-  command->add_option("--theta-bins", o->theta_bins, "Exit-angle bins over [0, pi/2] [18]");
+                      "Beam angle from the surface normal, degrees in [0, 90)");
+  add_run_options(*command, o->run);
+  command->add_option("--r-max", o->r_max, "Radial grid extent, in the length unit");
+  command->add_option("--r-bins", o->r_bins, "Radial bins");
+  command->add_option("--z-max", o->z_max, "Depth grid extent of the fluence, in the length unit");
+  command->add_option("--z-bins", o->z_bins, "Depth bins of the fluence");
+  command->add_option("--theta-bins", o->theta_bins, "Exit-angle bins over [0, pi/2]");
+  CLI::Option* tallies = command->add_option(
+      "--tallies", o->tallies,
+      "fluence or none: the fluence phi(r, z) costs a bin lookup at every event; R_d(r), the "
+      "exitant radiance and the totals are always tallied");
   command->add_flag("--model-fluence", o->model_fluence,
                     "Also write each diffusion model's phi(r, z) under /models (about 1 ms per "
-                    "cell and model: a minute on the default grid); not with --no-fluence");
-  command->add_flag("--no-fluence", o->no_fluence,
-                    "Skip the fluence phi(r, z) (its bin lookup costs time at every event); not "
-                    "with --model-fluence");
+                    "cell and model: a minute on the default grid); needs the fluence tally");
+  command->add_flag("--no-fluence", o->no_fluence, "Same as --tallies none")->excludes(tallies);
   const auto long_run = add_long_run_options(*command);
   add_memory_limit_option(*command);
+  // Last, so that a bad value of a flag is reported before the positional file it spilled into.
+  add_scene_option(*command, o->scene, "data/scenes/searchlight.toml");
   return [command, o, long_run, command_line, &world] {
     return run_searchlight_command(*command, *o, *long_run, command_line, world);
   };

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <exception>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -22,14 +23,15 @@
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/parallel/world.hpp"
 #include "scatterlab/transport/simulate.hpp"
-#include "value_checks.hpp"
+#include "scene_option.hpp"
 
 namespace scatterlab::cli {
 namespace {
 
-// Every flag, as given on the command line; only those given override the scene.
+// Every flag, starting at the built-in default (a default SimulationSpec's), which --help shows;
+// only the flags given override the scene.
 struct SimulateOptions {
-  std::string scene, out, out_dir, source, estimator, tallies;
+  std::string scene, out = "scatterlab.h5", out_dir, source, estimator, tallies;
   double albedo = 0, g = 0, sigma_t = 0;
   RunOptions run;        // --photons, --batches, --seed, --threads, --escape-radius
   MediumOptions medium;  // --material, --channel, --length-unit
@@ -37,6 +39,48 @@ struct SimulateOptions {
   int r_bins = 0, z_bins = 0, theta_bins = 0, phi_bins = 0, rho_bins = 0;
   bool fold_phi = false, split_orders = false;
 };
+
+// The tallies --tallies names, and the request's switch for each.
+const std::map<std::string, bool TallyRequest::*>& tally_names() {
+  static const std::map<std::string, bool TallyRequest::*> names = {
+      {"radiance", &TallyRequest::radiance},
+      {"fluence", &TallyRequest::fluence},
+      {"flux", &TallyRequest::flux},
+      {"fluence_spherical", &TallyRequest::fluence_spherical}};
+  return names;
+}
+
+std::string tally_list(const TallyRequest& tallies) {
+  std::vector<std::string> on;
+  for (const auto& [name, member] : tally_names()) {
+    if (tallies.*member) on.push_back(name);
+  }
+  return fmt::format("{}", fmt::join(on, ","));
+}
+
+SimulateOptions default_options() {
+  const SimulationSpec spec;
+  SimulateOptions o;
+  o.source = to_string(spec.source);
+  o.estimator = to_string(spec.tallies.estimator);
+  o.tallies = tally_list(spec.tallies);
+  o.albedo = spec.medium.albedo;
+  o.g = spec.medium.g;
+  o.sigma_t = spec.medium.sigma_t;
+  o.medium.length_unit = spec.medium.length_unit;
+  o.run = run_options_of(spec.run);
+  const Grid& grid = spec.grid;
+  o.r_max = grid.r.max;
+  o.z_min = grid.z.min;
+  o.z_max = grid.z.max;
+  o.rho_max = grid.rho.max;
+  o.r_bins = grid.r.bins;
+  o.z_bins = grid.z.bins;
+  o.theta_bins = grid.theta.bins;
+  o.phi_bins = grid.phi.bins;
+  o.rho_bins = grid.rho.bins;
+  return o;
+}
 
 std::string shape_text(const TallyResult& t) {
   std::string text;
@@ -83,17 +127,12 @@ void print_summary(const SimulationSpec& spec, const SimulationOutput& out,
 }
 
 void apply_tally_list(const std::string& list, TallyRequest& tallies) {
-  static const std::map<std::string, bool TallyRequest::*> known = {
-      {"radiance", &TallyRequest::radiance},
-      {"fluence", &TallyRequest::fluence},
-      {"flux", &TallyRequest::flux},
-      {"fluence_spherical", &TallyRequest::fluence_spherical}};
-  for (const auto& [name, member] : known) tallies.*member = false;
+  for (const auto& [name, member] : tally_names()) tallies.*member = false;
   std::stringstream stream(list);
   std::string name;
   while (std::getline(stream, name, ',')) {
-    const auto it = known.find(name);
-    if (it == known.end()) {
+    const auto it = tally_names().find(name);
+    if (it == tally_names().end()) {
       throw InputError("--tallies", fmt::format("unknown tally \"{}\"", name),
                        "a comma-separated list of radiance, fluence, flux, fluence_spherical");
     }
@@ -139,49 +178,55 @@ struct PlannedRun {
   std::string output_field;
 };
 
+// The runs to do, and the directory that holds their files when there is one.
+struct RunPlan {
+  std::vector<PlannedRun> runs;
+  std::string directory;        // empty: the one run's file is named by --out or the scene
+  std::string directory_field;  // --out or --out-dir
+};
+
 // One run, or one per combination of a sweep (scene.hpp), each with its output path.
-std::vector<PlannedRun> plan_runs(CLI::App& command, const SimulateOptions& o,
-                                  const LongRunOptions& long_run) {
+RunPlan plan_runs(CLI::App& command, const SimulateOptions& o, const LongRunOptions& long_run) {
   auto given = [&command](const char* flag) { return command.get_option(flag)->count() > 0; };
   // Each point of the file valid on its own, then the flags over it, validated again
   // (apply_flags).
   std::vector<SweepPoint> points = given("--scene") ? load_sweep(o.scene, Validation::on_read)
                                                     : std::vector<SweepPoint>{SweepPoint{}};
   const bool sweep = points.size() > 1 || !points.front().label.empty();
-  if (sweep && given("--out")) {
-    throw InputError("--out", fmt::format("given with a sweep of {} runs", points.size()),
-                     "--out-dir DIR for a scene with lists of values (one file per run)");
-  }
-  if (sweep && !given("--out-dir")) {
-    throw InputError("--out-dir",
+  // Many files go into a directory: --out names it for a sweep (as for every command that
+  // writes many files); --out-dir is the same directory, for a single run too.
+  const std::string out_dir = given("--out-dir") ? o.out_dir : sweep && given("--out") ? o.out : "";
+  const std::string dir_field = given("--out-dir") ? "--out-dir" : "--out";
+  if (sweep && out_dir.empty()) {
+    throw InputError("--out",
                      fmt::format("missing: the scene sweeps {} combinations", points.size()),
-                     "a directory for one file per combination");
+                     "--out DIR, a directory for one file per combination (made if missing)");
   }
   if (sweep && !long_run.checkpoint.empty()) {
     throw InputError("--checkpoint", "given with a sweep: every run checkpoints beside its file",
                      "--checkpoint only for a single run");
   }
-  std::vector<PlannedRun> runs;
+  RunPlan plan{{}, out_dir, dir_field};
   for (SweepPoint& point : points) {
     apply_flags(command, o, point.scene.material, point.scene.spec);
     std::filesystem::path output;
     std::string field = "--out";
-    if (given("--out-dir")) {
-      field = "--out-dir";
+    if (!out_dir.empty()) {
+      field = dir_field;
       const std::string name =
           point.label.empty()
               ? std::filesystem::path(point.scene.output_path.value_or("scatterlab.h5"))
                     .filename()
                     .string()
               : point.label + ".h5";
-      output = std::filesystem::path(o.out_dir) / name;
+      output = std::filesystem::path(out_dir) / name;
     } else {
       output = given("--out") ? o.out : point.scene.output_path.value_or("scatterlab.h5");
       if (!given("--out") && point.scene.output_path) field = "output.path";
     }
-    runs.push_back({point.scene.spec, output, field});
+    plan.runs.push_back({point.scene.spec, output, field});
   }
-  return runs;
+  return plan;
 }
 
 // A complete file of the same run (same fingerprint) is already there.
@@ -229,32 +274,36 @@ int run_one(PlannedRun run, const LongRunOptions& options, const std::string& co
 
 int run_simulate(CLI::App& command, const SimulateOptions& o, const LongRunOptions& long_run,
                  const std::string& command_line, World& world) {
-  const std::vector<PlannedRun> runs = plan_runs(command, o, long_run);
+  const RunPlan run_plan = plan_runs(command, o, long_run);
+  const std::vector<PlannedRun>& runs = run_plan.runs;
+  const std::string& directory = run_plan.directory;
   // Every run's memory before any starts (engine.hpp): a sweep is refused whole, not halfway.
   for (const PlannedRun& run : runs) {
     check_transport_memory(transport_problem(run.spec), world.size(), long_run.resume);
   }
   OutputPlan plan;
   if (!o.scene.empty()) plan.input("--scene", o.scene);
-  if (!o.out_dir.empty()) plan.output_directory("--out-dir", o.out_dir);
+  if (!directory.empty()) plan.output_directory(run_plan.directory_field, directory);
   for (const PlannedRun& run : runs) {
     plan.output_file(run.output_field, run.output);
     plan.output_file("--checkpoint", checkpoint_path(long_run, run.output));
   }
-  prepare_outputs(plan, world.is_root());
-  if (!o.out_dir.empty()) {
-    // Made by the root; the others wait for it (a broadcast is a barrier here).
-    std::error_code error;
-    if (world.is_root()) std::filesystem::create_directories(o.out_dir, error);
-    world.communicator().broadcast_from_root(0);
-    if (!std::filesystem::is_directory(o.out_dir)) {
-      throw InputError("--out-dir", fmt::format("cannot create '{}'", o.out_dir),
-                       "a directory that exists or can be made");
-    }
+  // The root makes the directory (prepare_outputs); every rank learns whether its outputs are
+  // ready, so that none waits on a root that stopped (a broadcast is a barrier here).
+  std::exception_ptr failure;
+  try {
+    prepare_outputs(plan, world.is_root());
+    if (world.is_root()) plan.make_output_directories();
+  } catch (const InputError&) {
+    failure = std::current_exception();
   }
+  const bool ready = world.communicator().broadcast_from_root(failure ? 0 : 1) != 0;
+  if (failure) std::rethrow_exception(failure);
+  if (!ready) return 2;  // the root said why
   for (const PlannedRun& run : runs) {
-    // Sweeps (--out-dir) skip what is done; the root decides, so that every rank runs the same.
-    const bool skip = !o.out_dir.empty() &&
+    // Runs into a directory (sweeps) skip what is done; the root decides, so that every rank
+    // runs the same.
+    const bool skip = !directory.empty() &&
                       world.communicator().broadcast_from_root(already_done(run) ? 1 : 0) != 0;
     if (skip) {
       if (world.is_root())
@@ -283,50 +332,49 @@ Action add_simulate_command(CLI::App& app, const std::string& command_line, Worl
       "Pencil beam (or isotropic point source) in an infinite medium: binned radiance "
       "L(r,z,theta,phi), fluence and vector irradiance with standard errors, to HDF5. Without "
       "flags: the paper's case, g = 0.9, albedo 0.5 (Vavassori §4.1).");
-  auto o = std::make_shared<SimulateOptions>();
+  auto o = std::make_shared<SimulateOptions>(default_options());
   // As in most Unix tools, a repeated flag takes its last value (scripts append overrides).
   command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  command
-      ->add_option("--scene", o->scene,
-                   "TOML scene file, a regular file of at most 1 MiB (see "
-                   "data/scenes/paper-beam.toml)")
-      ->check(scene_file());
-  CLI::Option* out = command->add_option("--out", o->out, "Output HDF5 file [scatterlab.h5]");
+  CLI::Option* out = command->add_option(
+      "--out", o->out,
+      "Output HDF5 file (default: the scene's output.path when it has one); for a sweep (a "
+      "scene whose keys hold lists of values), the directory for its files, one per "
+      "combination named from its values, at most 1000; done combinations are skipped; a "
+      "directory is made when missing");
   command
       ->add_option("--out-dir", o->out_dir,
-                   "Directory for the output: needed for a sweep (a scene whose keys hold lists "
-                   "of values), one file per combination named from its values, at most "
-                   "1000 combinations; done combinations are skipped. Not with --out")
+                   "Directory for the output file (named from the scene's output.path), or a "
+                   "sweep's directory as --out; not with --out")
       ->excludes(out);
   command->add_option("--source", o->source, "Source: beam (along +z) or point (isotropic)")
       ->check(CLI::IsMember({"beam", "point"}));
-  command->add_option("--albedo", o->albedo, "Single-scattering albedo in [0, 1] [0.5]");
-  command->add_option("--g", o->g, "Henyey-Greenstein mean cosine, |g| < 1 [0.9]");
-  command->add_option("--sigma-t", o->sigma_t,
-                      "Extinction coefficient in 1/length-unit (1 in mfp, the default unit) [1]");
+  command->add_option("--albedo", o->albedo, "Single-scattering albedo in [0, 1]");
+  command->add_option("--g", o->g, "Henyey-Greenstein mean cosine, |g| < 1");
+  command->add_option("--sigma-t", o->sigma_t, "Extinction coefficient in 1/length-unit");
   add_medium_options(*command, o->medium);
-  command->add_option("--estimator", o->estimator, "collision or track_length [collision]")
+  command->add_option("--estimator", o->estimator, "Estimator of the volume tallies")
       ->check(CLI::IsMember({"collision", "track_length"}));
   command->add_option("--tallies", o->tallies,
-                      "Comma-separated: radiance, fluence, flux, fluence_spherical "
-                      "[radiance,fluence,flux]");
-  command->add_flag("--split-orders{true}", o->split_orders,
+                      "Comma-separated: radiance, fluence, flux, fluence_spherical");
+  // A flag takes a value too (--split-orders=false), to switch off what a scene switches on.
+  command->add_flag("--split-orders", o->split_orders,
                     "Also tally unscattered, once- and multiply-scattered light apart");
-  add_run_options(*command, o->run, "1e8");
-  command->add_option("--r-max", o->r_max, "Radial grid extent, in the length unit [1.5 mfp]");
-  command->add_option("--r-bins", o->r_bins, "Radial bins [15]");
-  command->add_option("--z-min", o->z_min, "Axial grid start, in the length unit [-1 mfp]");
-  command->add_option("--z-max", o->z_max, "Axial grid end, in the length unit [3 mfp]");
-  command->add_option("--z-bins", o->z_bins, "Axial bins [40]");
-  command->add_option("--theta-bins", o->theta_bins, "Polar-angle bins over [0, pi] [18]");
+  add_run_options(*command, o->run);
+  command->add_option("--r-max", o->r_max, "Radial grid extent, in the length unit");
+  command->add_option("--r-bins", o->r_bins, "Radial bins");
+  command->add_option("--z-min", o->z_min, "Axial grid start, in the length unit");
+  command->add_option("--z-max", o->z_max, "Axial grid end, in the length unit");
+  command->add_option("--z-bins", o->z_bins, "Axial bins");
+  command->add_option("--theta-bins", o->theta_bins, "Polar-angle bins over [0, pi]");
   command->add_option("--phi-bins", o->phi_bins,
-                      "Azimuth bins over [0, 2 pi], even; over [0, pi] with --fold-phi [36]");
-  command->add_flag("--fold-phi{true}", o->fold_phi, "Fold phi onto [0, pi] (L is even in phi)");
-  command->add_option("--rho-max", o->rho_max,
-                      "Spherical-shell grid extent, in the length unit [10 mfp]");
-  command->add_option("--rho-bins", o->rho_bins, "Spherical shells [200]");
+                      "Azimuth bins over [0, 2 pi], even; over [0, pi] with --fold-phi");
+  command->add_flag("--fold-phi", o->fold_phi, "Fold phi onto [0, pi] (L is even in phi)");
+  command->add_option("--rho-max", o->rho_max, "Spherical-shell grid extent, in the length unit");
+  command->add_option("--rho-bins", o->rho_bins, "Spherical shells (point source)");
   const auto long_run = add_long_run_options(*command);
   add_memory_limit_option(*command);
+  // Last, so that a bad value of a flag is reported before the positional file it spilled into.
+  add_scene_option(*command, o->scene, "data/scenes/paper-beam.toml");
   return [command, o, long_run, command_line, &world] {
     return run_simulate(*command, *o, *long_run, command_line, world);
   };

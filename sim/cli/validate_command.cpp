@@ -4,9 +4,9 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <memory>
-#include <cmath>
 #include <vector>
 
 #include "commands.hpp"
@@ -51,12 +51,14 @@ int run_deon(const ValidateOptions& options) {
   const auto files = write_point_source_report(comparisons, options.out);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  fmt::print("scatterlab validate deon: isotropic point source, g = 0, {} photons per albedo, "
-             "shells of {} mfp to {} mfp\n",
-             settings.photons, settings.rho.width(), settings.rho.max);
-  fmt::print("mean relative error of shell-averaged fluence against the exact solution, near "
-             "(r < 1 mfp) / far (r >= 1 mfp):\n{}",
-             point_source_error_table(comparisons));
+  fmt::print(
+      "scatterlab validate deon: isotropic point source, g = 0, {} photons per albedo, "
+      "shells of {} mfp to {} mfp\n",
+      settings.photons, settings.rho.width(), settings.rho.max);
+  fmt::print(
+      "mean relative error of shell-averaged fluence against the exact solution, near "
+      "(r < 1 mfp) / far (r >= 1 mfp):\n{}",
+      point_source_error_table(comparisons));
   fmt::print("  {:.2f} s; wrote {} files to {}\n", seconds, files.size(), options.out);
   return 0;
 }
@@ -109,13 +111,12 @@ int run_searchlight_validation(const SearchlightValidateOptions& o) {
   std::map<ModelPart, MonteCarloCurve> reflectance, fluence;
   for (const ModelPart part : {ModelPart::all, ModelPart::single, ModelPart::multiple}) {
     const std::string suffix = tally_suffix(part);
-    reflectance[part] =
-        curve(out.tallies, "reflectance" + suffix, "diffuse_reflectance" + suffix);
+    reflectance[part] = curve(out.tallies, "reflectance" + suffix, "diffuse_reflectance" + suffix);
     if (part != ModelPart::single) fluence[part] = curve(out.tallies, "fluence" + suffix);
   }
-  const HalfSpaceComparison comparison = compare_half_space(
-      HalfSpaceMedium::from_albedo(o.albedo, o.g, o.eta), 1.0 - specular.mean[0], r, z,
-      reflectance, fluence);
+  const HalfSpaceComparison comparison =
+      compare_half_space(HalfSpaceMedium::from_albedo(o.albedo, o.g, o.eta), 1.0 - specular.mean[0],
+                         r, z, reflectance, fluence);
   auto files = write_half_space_report(comparison, o.out, "searchlight");
 
   const ModelCurve& exact_curve = comparison.reflectance.front();  // single_scatter
@@ -129,8 +130,9 @@ int run_searchlight_validation(const SearchlightValidateOptions& o) {
 
   fmt::print("scatterlab validate searchlight: albedo {}, g {}, eta {}, {} photons\n", o.albedo,
              o.g, o.eta, spec.run.photons);
-  fmt::print("  each model against the Monte Carlo part it models (all = single + multiple); "
-             "errors: mean |model - MC| / MC over resolved rings, near (r <= 1 mfp) and far\n");
+  fmt::print(
+      "  each model against the Monte Carlo part it models (all = single + multiple); "
+      "errors: mean |model - MC| / MC over resolved rings, near (r <= 1 mfp) and far\n");
   fmt::print("  {:<38} {:<8} {:>9} {:>20} {:>11} {:>11}\n", "model", "part", "R_dr",
              "Monte Carlo R_dr", "error near", "error far");
   for (const ModelCurve& m : comparison.reflectance) {
@@ -161,20 +163,17 @@ Action add_validate_command(CLI::App& app) {
       "deon",
       "Point-source fluence r^2 phi(r) for albedos 0.01-0.99: Monte Carlo, exact, diffusion, "
       "Grosjean (d'Eon & Irving 2011); error table, CSV and PNG plots");
-  deon->add_option("--out", options->out, "Directory for the CSV and PNG files (created if missing)")
-      ->capture_default_str();
-  CLI::Option* deon_photons =
-      deon->add_option("--photons", options->photons, "Photons per albedo")->capture_default_str();
+  deon->add_option("--out", options->out,
+                   "Directory for the CSV and PNG files (created if missing)");
+  CLI::Option* deon_photons = deon->add_option("--photons", options->photons, "Photons per albedo");
   // --quick sets the photons: both would be a silent choice.
-  deon->add_flag("--quick", options->quick,
-                 "2e4 photons per albedo, for tests; not with --photons")
+  deon->add_flag("--quick", options->quick, "2e4 photons per albedo, for tests; not with --photons")
       ->excludes(deon_photons);
   deon->add_option("--threads", options->threads, threads_help());
   add_memory_limit_option(*deon);
   deon->add_option("--seed", options->seed,
                    "Random seed of the first albedo (the next take the next seeds), in "
-                   "[0, 2^63 - 7]")
-      ->capture_default_str();
+                   "[0, 2^63 - 7]");
   auto half_space = std::make_shared<SearchlightValidateOptions>();
   CLI::App* searchlight = validate->add_subcommand(
       "searchlight",
@@ -182,19 +181,17 @@ Action add_validate_command(CLI::App& app) {
       "the dipole, better dipole and quantized diffusion, its once-scattered part against the "
       "exact refractive single-scatter solution, and its total against their sums and the "
       "Grosjean beam (R_d(r), phi(r, z); linear, log, sqrt and r R plots)");
-  searchlight->add_option("--out", half_space->out, "Directory for the CSV and PNG files")
-      ->capture_default_str();
+  searchlight->add_option("--out", half_space->out, "Directory for the CSV and PNG files");
   CLI::Option* searchlight_photons =
-      searchlight->add_option("--photons", half_space->photons, "Photons")->capture_default_str();
-  searchlight->add_option("--albedo", half_space->albedo, "Albedo")->capture_default_str();
-  searchlight->add_option("--g", half_space->g, "Henyey-Greenstein g")->capture_default_str();
-  searchlight->add_option("--eta", half_space->eta, "Relative index")->capture_default_str();
+      searchlight->add_option("--photons", half_space->photons, "Photons");
+  searchlight->add_option("--albedo", half_space->albedo, "Albedo");
+  searchlight->add_option("--g", half_space->g, "Henyey-Greenstein g");
+  searchlight->add_option("--eta", half_space->eta, "Relative index");
   searchlight->add_flag("--quick", half_space->quick, "1e5 photons, for tests; not with --photons")
       ->excludes(searchlight_photons);
   searchlight->add_option("--threads", half_space->threads, threads_help());
   add_memory_limit_option(*searchlight);
-  searchlight->add_option("--seed", half_space->seed, "Random seed, in [0, 2^63 - 1]")
-      ->capture_default_str();
+  searchlight->add_option("--seed", half_space->seed, "Random seed, in [0, 2^63 - 1]");
   return [options, deon, half_space, searchlight] {
     check_threads(deon->parsed() ? options->threads : half_space->threads, "--threads");
     if (deon->parsed()) {

@@ -2,19 +2,20 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
-#include <cctype>
 #include <cstdlib>
 #include <string_view>
 
 #include "scatterlab/core/error.hpp"
-#include "scatterlab/io/text_file.hpp"
 
 namespace scatterlab::cli {
 namespace {
 
-bool is_digit(char c) { return c >= '0' && c <= '9'; }
+bool is_digit(char c) {
+  return c >= '0' && c <= '9';
+}
 
 // Decimal digits after an optional sign (no '-' when unsigned), without a leading zero.
 bool is_decimal_integer(std::string_view text, bool is_unsigned) {
@@ -28,7 +29,9 @@ bool is_decimal_integer(std::string_view text, bool is_unsigned) {
   return text.size() == 1 || text.front() != '0';
 }
 
-std::string quoted(const std::string& text) { return fmt::format("\"{}\"", text); }
+std::string quoted(const std::string& text) {
+  return fmt::format("\"{}\"", text);
+}
 
 }  // namespace
 
@@ -85,20 +88,6 @@ void check_numeric_values(CLI::App& app) {
   for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
     check_numeric_values(*command);
   }
-}
-
-CLI::Validator scene_file() {
-  return CLI::Validator(
-      [](std::string& path) -> std::string {
-        try {
-          check_scene_file(path, "");
-          return "";
-        } catch (const InputError& e) {
-          // CLI11 puts the flag's name in front; the field given here is empty.
-          return std::string(e.what()).substr(2);
-        }
-      },
-      "FILE");
 }
 
 }  // namespace scatterlab::cli

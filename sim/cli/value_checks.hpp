@@ -17,7 +17,4 @@ void check_numeric_values(CLI::App& app);
 // is accepted; empty when it is a well-formed number.
 std::string numeric_value_problem(const std::string& text, const std::string& type);
 
-// For --scene: a regular file of at most 1 MiB (io/text_file.hpp), checked before it is opened.
-CLI::Validator scene_file();
-
 }  // namespace scatterlab::cli

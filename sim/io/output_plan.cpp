@@ -279,4 +279,18 @@ std::vector<fs::path> OutputPlan::remove_stale_temporaries() const {
   return removed;
 }
 
+void OutputPlan::make_output_directories() const {
+  for (const Entry& entry : entries_) {
+    if (entry.kind != Kind::output_directory) continue;
+    std::error_code error;
+    fs::create_directories(entry.path, error);
+    if (error || !fs::is_directory(entry.path)) {
+      throw InputError(entry.field,
+                       fmt::format("cannot create directory {}: {}", quoted(entry.path),
+                                   error ? error.message() : "not a directory"),
+                       "a directory, or a path where one can be made");
+    }
+  }
+}
+
 }  // namespace scatterlab

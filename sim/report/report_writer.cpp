@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/io/simulation_file.hpp"
@@ -24,7 +23,9 @@ std::string joined(const std::vector<std::string>& cells, const std::string& sep
   return line;
 }
 
-std::string as_is(const std::string& text) { return text; }
+std::string as_is(const std::string& text) {
+  return text;
+}
 
 void write_text(const std::filesystem::path& path, const std::string& text) {
   write_text_file(path, [&text](std::ostream& stream) { stream << text; });
@@ -48,13 +49,12 @@ std::string to_markdown(const Table& table) {
 
 void write_report(const std::filesystem::path& directory, const std::string& command_line,
                   const std::vector<Section>& sections) {
-  const std::filesystem::path parent =
-      directory.has_parent_path() ? directory.parent_path() : std::filesystem::path(".");
-  if (!std::filesystem::is_directory(parent)) {
-    throw InputError("out", fmt::format("the parent directory {} does not exist", parent.string()),
-                     "a directory whose parent exists");
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error || !std::filesystem::is_directory(directory)) {
+    throw InputError("out", fmt::format("cannot create directory {}", directory.string()),
+                     "a directory, or a path where one can be made");
   }
-  std::filesystem::create_directory(directory);
 
   std::string markdown = fmt::format(
       "# scatterlab accuracy report\n\nscatterlab {}, {}\n\n`{}`\n\n| section | result |\n"

@@ -74,12 +74,12 @@ then pass; else fail "mismatched albedo: $(cat err.txt)"; fi
 
 # Sweep: every combination once; a second run skips them all.
 printf '[medium]\nalbedo = [0.5, 0.9]\ng = [0, 0.9]\n[run]\nphotons = 4000\nbatches = 4\n' >sweep.toml
-if "$exe" simulate --scene sweep.toml --out-dir sweep --theta-bins 6 --phi-bins 8 >/dev/null &&
+if "$exe" simulate --scene sweep.toml --out sweep --theta-bins 6 --phi-bins 8 >/dev/null &&
   [ "$(ls sweep | wc -l)" -eq 4 ] && [ -f "sweep/albedo=0.9_g=0.h5" ]; then pass; else
   fail "sweep: $(ls sweep)"; fi
 if [ "$("$exe" simulate --scene sweep.toml --out-dir sweep --theta-bins 6 --phi-bins 8 | grep -c '^skip')" -eq 4 ]
 then pass; else fail "sweep did not skip what was done"; fi
-if ! "$exe" simulate --scene sweep.toml 2>err.txt >/dev/null && grep -q -- --out-dir err.txt; then pass; else
-  fail "sweep without --out-dir: $(cat err.txt)"; fi
+if ! "$exe" simulate --scene sweep.toml 2>err.txt >/dev/null && grep -q -- --out err.txt; then pass; else
+  fail "sweep without --out: $(cat err.txt)"; fi
 
 report "long runs"

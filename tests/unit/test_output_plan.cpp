@@ -184,6 +184,27 @@ TEST_F(OutputPlanTest, WritableDirectoriesPassAndKeepNoProbe) {
   EXPECT_TRUE(fs::is_empty(directory_));
 }
 
+TEST_F(OutputPlanTest, OutputDirectoriesAreMadeWithTheirParents) {
+  OutputPlan plan;
+  plan.output_directory("--out", directory_ / "a" / "b" / "c");
+  plan.output_directory("--out", directory_ / "a");  // there by then: left as it is
+  plan.check();
+  plan.make_output_directories();
+  EXPECT_TRUE(fs::is_directory(directory_ / "a" / "b" / "c"));
+}
+
+TEST_F(OutputPlanTest, ADirectoryThatCannotBeMadeNamesItsField) {
+  OutputPlan plan;
+  plan.output_directory("--out", file("notes.txt") / "sub");  // under a file: never, root or not
+  try {
+    plan.make_output_directories();
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "--out");
+  }
+  EXPECT_EQ(fs::file_size(directory_ / "notes.txt"), 5u);  // "kept\n", untouched
+}
+
 TEST_F(OutputPlanTest, StaleTemporariesOfDeadProcessesAreRemovedLiveOnesKept) {
   const fs::path out = directory_ / "o.h5";
   // A process id no process holds: beyond the largest the kernel gives out.

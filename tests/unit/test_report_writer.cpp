@@ -55,8 +55,20 @@ TEST(ReportWriter, WritesReportAndOneCsvPerSection) {
   std::filesystem::remove_all(dir);
 }
 
-TEST(ReportWriter, MissingParentDirectoryIsAnInputError) {
-  EXPECT_THROW(write_report("/nonexistent-scatterlab/dir", "", {}), InputError);
+TEST(ReportWriter, MakesMissingParentDirectories) {
+  const auto dir = std::filesystem::temp_directory_path() / "scatterlab-report-writer-parents";
+  std::filesystem::remove_all(dir);
+  write_report(dir / "a" / "b", "", {});
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir / "a" / "b" / "report.md"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ReportWriter, DirectoryThatCannotBeMadeIsAnInputError) {
+  // Under a regular file no directory can be made, whoever runs the test (root included).
+  const auto file = std::filesystem::temp_directory_path() / "scatterlab-report-writer-file";
+  std::ofstream(file) << "not a directory\n";
+  EXPECT_THROW(write_report(file / "dir", "", {}), InputError);
+  std::filesystem::remove(file);
 }
 
 }  // namespace

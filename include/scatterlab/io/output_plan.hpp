@@ -49,6 +49,11 @@ class OutputPlan {
   // process is gone: a run killed while writing leaves them. Returns what it removed.
   std::vector<std::filesystem::path> remove_stale_temporaries() const;
 
+  // Makes every output directory that is missing, with its missing parents; throws InputError
+  // naming its field when one cannot be made. After check(), and after the inputs are read, so
+  // that bad input leaves nothing: every command that writes into a directory makes it this way.
+  void make_output_directories() const;
+
  private:
   enum class Kind { input, rewritten_input, output_file, output_directory };
   struct Entry {
