@@ -1,30 +1,22 @@
 #!/usr/bin/env bash
 # Usage: render_study.sh SCATTERLAB SOURCE_DIR
-# `scatterlab render --study --quick` end to end: the CSV has a row per scene, method and budget
-# with finite errors and times (and pathtrace's z-scores against the reference), and the error
-# plot and the side-by-side images are written.
+# `scatterlab render --study --quick` end to end: the output directory is made, the CSV has a row
+# per scene, method and budget with finite errors and times (and pathtrace's z-scores against the
+# reference), and the error plot and the side-by-side images are written.
 set -u
 exe=$1
 source_dir=$2
 source "$(dirname "$0")/harness.sh"
 scenes=("$source_dir/data/scenes/bumpy-sphere.toml" "$source_dir/data/scenes/tile.toml")
 
-# A missing output directory is refused before any rendering.
-if "$exe" render --study --quick --out "$work/study" "${scenes[@]}" >stdout 2>stderr; then
-  fail "missing output directory: exited 0"
-elif ! grep -q out stderr; then
-  fail "missing output directory: error does not name out: $(cat stderr)"
-else
-  pass
-fi
-mkdir -p "$work/study"
-if "$exe" render --study --quick --out "$work/study" "${scenes[@]}" >stdout 2>stderr; then
+# The output directory is made when missing, with its parents, as every command's --out DIR is.
+if "$exe" render --study --quick --out "$work/new/study" "${scenes[@]}" >stdout 2>stderr; then
   pass
 else
   fail "study: $(cat stderr)"
 fi
 
-csv="$work/study/render_study.csv"
+csv="$work/new/study/render_study.csv"
 if [ "$(head -1 "$csv" 2>/dev/null)" = "scene,method,budget,light_samples,seconds,rmse,relative_error,mean_z2" ]; then
   pass
 else
@@ -47,7 +39,7 @@ for method in straight walter holzschuch pathtrace; do
 done
 for name in bumpy-sphere tile; do
   for kind in error images; do
-    png="$work/study/${name}_$kind.png"
+    png="$work/new/study/${name}_$kind.png"
     if [ -s "$png" ] && head -c 8 "$png" | od -An -c | grep -q "P   N   G"; then
       pass
     else
