@@ -1,0 +1,35 @@
+#include "log_interval_option.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "value_checks.hpp"
+
+namespace scatterlab::cli {
+
+std::shared_ptr<double> add_log_interval_option(CLI::App& command) {
+  // A minute: a line per minute keeps a day's batch log readable and shows a stalled job soon.
+  auto seconds = std::make_shared<double>(60.0);
+  // A bad value is a parse error: one line naming the flag, status 2, before any work (CLI11
+  // names the flag).
+  const CLI::Validator non_negative(
+      [](std::string& text) {
+        const std::string problem = numeric_value_problem(text, "FLOAT");
+        if (!problem.empty()) return problem;
+        const double value = std::stod(text);
+        return value >= 0.0 && std::isfinite(value)
+                   ? std::string()
+                   : "got " + text + ", expected a number of seconds >= 0 (0: no lines)";
+      },
+      "");
+  command
+      .add_option("--log-interval", *seconds,
+                  "Off a terminal (batch jobs, | tee, cluster logs), write a progress line to "
+                  "standard error every SECONDS: work done, rate and ETA; 0 writes none. On a "
+                  "terminal a progress bar is drawn instead [60]")
+      ->type_name("SECONDS")
+      ->check(non_negative);
+  return seconds;
+}
+
+}  // namespace scatterlab::cli
