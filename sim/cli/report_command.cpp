@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <functional>
 #include <memory>
 #include <string>
@@ -91,13 +92,15 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
     for (const auto& [name, suite] : *suites) {
       if (!chosen(name)) continue;
       sections.push_back(suite(options->profile));
-      reporter.update(sections.size(), to_run);
-      reporter.finish();  // the section's line follows on standard output
+      reporter.finish();  // the bar goes before the section's line on standard output
       const report::Section& section = sections.back();
       fmt::print("{:<55} {}\n", section.title, section.passed() ? "pass" : "FAIL");
       for (const std::string& failure : section.failures()) fmt::print("    {}\n", failure);
+      std::fflush(stdout);
       failed += !section.passed();
+      reporter.update(sections.size(), to_run);
     }
+    reporter.finish();
     report::write_report(options->out, command_line, sections);
     fmt::print("{} of {} sections pass; report in {}/report.md\n", sections.size() - failed,
                sections.size(), options->out);
