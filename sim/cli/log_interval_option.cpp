@@ -1,6 +1,7 @@
 #include "log_interval_option.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 #include "value_checks.hpp"
@@ -14,12 +15,11 @@ std::shared_ptr<double> add_log_interval_option(CLI::App& command) {
   // names the flag).
   const CLI::Validator non_negative(
       [](std::string& text) {
-        const std::string problem = numeric_value_problem(text, "FLOAT");
-        if (!problem.empty()) return problem;
-        const double value = std::stod(text);
+        const bool number = numeric_value_problem(text, "FLOAT").empty();
+        const double value = number ? std::strtod(text.c_str(), nullptr) : -1.0;
         return value >= 0.0 && std::isfinite(value)
                    ? std::string()
-                   : "got " + text + ", expected a number of seconds >= 0 (0: no lines)";
+                   : "got \"" + text + "\"; accepted: a number of seconds >= 0 (0: no lines)";
       },
       "");
   command

@@ -29,7 +29,7 @@ if grep -q "batches," logged.out; then fail "progress on standard output: $(cat 
 if [ -s quiet.err ]; then fail "--log-interval 0 wrote: $(cat quiet.err)"; else pass; fi
 
 # Bad intervals: one line naming the flag, exit 2, nothing written; on every command that has it.
-for value in -1 nan abc '' 1e999 5m; do
+for value in -1 nan inf abc '' 1e999 5m; do
   expect_refused "simulate --log-interval '$value'" --log-interval \
     "${run[@]}" --out bad.h5 --log-interval "$value"
 done
