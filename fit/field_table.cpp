@@ -25,7 +25,7 @@ std::vector<std::filesystem::path> sweep_files(const std::filesystem::path& dire
 
 FieldFit fit_field(const std::filesystem::path& directory, const std::filesystem::path& table,
                    const std::vector<LobeModel>& models, const FitOptions& options,
-                   int quadrature_order, int threads) {
+                   int quadrature_order, int threads, const WorkProgress& progress) {
   FieldFit field;
   for (const std::filesystem::path& path : sweep_files(directory)) {
     RadianceLobes lobes = read_radiance_lobes(path);
@@ -35,9 +35,18 @@ FieldFit fit_field(const std::filesystem::path& directory, const std::filesystem
     }
     field.files.push_back(std::move(lobes));
   }
+  std::uint64_t bins = 0, bins_before = 0;
+  for (const RadianceLobes& lobes : field.files) bins += lobes.r_bins() * lobes.z_bins();
   for (const RadianceLobes& lobes : field.files) {
     const LobeGrid grid(lobes.theta_edges, lobes.phi_edges, lobes.phi_folded, quadrature_order);
-    field.runs.push_back(fit_lobes(lobes, grid, models, options, threads));
+    WorkProgress file_progress;
+    if (progress) {
+      file_progress = [&](std::uint64_t done, std::uint64_t) {
+        progress(bins_before + done, bins);
+      };
+    }
+    field.runs.push_back(fit_lobes(lobes, grid, models, options, threads, file_progress));
+    bins_before += lobes.r_bins() * lobes.z_bins();
     write_fits(lobes, grid, field.runs.back(), options);
   }
   write_text_file(table, [&field](std::ostream& csv) {

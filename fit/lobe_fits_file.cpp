@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -292,7 +293,8 @@ RadianceLobes read_radiance_lobes(const std::filesystem::path& path) {
 }
 
 LobeFitRun fit_lobes(const RadianceLobes& lobes, const LobeGrid& grid,
-                     const std::vector<LobeModel>& models, const FitOptions& options, int threads) {
+                     const std::vector<LobeModel>& models, const FitOptions& options, int threads,
+                     const WorkProgress& progress) {
   if (grid.size() != lobes.directions()) {
     throw std::invalid_argument("fit_lobes: the angular grid does not match the radiance tally");
   }
@@ -315,6 +317,7 @@ LobeFitRun fit_lobes(const RadianceLobes& lobes, const LobeGrid& grid,
   std::size_t attempted = 0;
   std::array<double, kAllLobeModels.size()> seconds{};
   const auto start = std::chrono::steady_clock::now();
+  std::atomic<std::uint64_t> bins_fitted{0};
 #pragma omp parallel for schedule(dynamic, 1) num_threads(run.threads) reduction(+ : attempted)
   for (std::size_t r = 0; r < nr; ++r) {
     BinFits previous, current;
@@ -327,6 +330,8 @@ LobeFitRun fit_lobes(const RadianceLobes& lobes, const LobeGrid& grid,
         if (current[m]) fits[m][r * nz + z] = *current[m];
       }
       std::swap(previous, current);
+      const std::uint64_t fitted = ++bins_fitted;
+      if (progress && omp_get_thread_num() == 0) progress(fitted, nr * nz);
     }
 #pragma omp critical(scatterlab_fit_seconds)
     for (std::size_t m = 0; m < seconds.size(); ++m) seconds[m] += column_seconds[m];

@@ -6,8 +6,10 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "log_interval_option.hpp"
 #include "memory_limit_option.hpp"
 #include "prepare_outputs.hpp"
+#include "progress_reporter.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/fit/field_table.hpp"
@@ -57,16 +59,21 @@ Action add_fit_command(CLI::App& app) {
       ->default_str("FILE-fits.csv");
   command->add_option("--threads", options->threads, threads_help());
   add_memory_limit_option(*command);
+  const auto log_interval = add_log_interval_option(*command);
   command->add_option("--quadrature", options->quadrature,
                       "Gauss-Legendre points per angular bin and axis that average a model over "
                       "the bin, in [1, 8]");
-  return [options] {
+  return [options, log_interval] {
     const std::vector<fit::LobeModel> models = fit::parse_lobe_models(options->models);
     check_threads(options->threads, "--threads");
     if (options->quadrature < 1 || options->quadrature > 8) {
       throw InputError("quadrature", std::to_string(options->quadrature), "an integer in [1, 8]");
     }
     const fit::FitOptions fit_options;
+    ProgressReporter reporter("fit", "bins", *log_interval);
+    const WorkProgress progress = [&reporter](std::uint64_t done, std::uint64_t bins) {
+      reporter.update(done, bins);
+    };
     if (std::filesystem::is_directory(options->path)) {
       // A sweep directory: one table of parameters against (r, z, albedo, g) (field_table.hpp).
       const std::filesystem::path table =
@@ -77,7 +84,8 @@ Action add_fit_command(CLI::App& app) {
       plan.output_file("--csv", table);
       prepare_outputs(plan);
       const fit::FieldFit field = fit::fit_field(options->path, table, models, fit_options,
-                                                 options->quadrature, options->threads);
+                                                 options->quadrature, options->threads, progress);
+      reporter.finish();
       for (std::size_t f = 0; f < field.files.size(); ++f) {
         const fit::RadianceLobes& lobes = field.files[f];
         fmt::print("scatterlab fit: {} (albedo {}, g {})\n", lobes.path.string(), lobes.albedo,
@@ -97,7 +105,9 @@ Action add_fit_command(CLI::App& app) {
     const fit::RadianceLobes lobes = fit::read_radiance_lobes(options->path);
     const fit::LobeGrid grid(lobes.theta_edges, lobes.phi_edges, lobes.phi_folded,
                              options->quadrature);
-    const fit::LobeFitRun run = fit::fit_lobes(lobes, grid, models, fit_options, options->threads);
+    const fit::LobeFitRun run =
+        fit::fit_lobes(lobes, grid, models, fit_options, options->threads, progress);
+    reporter.finish();
     fit::write_fits_csv(csv, lobes, run);
     fit::write_fits(lobes, grid, run, fit_options);
     fmt::print("scatterlab fit: {} ({} x {} spatial bins, {} x {} directions{})\n", options->path,

@@ -9,9 +9,10 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "log_interval_option.hpp"
 #include "memory_limit_option.hpp"
 #include "prepare_outputs.hpp"
-#include "progress_bar.hpp"
+#include "progress_reporter.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
@@ -113,13 +114,14 @@ Action add_render_command(CLI::App& app) {
                          "render-study)");
   render->add_option("--exposure", options->exposure, "PNG exposure in stops");
   render->add_option("--gamma", options->gamma, "PNG gamma");
+  const auto log_interval = add_log_interval_option(*render);
   // The study chooses its own methods, sizes, budgets and plots: these would be ignored.
   CLI::Option* study = render->get_option("--study");
   for (const char* flag : {"--method", "--width", "--height", "--samples", "--light-samples",
                            "--exposure", "--gamma"}) {
     study->excludes(render->get_option(flag));
   }
-  return [options, out_option, render] {
+  return [options, out_option, render, log_interval] {
     const RenderOptions& o = *options;
     if (o.study) return run_study(o, out_option->count() > 0 ? o.out : "render-study");
     if (o.quick) throw InputError("quick", "given without --study", "--quick with --study");
@@ -170,10 +172,11 @@ Action add_render_command(CLI::App& app) {
     }
     { const AtomicOutput exr_check(exr), png_check(png); }
 
-    ProgressBar bar("render " + o.method);
-    const RenderResult result =
-        render_single_scatter(scene, settings, [&bar](double f) { bar.update(f); });
-    bar.finish();
+    ProgressReporter reporter("render " + o.method, "tiles", *log_interval);
+    const RenderResult result = render_single_scatter(
+        scene, settings,
+        [&reporter](std::uint64_t done, std::uint64_t tiles) { reporter.update(done, tiles); });
+    reporter.finish();
     write_exr(result.image, exr);
     write_png(result.image, png, o.exposure, o.gamma);
     double total = 0.0, peak = 0.0;

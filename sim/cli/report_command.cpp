@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <functional>
 #include <memory>
 #include <string>
@@ -8,8 +9,10 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "log_interval_option.hpp"
 #include "memory_limit_option.hpp"
 #include "prepare_outputs.hpp"
+#include "progress_reporter.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/report/report_writer.hpp"
@@ -38,6 +41,7 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
   command->add_option("--out", options->out, "Directory to write (created if missing)");
   command->add_option("--threads", options->profile.threads, threads_help());
   add_memory_limit_option(*command);
+  const auto log_interval = add_log_interval_option(*command);
   command->add_option(
       "--seed", options->profile.seed,
       "Seed of the first run (the next runs take the next seeds), in [0, 2^63 - 2^20]");
@@ -60,7 +64,7 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
                    "Run only these sections (repeat, or a comma-separated list): " + names)
       ->delimiter(',');
 
-  return [options, command_line, suites, names] {
+  return [options, command_line, suites, names, log_interval] {
     options->profile.quick = options->quick;
     check_threads(options->profile.threads, "--threads");
     // The sections run seeds from --seed upward (one per batch or cell), far fewer than 2^20.
@@ -74,20 +78,29 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
     plan.output_directory("--out", options->out);
     prepare_outputs(plan);
     plan.make_output_directories();
+    auto chosen = [&options](const std::string& name) {
+      return options->sections.empty() ||
+             std::find(options->sections.begin(), options->sections.end(), name) !=
+                 options->sections.end();
+    };
+    const auto to_run = static_cast<std::uint64_t>(
+        std::count_if(suites->begin(), suites->end(),
+                      [&chosen](const auto& entry) { return chosen(entry.first); }));
+    ProgressReporter reporter("report", "sections", *log_interval);
     std::vector<report::Section> sections;
     int failed = 0;
     for (const auto& [name, suite] : *suites) {
-      if (!options->sections.empty() &&
-          std::find(options->sections.begin(), options->sections.end(), name) ==
-              options->sections.end()) {
-        continue;
-      }
+      if (!chosen(name)) continue;
       sections.push_back(suite(options->profile));
+      reporter.finish();  // the bar goes before the section's line on standard output
       const report::Section& section = sections.back();
       fmt::print("{:<55} {}\n", section.title, section.passed() ? "pass" : "FAIL");
       for (const std::string& failure : section.failures()) fmt::print("    {}\n", failure);
+      std::fflush(stdout);
       failed += !section.passed();
+      reporter.update(sections.size(), to_run);
     }
+    reporter.finish();
     report::write_report(options->out, command_line, sections);
     fmt::print("{} of {} sections pass; report in {}/report.md\n", sections.size() - failed,
                sections.size(), options->out);

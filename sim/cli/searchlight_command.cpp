@@ -8,11 +8,13 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "log_interval_option.hpp"
 #include "long_run.hpp"
 #include "medium_options.hpp"
 #include "memory_limit_option.hpp"
 #include "prepare_outputs.hpp"
-#include "progress_bar.hpp"
+#include "progress_reporter.hpp"
+#include "run_figures.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/output_plan.hpp"
@@ -82,7 +84,6 @@ double scalar(const std::vector<TallyResult>& tallies, const std::string& name, 
 
 void print_summary(const SearchlightSpec& spec, const SearchlightOutput& out,
                    const std::vector<ModelResult>& models, const std::string& path) {
-  const double events = static_cast<double>(out.scattering_events);
   fmt::print("scatterlab searchlight: half-space, albedo {}, g {}, eta {}, incidence {} deg\n",
              spec.medium.albedo, spec.medium.g, spec.eta, spec.incidence_deg);
   if (spec.material) {
@@ -90,12 +91,7 @@ void print_summary(const SearchlightSpec& spec, const SearchlightOutput& out,
                spec.material->name, spec.material->library, spec.material->channel,
                spec.medium.sigma_t, spec.medium.length_unit, spec.medium.length_unit);
   }
-  fmt::print(
-      "  {} photons in {} batches on {} thread{}: {:.2f} s ({:.3g} photons/s, {:.3g} "
-      "scattering events, {:.1f} ns per event per thread)\n",
-      out.photons, spec.run.batches, out.threads, out.threads == 1 ? "" : "s", out.wall_seconds,
-      static_cast<double>(out.photons) / out.wall_seconds, events,
-      events > 0 ? out.wall_seconds * out.threads / events * 1e9 : 0.0);
+  print_run_time(out);
   std::string energy = "  energy per W incident:";
   double total = 0.0;
   for (const char* name : {"specular_reflectance", "diffuse_reflectance", "absorbed", "escaped"}) {
@@ -106,6 +102,7 @@ void print_summary(const SearchlightSpec& spec, const SearchlightOutput& out,
     total += value;
   }
   fmt::print("{} total {:.6f}\n", energy, total);
+  print_figures_of_merit(out, {"diffuse_reflectance", "absorbed", "reflectance", "fluence"});
   double error = 0.0;
   const double single = scalar(out.tallies, "diffuse_reflectance_single", &error);
   fmt::print("  once-scattered part of the diffuse reflectance: {:.6f} ± {:.1e}\n", single, error);
@@ -135,8 +132,8 @@ void print_summary(const SearchlightSpec& spec, const SearchlightOutput& out,
 }
 
 int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
-                            const LongRunOptions& long_run_options, const std::string& command_line,
-                            World& world) {
+                            const LongRunOptions& long_run_options, double log_interval,
+                            const std::string& command_line, World& world) {
   auto given = [&command](const char* flag) { return command.get_option(flag)->count() > 0; };
   SearchlightScene scene;
   // The file valid on its own, then the flags over it, validated again below.
@@ -181,17 +178,15 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
     fmt::print("scatterlab searchlight: resuming after batch {} of {} from {}\n",
                long_run.resumed_batches(), spec.run.batches, long_run.checkpoint_path().string());
   }
-  ProgressBar bar("searchlight");
+  ProgressReporter reporter("searchlight", "batches", log_interval);
   ProgressCallback progress;
-  if (root) progress = [&bar](double done) { bar.update(done); };
+  if (root) progress = [&reporter](const BatchProgress& done) { reporter.update(done); };
   const SearchlightOutput out = run_searchlight(spec, progress, long_run.control());
-  bar.finish();
+  reporter.finish();
 
   std::optional<std::filesystem::path> written;
   if (root) {
-    const Provenance provenance{SCATTERLAB_VERSION, command_line, iso8601_now(),
-                                out.wall_seconds,   out.photons,  out.scattering_events,
-                                out.batches_done,   out.ranks};
+    const Provenance provenance = run_provenance(out, command_line);
     spec.run.threads = out.threads;  // record what ran, not "all cores"
     double specular_error = 0.0;
     const std::vector<ModelResult> models = searchlight_model_curves(
@@ -243,10 +238,11 @@ Action add_searchlight_command(CLI::App& app, const std::string& command_line, W
   command->add_flag("--no-fluence", o->no_fluence, "Same as --tallies none")->excludes(tallies);
   const auto long_run = add_long_run_options(*command);
   add_memory_limit_option(*command);
+  const auto log_interval = add_log_interval_option(*command);
   // Last, so that a bad value of a flag is reported before the positional file it spilled into.
   add_scene_option(*command, o->scene, "data/scenes/searchlight.toml");
-  return [command, o, long_run, command_line, &world] {
-    return run_searchlight_command(*command, *o, *long_run, command_line, world);
+  return [command, o, long_run, log_interval, command_line, &world] {
+    return run_searchlight_command(*command, *o, *long_run, *log_interval, command_line, world);
   };
 }
 

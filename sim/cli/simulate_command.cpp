@@ -11,11 +11,13 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "log_interval_option.hpp"
 #include "long_run.hpp"
 #include "medium_options.hpp"
 #include "memory_limit_option.hpp"
 #include "prepare_outputs.hpp"
-#include "progress_bar.hpp"
+#include "progress_reporter.hpp"
+#include "run_figures.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/output_plan.hpp"
@@ -92,7 +94,6 @@ std::string shape_text(const TallyResult& t) {
 
 void print_summary(const SimulationSpec& spec, const SimulationOutput& out,
                    const std::string& path) {
-  const double events = static_cast<double>(out.scattering_events);
   fmt::print("scatterlab simulate: {} source, albedo {}, g {}, {} estimator\n",
              to_string(spec.source), spec.medium.albedo, spec.medium.g,
              to_string(spec.tallies.estimator));
@@ -101,14 +102,7 @@ void print_summary(const SimulationSpec& spec, const SimulationOutput& out,
                spec.material->name, spec.material->library, spec.material->channel,
                spec.medium.sigma_t, spec.medium.length_unit, spec.medium.length_unit);
   }
-  const int workers = out.threads * out.ranks;
-  const std::string ranks = out.ranks > 1 ? fmt::format("{} ranks x ", out.ranks) : "";
-  fmt::print(
-      "  {} photons in {} batches on {}{} thread{}: {:.2f} s ({:.3g} photons/s, {:.3g} "
-      "scattering events, {:.1f} ns per event per thread)\n",
-      out.photons, out.batches_done, ranks, out.threads, out.threads == 1 ? "" : "s",
-      out.wall_seconds, static_cast<double>(out.photons) / out.wall_seconds, events,
-      events > 0 ? out.wall_seconds * workers / events * 1e9 : 0.0);
+  print_run_time(out);
   std::string energy = "  energy per W incident:";
   double total = 0.0;
   for (const char* name : {"absorbed", "absorbed_outside_grid", "escaped"}) {
@@ -118,6 +112,8 @@ void print_summary(const SimulationSpec& spec, const SimulationOutput& out,
     }
   }
   fmt::print("{} total {:.6f}\n", energy, total);
+  // The energy totals, and the volume tallies whose figures differ between the estimators.
+  print_figures_of_merit(out, {"absorbed", "escaped", "fluence", "radiance", "fluence_spherical"});
   std::string written;
   for (const TallyResult& t : out.tallies) {
     if (!t.shape.empty())
@@ -241,8 +237,8 @@ bool already_done(const PlannedRun& run) {
   }
 }
 
-int run_one(PlannedRun run, const LongRunOptions& options, const std::string& command_line,
-            World& world) {
+int run_one(PlannedRun run, const LongRunOptions& options, double log_interval,
+            const std::string& command_line, World& world) {
   const bool root = world.is_root();
   const SimulationSpec& spec = run.spec;
   LongRun long_run(options, run.output, fingerprint(spec), world.communicator());
@@ -251,17 +247,15 @@ int run_one(PlannedRun run, const LongRunOptions& options, const std::string& co
     fmt::print("scatterlab simulate: resuming after batch {} of {} from {}\n",
                long_run.resumed_batches(), spec.run.batches, long_run.checkpoint_path().string());
   }
-  ProgressBar bar("simulate");
+  ProgressReporter reporter("simulate", "batches", log_interval);
   ProgressCallback progress;
-  if (root) progress = [&bar](double done) { bar.update(done); };
+  if (root) progress = [&reporter](const BatchProgress& done) { reporter.update(done); };
   const SimulationOutput out = simulate(spec, progress, long_run.control());
-  bar.finish();
+  reporter.finish();
 
   std::optional<std::filesystem::path> written;
   if (root) {
-    const Provenance provenance{SCATTERLAB_VERSION, command_line, iso8601_now(),
-                                out.wall_seconds,   out.photons,  out.scattering_events,
-                                out.batches_done,   out.ranks};
+    const Provenance provenance = run_provenance(out, command_line);
     run.spec.run.threads = out.threads;  // record what ran, not "all cores"
     written = long_run.result_path(out.batches_done, spec.run.batches, run.output);
     if (written) {
@@ -273,7 +267,7 @@ int run_one(PlannedRun run, const LongRunOptions& options, const std::string& co
 }
 
 int run_simulate(CLI::App& command, const SimulateOptions& o, const LongRunOptions& long_run,
-                 const std::string& command_line, World& world) {
+                 double log_interval, const std::string& command_line, World& world) {
   const RunPlan run_plan = plan_runs(command, o, long_run);
   const std::vector<PlannedRun>& runs = run_plan.runs;
   const std::string& directory = run_plan.directory;
@@ -310,7 +304,7 @@ int run_simulate(CLI::App& command, const SimulateOptions& o, const LongRunOptio
         fmt::print("skip {}: done already, same parameters\n", run.output.string());
       continue;
     }
-    const int status = run_one(run, long_run, command_line, world);
+    const int status = run_one(run, long_run, log_interval, command_line, world);
     if (status != 0) return status;
   }
   return 0;
@@ -373,10 +367,11 @@ Action add_simulate_command(CLI::App& app, const std::string& command_line, Worl
   command->add_option("--rho-bins", o->rho_bins, "Spherical shells (point source)");
   const auto long_run = add_long_run_options(*command);
   add_memory_limit_option(*command);
+  const auto log_interval = add_log_interval_option(*command);
   // Last, so that a bad value of a flag is reported before the positional file it spilled into.
   add_scene_option(*command, o->scene, "data/scenes/paper-beam.toml");
-  return [command, o, long_run, command_line, &world] {
-    return run_simulate(*command, *o, *long_run, command_line, world);
+  return [command, o, long_run, log_interval, command_line, &world] {
+    return run_simulate(*command, *o, *long_run, *log_interval, command_line, world);
   };
 }
 

@@ -10,8 +10,10 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "log_interval_option.hpp"
 #include "memory_limit_option.hpp"
 #include "prepare_outputs.hpp"
+#include "progress_reporter.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/transport/searchlight.hpp"
@@ -31,6 +33,7 @@ struct ValidateOptions {
   bool quick = false;
   int threads = 0;
   std::uint64_t seed = 1;
+  double log_interval = 60.0;
 };
 
 int run_deon(const ValidateOptions& options) {
@@ -41,13 +44,16 @@ int run_deon(const ValidateOptions& options) {
   settings.seed = options.seed;
   const std::vector<double>& albedos = deon_albedos;
   std::vector<PointSourceComparison> comparisons;
+  ProgressReporter reporter("validate deon", "albedos", options.log_interval);
   for (std::size_t i = 0; i < albedos.size(); ++i) {
     // A seed per albedo: with one seed the albedos share their first flights, and a fluctuation
     // in one shell repeats in every row of the table.
     PointSourceComparisonSettings per_albedo = settings;
     per_albedo.seed = settings.seed + i;
     comparisons.push_back(compare_point_source(albedos[i], per_albedo));
+    reporter.update(i + 1, albedos.size());
   }
+  reporter.finish();
   const auto files = write_point_source_report(comparisons, options.out);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -70,6 +76,7 @@ struct SearchlightValidateOptions {
   bool quick = false;
   int threads = 0;
   std::uint64_t seed = 1;
+  double log_interval = 60.0;
 };
 
 MonteCarloCurve curve(const std::vector<TallyResult>& tallies, const std::string& name,
@@ -104,7 +111,10 @@ int run_searchlight_validation(const SearchlightValidateOptions& o) {
   spec.run.threads = o.threads;
   spec.run.seed = o.seed;
   spec.validate();
-  const SearchlightOutput out = run_searchlight(spec);
+  ProgressReporter reporter("validate searchlight", "batches", o.log_interval);
+  const SearchlightOutput out =
+      run_searchlight(spec, [&reporter](const BatchProgress& done) { reporter.update(done); });
+  reporter.finish();
   const MonteCarloCurve specular = curve(out.tallies, "specular_reflectance");
   const std::vector<double> r = spec.grid.r.edges(), z = spec.grid.z.edges();
 
@@ -171,6 +181,7 @@ Action add_validate_command(CLI::App& app) {
       ->excludes(deon_photons);
   deon->add_option("--threads", options->threads, threads_help());
   add_memory_limit_option(*deon);
+  const auto deon_log_interval = add_log_interval_option(*deon);
   deon->add_option("--seed", options->seed,
                    "Random seed of the first albedo (the next take the next seeds), in "
                    "[0, 2^63 - 7]");
@@ -191,8 +202,11 @@ Action add_validate_command(CLI::App& app) {
       ->excludes(searchlight_photons);
   searchlight->add_option("--threads", half_space->threads, threads_help());
   add_memory_limit_option(*searchlight);
+  const auto searchlight_log_interval = add_log_interval_option(*searchlight);
   searchlight->add_option("--seed", half_space->seed, "Random seed, in [0, 2^63 - 1]");
-  return [options, deon, half_space, searchlight] {
+  return [options, deon, half_space, searchlight, deon_log_interval, searchlight_log_interval] {
+    options->log_interval = *deon_log_interval;
+    half_space->log_interval = *searchlight_log_interval;
     check_threads(deon->parsed() ? options->threads : half_space->threads, "--threads");
     if (deon->parsed()) {
       check_seed(options->seed, "--seed", deon_albedos.size());  // a seed per albedo

@@ -33,6 +33,9 @@ std::string state_problem(std::int64_t batches_folded, std::int64_t scattering_e
   if (scattering_events < 0) {
     return fmt::format("scattering_events is {}, not 0 or more", scattering_events);
   }
+  if (!std::isfinite(state.wall_seconds) || state.wall_seconds < 0.0) {
+    return fmt::format("wall_seconds is {}, not a finite number >= 0", state.wall_seconds);
+  }
   if (state.mean.empty() || state.mean.size() != state.squares.size()) {
     return fmt::format("welford_mean holds {} values and welford_squares {}, not the same number",
                        state.mean.size(), state.squares.size());
@@ -70,6 +73,7 @@ void write_checkpoint(const std::filesystem::path& path, const std::string& spec
     root.write_string_attribute("spec_fingerprint", spec_fingerprint);
     root.write_int64_attribute("batches_folded", as_int64(state.batches_folded));
     root.write_int64_attribute("scattering_events", as_int64(state.scattering_events));
+    root.write_double_attribute("wall_seconds", state.wall_seconds);
     root.write_string_attribute("created", iso8601_now());
     root.write_dataset("welford_mean", state.mean);
     root.write_dataset("welford_squares", state.squares);
@@ -131,6 +135,10 @@ RunState read_checkpoint(const std::filesystem::path& path, const std::string& s
     const std::int64_t scattering_events = root.read_int64_attribute("scattering_events");
     state.mean = root.read_dataset("welford_mean").values;
     state.squares = root.read_dataset("welford_squares").values;
+    // Checkpoints written before the run's wall time was kept count none for the earlier work.
+    if (root.has_attribute("wall_seconds")) {
+      state.wall_seconds = root.read_double_attribute("wall_seconds");
+    }
     const std::string problem = state_problem(batches_folded, scattering_events, state);
     if (!problem.empty()) {
       throw InputError(field,

@@ -9,6 +9,7 @@
 #include <ctime>
 #include <limits>
 #include <set>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -18,6 +19,7 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
+#include "scatterlab/tally/figure_of_merit.hpp"
 
 namespace scatterlab {
 
@@ -78,6 +80,12 @@ void write_provenance(hdf5::Group& root, const Provenance& provenance, std::uint
   root.write_string_attribute("created", provenance.created);
   root.write_double_attribute("wall_seconds", provenance.wall_seconds);
   root.write_int64_attribute("photons_run", as_int64(provenance.photons_run, "photons_run"));
+  root.write_double_attribute("session_wall_seconds",
+                              provenance.session_wall_seconds.value_or(provenance.wall_seconds));
+  root.write_int64_attribute(
+      "session_photons_run",
+      as_int64(provenance.session_photons_run.value_or(provenance.photons_run),
+               "session_photons_run"));
   root.write_int64_attribute("scattering_events",
                              as_int64(provenance.scattering_events, "scattering_events"));
   const std::uint64_t batches_done = provenance.batches_done.value_or(batches);
@@ -190,6 +198,30 @@ void write_tallies(hdf5::Group& root, const std::vector<TallyResult>& tallies) {
   }
 }
 
+// /figures_of_merit/<tally>: 1 / (R^2 T) (tally/figure_of_merit.hpp) with T the whole run's
+// wall time, for every tally whose figure is defined (a tally that scored nothing has none).
+void write_figures_of_merit(hdf5::Group& root, const std::vector<TallyResult>& tallies,
+                            double wall_seconds) {
+  hdf5::Group group = root.create_group("figures_of_merit");
+  group.write_string_attribute(
+      "description",
+      "figure of merit 1 / (R^2 T) of each tally (MCNP5 manual, LA-UR-03-1987, ch. 2 §VI.D): R "
+      "its relative standard error, stderr / |mean| (for a binned tally the median over the bins "
+      "with mean != 0), T the run's wall_seconds; larger reaches a given error sooner");
+  for (const TallyResult& tally : tallies) {
+    const double relative = relative_standard_error(tally.mean, tally.stderr_of_mean);
+    const double merit = figure_of_merit(relative, wall_seconds);
+    if (!std::isfinite(merit)) continue;
+    hdf5::Dataset dataset = group.write_dataset(tally.name, std::span<const double>(&merit, 1), {});
+    dataset.write_string_attribute("units", "1/s");
+    dataset.write_string_attribute(
+        "description",
+        fmt::format("1 / (R^2 T) of /tallies/{}, R = {} = {:.6g}, T = {:.6g} s", tally.name,
+                    tally.shape.empty() ? "stderr / |mean|" : "median over bins of stderr / |mean|",
+                    relative, wall_seconds));
+  }
+}
+
 void write_models(hdf5::Group& root, const std::vector<ModelResult>& models) {
   if (models.empty()) return;
   hdf5::Group group = root.create_group("models");
@@ -234,18 +266,6 @@ std::string string_or_empty(const hdf5::Object& object, const char* name) {
   return object.has_attribute(name) ? object.read_string_attribute(name) : std::string();
 }
 
-double median(std::vector<double> values) {
-  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const std::size_t middle = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle),
-                   values.end());
-  const double upper = values[middle];
-  if (values.size() % 2 == 1) return upper;
-  const double lower =
-      *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle));
-  return 0.5 * (lower + upper);
-}
-
 TallySummary summarize_tally(const hdf5::Group& tallies, const std::string& name) {
   const hdf5::Group node = tallies.open_group(name);
   const hdf5::Array mean = node.read_dataset("mean");
@@ -260,16 +280,12 @@ TallySummary summarize_tally(const hdf5::Group& tallies, const std::string& name
   summary.units = string_or_empty(node, "units");
   summary.description = string_or_empty(node, "description");
   summary.mean_max = mean.values.empty() ? 0.0 : -std::numeric_limits<double>::infinity();
-  std::vector<double> relative;
-  for (std::size_t i = 0; i < mean.values.size(); ++i) {
-    summary.mean_sum += mean.values[i];
-    summary.mean_max = std::max(summary.mean_max, mean.values[i]);
-    if (mean.values[i] != 0.0) {
-      relative.push_back(stderr_of_mean.values[i] / std::abs(mean.values[i]));
-    }
+  for (const double value : mean.values) {
+    summary.mean_sum += value;
+    summary.mean_max = std::max(summary.mean_max, value);
+    if (value != 0.0) ++summary.nonzero_bins;
   }
-  summary.nonzero_bins = relative.size();
-  summary.median_relative_stderr = median(std::move(relative));
+  summary.median_relative_stderr = relative_standard_error(mean.values, stderr_of_mean.values);
   if (summary.is_scalar() && !stderr_of_mean.values.empty()) {
     summary.scalar_stderr = stderr_of_mean.values.front();
   }
@@ -299,6 +315,9 @@ FileSummary summarize(const hdf5::File& file) {
   summary.command = root.read_string_attribute("command");
   summary.created = root.read_string_attribute("created");
   summary.wall_seconds = root.read_double_attribute("wall_seconds");
+  summary.session_wall_seconds = root.has_attribute("session_wall_seconds")
+                                     ? root.read_double_attribute("session_wall_seconds")
+                                     : summary.wall_seconds;
   summary.photons_run =
       root.has_attribute("photons_run") ? root.read_int64_attribute("photons_run") : 0;
   summary.scattering_events = root.read_int64_attribute("scattering_events");
@@ -386,6 +405,21 @@ void check_finite_tally(const std::string& name, const std::vector<double>& mean
   }
 }
 
+Provenance run_provenance(const TransportOutput& out, std::string command) {
+  Provenance provenance;
+  provenance.version = SCATTERLAB_VERSION;
+  provenance.command = std::move(command);
+  provenance.created = iso8601_now();
+  provenance.wall_seconds = out.run_wall_seconds();
+  provenance.photons_run = out.photons;
+  provenance.scattering_events = out.scattering_events;
+  provenance.batches_done = out.batches_done;
+  provenance.ranks = out.ranks;
+  provenance.session_wall_seconds = out.wall_seconds;
+  provenance.session_photons_run = out.session_photons();
+  return provenance;
+}
+
 std::string iso8601_now() {
   const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
   std::tm utc{};
@@ -405,6 +439,7 @@ void write_simulation_file(const std::filesystem::path& path, const SimulationSp
     write_parameters(file.root(), spec);
     write_grid(file.root(), spec);
     write_tallies(file.root(), tallies);
+    write_figures_of_merit(file.root(), tallies, provenance.wall_seconds);
     file.close();
   }
   output.commit();
@@ -421,6 +456,7 @@ void write_searchlight_file(const std::filesystem::path& path, const Searchlight
     write_searchlight_parameters(file.root(), spec);
     write_searchlight_grid(file.root(), spec);
     write_tallies(file.root(), tallies);
+    write_figures_of_merit(file.root(), tallies, provenance.wall_seconds);
     write_models(file.root(), models);
     file.close();
   }
@@ -455,7 +491,12 @@ std::string describe(const FileSummary& summary) {
   text += fmt::format("written by  scatterlab {}\n", summary.scatterlab_version);
   text += fmt::format("command     {}\n", summary.command);
   text += fmt::format("created     {}\n", summary.created);
-  text += fmt::format("wall time   {:.3g} s\n", summary.wall_seconds);
+  text += fmt::format("wall time   {:.3g} s", summary.wall_seconds);
+  if (summary.session_wall_seconds < summary.wall_seconds) {
+    text += fmt::format(" over the whole run, {:.3g} s in its last session (--resume)",
+                        summary.session_wall_seconds);
+  }
+  text += "\n";
   text += fmt::format("photons run {} ({} scattering events)\n", summary.photons_run,
                       summary.scattering_events);
   if (summary.partial) {

@@ -104,7 +104,7 @@ class Renderer {
 
   // Compile-time specialised once per run: refraction at the boundary, and shading normals.
   template <bool Refracting, bool Smooth>
-  void render(RenderResult& result, const std::function<void(double)>& progress) {
+  void render(RenderResult& result, const WorkProgress& progress) {
     const int tile = 8;
     const int tiles_x = (scene_.width + tile - 1) / tile;
     const int tiles_y = (scene_.height + tile - 1) / tile;
@@ -147,7 +147,9 @@ class Renderer {
         }
       }
       const int finished = ++done;
-      if (progress && omp_get_thread_num() == 0) progress(static_cast<double>(finished) / tiles);
+      if (progress && omp_get_thread_num() == 0) {
+        progress(static_cast<std::uint64_t>(finished), static_cast<std::uint64_t>(tiles));
+      }
     }
     for (const auto& c : counters) {
       result.counters.eye_rays += c.eye_rays;
@@ -430,7 +432,7 @@ void check_render_memory(const RenderScene& scene, const RenderSettings& setting
 }
 
 RenderResult render_single_scatter(const RenderScene& scene, const RenderSettings& settings,
-                                   const std::function<void(double)>& progress) {
+                                   const WorkProgress& progress) {
   if (settings.method == RenderMethod::pathtrace && !(scene.light.radius > 0.0)) {
     throw InputError("light.radius", "0 (a point light) with method pathtrace",
                      "a sphere light of radius > 0 for the path-traced reference");

@@ -109,6 +109,8 @@ TransportOutput transport(const TransportProblem& problem, const ProgressCallbac
     output.tallies = book.finish(outcome.mean, outcome.standard_error, problem.photon_power);
   }
   output.photons = outcome.photons_done;
+  output.photons_resumed = outcome.photons_resumed;
+  output.resumed_wall_seconds = outcome.resumed_wall_seconds;
   output.batches_done = outcome.batches_done;
   output.threads = outcome.threads;
   output.ranks = outcome.ranks;

@@ -94,6 +94,18 @@ TEST_F(CheckpointContents, CountsAndSizesThatCannotBeAreRefused) {
   EXPECT_THROW(read_checkpoint(path_, "fingerprint"), InputError);
 }
 
+// The run's wall time so far travels with the state, so that a resumed run counts the whole run.
+TEST_F(CheckpointContents, WallTimeIsKeptAndAWrongOneRefused) {
+  RunState state = sound();
+  state.wall_seconds = 12.5;
+  write_checkpoint(path_, "fingerprint", state);
+  EXPECT_EQ(read_checkpoint(path_, "fingerprint").wall_seconds, 12.5);
+  state.wall_seconds = -1.0;
+  EXPECT_NE(refusal(state).find("wall_seconds is -1"), std::string::npos);
+  state.wall_seconds = std::numeric_limits<double>::infinity();
+  EXPECT_NE(refusal(state).find("wall_seconds is inf"), std::string::npos);
+}
+
 TEST_F(CheckpointContents, AnotherFormatVersionIsRefused) {
   write_checkpoint(path_, "fingerprint", sound());
   {

@@ -68,7 +68,7 @@ RunState interrupted(const SimulationSpec& spec, double stop_at, SimulationOutpu
   control.stop_requested = &stop;
   control.save_checkpoint = [&saved](const RunState& state) { saved = state; };
   *output = simulate(
-      spec, [&](double done) { stop = stop || done >= stop_at; }, control);
+      spec, [&](const BatchProgress& done) { stop = stop || done.fraction() >= stop_at; }, control);
   return saved;
 }
 
@@ -109,6 +109,34 @@ TEST(Checkpoints, StoppedRunResumesToTheSameBits) {
   EXPECT_TRUE(resumed.complete(small_run(3)));
   expect_same_tallies(uninterrupted, resumed);
   expect_same_tallies(uninterrupted, run_on_ranks(small_run(1), 2, &state));
+}
+
+// A resumed run knows what the earlier run did and how long it took, so that its rates and its
+// file count the whole run; its progress says which batches were resumed.
+TEST(Checkpoints, ResumedRunCountsTheEarlierRunsWork) {
+  SimulationOutput partial;
+  RunState state = interrupted(small_run(2), 0.3, &partial);
+  EXPECT_GT(state.wall_seconds, 0.0);
+  EXPECT_LE(state.wall_seconds, partial.wall_seconds);
+  state.wall_seconds = 100.0;  // as if the earlier run had been slow
+  RunControl control;
+  control.resume_from = &state;
+  BatchProgress first{};
+  const SimulationOutput resumed = simulate(
+      small_run(2),
+      [&first](const BatchProgress& done) {
+        if (first.batches == 0) first = done;
+      },
+      control);
+  EXPECT_EQ(resumed.photons, 12'000u);
+  EXPECT_EQ(resumed.photons_resumed, 4'000u);
+  EXPECT_EQ(resumed.session_photons(), 8'000u);
+  EXPECT_EQ(resumed.resumed_wall_seconds, 100.0);
+  EXPECT_EQ(resumed.run_wall_seconds(), 100.0 + resumed.wall_seconds);
+  EXPECT_EQ(first.batches_resumed, 4u);
+  EXPECT_EQ(first.photons_resumed, 4'000u);
+  EXPECT_EQ(first.batches_done, 6u);  // one round of 2 threads after the 4 resumed
+  EXPECT_EQ(first.photons_done, 6'000u);
 }
 
 TEST(Checkpoints, PartialRunIsTheMeanOfItsBatches) {

@@ -124,7 +124,8 @@ TEST_F(SimulationFileTest, RoundTripKeepsLayoutValuesAndAttributes) {
 
   const hdf5::File file = hdf5::File::open_read_only(path);
   const hdf5::Group& root = file.root();
-  EXPECT_EQ(root.member_names(), (std::vector<std::string>{"parameters", "grid", "tallies"}));
+  EXPECT_EQ(root.member_names(),
+            (std::vector<std::string>{"parameters", "grid", "tallies", "figures_of_merit"}));
   EXPECT_EQ(root.attribute_type("format"), hdf5::AttributeType::string);
   EXPECT_EQ(root.read_string_attribute("format"), "scatterlab");
   EXPECT_EQ(root.read_int64_attribute("format_version"), 1);
@@ -134,6 +135,13 @@ TEST_F(SimulationFileTest, RoundTripKeepsLayoutValuesAndAttributes) {
   EXPECT_EQ(root.read_double_attribute("wall_seconds"), 12.5);
   EXPECT_EQ(root.read_int64_attribute("photons_run"), 1000);
   EXPECT_EQ(root.read_int64_attribute("scattering_events"), 123456789012);
+  // A run in one process: its session is the whole run.
+  EXPECT_EQ(root.read_double_attribute("session_wall_seconds"), 12.5);
+  EXPECT_EQ(root.read_int64_attribute("session_photons_run"), 1000);
+  // 1 / (R^2 T) with R = 0.002 / 0.75 and T = wall_seconds.
+  const hdf5::Dataset merit = root.open_dataset("figures_of_merit/absorbed");
+  EXPECT_DOUBLE_EQ(merit.read().values.at(0), 1.0 / ((0.002 / 0.75) * (0.002 / 0.75) * 12.5));
+  EXPECT_EQ(merit.read_string_attribute("units"), "1/s");
 
   const hdf5::Group parameters = root.open_group("parameters");
   EXPECT_EQ(parameters.read_string_attribute("source"), "point");

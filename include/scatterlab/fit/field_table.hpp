@@ -28,9 +28,9 @@ std::vector<std::filesystem::path> sweep_files(const std::filesystem::path& dire
 
 // Fits every file of `directory` (see the top of this file) and writes the table to `table`.
 // Throws InputError("FILE", ...) for a file without the radiance tally or without albedo and g
-// in /parameters, before any file is written.
+// in /parameters, before any file is written. progress counts the spatial bins of every file.
 FieldFit fit_field(const std::filesystem::path& directory, const std::filesystem::path& table,
                    const std::vector<LobeModel>& models, const FitOptions& options,
-                   int quadrature_order, int threads);
+                   int quadrature_order, int threads, const WorkProgress& progress = {});
 
 }  // namespace scatterlab::fit

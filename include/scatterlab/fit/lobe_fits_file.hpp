@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "scatterlab/core/work_pace.hpp"
 #include "scatterlab/fit/lobe_fit.hpp"
 #include "scatterlab/fit/lobe_grid.hpp"
 #include "scatterlab/fit/lobe_model.hpp"
@@ -64,9 +65,10 @@ struct LobeFitRun {
 // adexp_ridge; sg_free for asg, through asg_from_sg) and the previous z bin's solution.
 // Levenberg-Marquardt never raises the cost, so a model ends with a chi-square no larger than
 // the model it contains; those models are fitted too when only the larger one is asked for.
+// progress(spatial bins fitted, bins) is called from one thread as bins finish.
 LobeFitRun fit_lobes(const RadianceLobes& lobes, const LobeGrid& grid,
                      const std::vector<LobeModel>& models, const FitOptions& options = {},
-                     int threads = 0);
+                     int threads = 0, const WorkProgress& progress = {});
 
 // Adds /fits/<model> for every model of `run` to lobes.path (see the top of this file).
 void write_fits(const RadianceLobes& lobes, const LobeGrid& grid, const LobeFitRun& run,

@@ -4,7 +4,8 @@
 // bit for bit, as an uninterrupted one.
 //
 //   /   attrs format="scatterlab-checkpoint", format_version=1, spec_fingerprint, batches_folded,
-//             scattering_events, created
+//             scattering_events, wall_seconds (the run's wall time so far, over every process
+//             that ran it; read as 0 when absent), created
 //   /welford_mean, /welford_squares   1-D, one value per tally cell, per photon (raw, before
 //                                     division by bin volume and solid angle)
 //

@@ -5,7 +5,10 @@
 //                            created (ISO 8601 UTC), wall_seconds, photons_run, scattering_events,
 //                            batches_done, partial (1 when stopped before every batch ran),
 //                            ranks, spec_fingerprint (simulation.hpp); merged files have
-//                            merged_from (the input paths, one per line) instead of a fingerprint
+//                            merged_from (the input paths, one per line) instead of a fingerprint.
+//                            wall_seconds and photons_run count the whole run, over every
+//                            process that ran it (--resume); session_wall_seconds and
+//                            session_photons_run the last process's share
 //   /parameters        attrs source, albedo, g, sigma_t, sigma_a, sigma_s, length_unit, phase,
 //                            photons, batches, seed, estimator, escape_radius (when finite),
 //                            split_by_order, threads
@@ -15,6 +18,8 @@
 //                            material_table, material_citation, channel, material_note
 //   /tallies/<name>    attrs units, description, dims ("r,z,theta,phi"; "" for a scalar)
 //   /tallies/<name>/{mean,stderr}  the tally's shape; a scalar is a rank-0 dataset; attr units
+//   /figures_of_merit/<name>  rank-0: 1 / (R^2 wall_seconds) of the tally
+//                            (tally/figure_of_merit.hpp); attrs units "1/s", description
 
 #include <cstddef>
 #include <cstdint>
@@ -25,6 +30,7 @@
 #include <vector>
 
 #include "scatterlab/tally/tally_result.hpp"
+#include "scatterlab/transport/engine.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/transport/simulation.hpp"
 
@@ -43,7 +49,14 @@ struct Provenance {
   // Fewer than parameters.batches marks the file partial; unset means all of them ran.
   std::optional<std::uint64_t> batches_done;
   int ranks = 1;
+  // This process's share when it continued an earlier process's checkpoint (--resume); unset: the
+  // whole run (wall_seconds, photons_run) ran in this process.
+  std::optional<double> session_wall_seconds = std::nullopt;
+  std::optional<std::uint64_t> session_photons_run = std::nullopt;
 };
+
+// The provenance of a transport run: the whole run's figures, and this process's share.
+Provenance run_provenance(const TransportOutput& out, std::string command);
 
 // The last guard before a tally reaches a file: throws std::runtime_error (exit status 1), naming
 // the tally, when a mean or standard error is NaN or infinite. Every writer of tallies calls it
@@ -116,6 +129,7 @@ struct FileSummary {
   std::string command;
   std::string created;
   double wall_seconds = 0.0;
+  double session_wall_seconds = 0.0;  // of the last process; wall_seconds in older files
   std::int64_t photons_run = 0;
   std::int64_t scattering_events = 0;
   std::int64_t batches_done = 0;

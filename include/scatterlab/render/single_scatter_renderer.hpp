@@ -38,6 +38,7 @@
 #include <string>
 
 #include "scatterlab/core/memory_budget.hpp"
+#include "scatterlab/core/work_pace.hpp"
 #include "scatterlab/io/image_file.hpp"
 #include "scatterlab/render/render_scene.hpp"
 
@@ -80,10 +81,10 @@ MemoryEstimate render_memory(const RenderScene& scene, const RenderSettings& set
 // Throws InputError naming the image and light fields when render_memory does not fit.
 void check_render_memory(const RenderScene& scene, const RenderSettings& settings);
 
-// progress(fraction) is called from one thread as tiles finish. Throws InputError for a
+// progress(tiles done, tiles) is called from one thread as tiles finish. Throws InputError for a
 // pathtrace run with a point light (radius 0), and for one whose render_memory does not fit
 // (core/memory_budget.hpp), before anything is allocated.
 RenderResult render_single_scatter(const RenderScene& scene, const RenderSettings& settings,
-                                   const std::function<void(double)>& progress = {});
+                                   const WorkProgress& progress = {});
 
 }  // namespace scatterlab

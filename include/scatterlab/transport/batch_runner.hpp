@@ -41,8 +41,23 @@
 
 namespace scatterlab {
 
-// Called on the calling thread with the fraction of batches done, in [0, 1].
-using ProgressCallback = std::function<void(double fraction_done)>;
+// Where a run stands after a round of batches: how many of its batches (and the photons in them)
+// are done, and how many of those were done before this process started (resumed from a
+// checkpoint), so that a rate or an ETA can count this process's own work only.
+struct BatchProgress {
+  std::uint64_t batches_done = 0;
+  std::uint64_t batches = 0;
+  std::uint64_t batches_resumed = 0;
+  std::uint64_t photons_done = 0;
+  std::uint64_t photons_resumed = 0;
+
+  double fraction() const {
+    return static_cast<double>(batches_done) / static_cast<double>(batches);
+  }
+};
+
+// Called on the calling thread (the root rank's master) after every round of batches.
+using ProgressCallback = std::function<void(const BatchProgress&)>;
 
 // Photons [first, last) of batch b: the first N mod B batches hold one photon more.
 struct BatchRange {
@@ -63,6 +78,11 @@ struct BatchOutcome {
   std::uint64_t scattering_events = 0;
   std::uint64_t batches_done = 0;  // < the batches asked for when stopped early
   std::uint64_t photons_done = 0;  // photons in those batches
+  // Done before this process started, by the run it resumed (0 when starting afresh); the wall
+  // time is known on the root rank only.
+  std::uint64_t batches_resumed = 0;
+  std::uint64_t photons_resumed = 0;
+  double resumed_wall_seconds = 0.0;
   int threads = 1;                 // per rank
   int ranks = 1;
 
@@ -194,6 +214,7 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
   }
 
   const auto clock_start = std::chrono::steady_clock::now();
+  const double resumed_wall_seconds = resume != nullptr ? resume->wall_seconds : 0.0;
   auto last_checkpoint = clock_start;
   std::uint64_t last_checkpoint_batches = start;
   std::uint64_t done = start;
@@ -207,6 +228,9 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
     std::uint64_t local = 0;
     for (const std::uint64_t s : scatterings) local += s;
     state.scattering_events = world.sum(local);
+    state.wall_seconds =
+        resumed_wall_seconds +
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
     state.mean = world.gather_to_root(statistics.mean(), slices);
     state.squares = world.gather_to_root(statistics.squares(), slices);
     return state;
@@ -298,7 +322,10 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
       {
         if (folding) {
           done = end_of_round;
-          if (progress) progress(static_cast<double>(done) / static_cast<double>(batches));
+          if (progress) {
+            progress({done, batches, start, batch_range(photons, batches, done).first,
+                      batch_range(photons, batches, start).first});
+          }
         }
         if (round_flags & detail::kCheckpointFlag) {
           try {
@@ -324,6 +351,9 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
   if (!world.is_root()) outcome.standard_error.clear();
   outcome.mean = std::move(state.mean);
   outcome.scattering_events = state.scattering_events;
+  outcome.batches_resumed = start;
+  outcome.photons_resumed = batch_range(photons, batches, start).first;
+  outcome.resumed_wall_seconds = resumed_wall_seconds;
   outcome.threads = threads;
   outcome.ranks = ranks;
   return outcome;

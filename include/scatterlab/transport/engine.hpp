@@ -15,12 +15,20 @@ namespace scatterlab {
 
 struct TransportOutput {
   std::vector<TallyResult> tallies;  // on the root rank; empty on the others
-  double wall_seconds = 0.0;
-  std::uint64_t photons = 0;       // in the batches done
+  double wall_seconds = 0.0;         // of this process
+  std::uint64_t photons = 0;         // in the batches done, by this process and any it resumed
+  // Done by the run this process resumed from a checkpoint (0 when it started afresh); the wall
+  // time on the root rank only.
+  std::uint64_t photons_resumed = 0;
+  double resumed_wall_seconds = 0.0;
   std::uint64_t batches_done = 0;  // run.batches unless stopped early
   std::uint64_t scattering_events = 0;
   int threads = 1;  // per rank
   int ranks = 1;
+
+  // The whole run's wall time, over every process that ran it.
+  double run_wall_seconds() const { return resumed_wall_seconds + wall_seconds; }
+  std::uint64_t session_photons() const { return photons - photons_resumed; }
 
   // Whether every batch of `spec` (anything with a RunSettings `run`) ran.
   template <class Spec>

@@ -16,10 +16,14 @@
 namespace scatterlab {
 
 // Everything needed to continue a run after `batches_folded` batches: the Welford state of
-// every tally cell (batch_statistics.hpp) and the scattering events counted so far.
+// every tally cell (batch_statistics.hpp), the scattering events counted so far and the wall
+// time spent on them.
 struct RunState {
   std::uint64_t batches_folded = 0;
   std::uint64_t scattering_events = 0;
+  // Wall time spent on the run so far, over every process that ran it (a resumed run adds its
+  // own), so that rates and figures of merit can count the whole run.
+  double wall_seconds = 0.0;
   std::vector<double> mean;     // per photon, every cell
   std::vector<double> squares;  // Welford's running sum of squared deviations
 };

@@ -1,0 +1,45 @@
+#include "run_figures.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "scatterlab/tally/figure_of_merit.hpp"
+
+namespace scatterlab::cli {
+
+void print_run_time(const TransportOutput& out) {
+  const double events = static_cast<double>(out.scattering_events);
+  const double seconds = out.run_wall_seconds();
+  const int workers = out.threads * out.ranks;
+  const std::string ranks = out.ranks > 1 ? fmt::format("{} ranks x ", out.ranks) : "";
+  fmt::print(
+      "  {} photons in {} batches on {}{} thread{}: {:.2f} s ({:.3g} photons/s, {:.3g} "
+      "scattering events, {:.1f} ns per event per thread)\n",
+      out.photons, out.batches_done, ranks, out.threads, out.threads == 1 ? "" : "s", seconds,
+      static_cast<double>(out.photons) / seconds, events,
+      events > 0 ? seconds * workers / events * 1e9 : 0.0);
+  if (out.photons_resumed == 0) return;
+  fmt::print(
+      "  this session: {} photons in {:.2f} s ({:.3g} photons/s), after {} photons in {:.2f} s "
+      "before --resume\n",
+      out.session_photons(), out.wall_seconds,
+      static_cast<double>(out.session_photons()) / out.wall_seconds, out.photons_resumed,
+      out.resumed_wall_seconds);
+}
+
+void print_figures_of_merit(const TransportOutput& out, const std::vector<std::string>& names) {
+  std::string figures;
+  for (const std::string& name : names) {
+    const TallyResult* tally = find_tally(out.tallies, name);
+    if (tally == nullptr) continue;
+    const double merit = figure_of_merit(
+        relative_standard_error(tally->mean, tally->stderr_of_mean), out.run_wall_seconds());
+    if (!std::isfinite(merit)) continue;
+    figures += fmt::format("{} {} {:.3g}{}", figures.empty() ? "" : ",", name, merit,
+                           tally->shape.empty() ? "" : " (median bin)");
+  }
+  if (!figures.empty()) fmt::print("  figure of merit 1/(R^2 T), 1/s:{}\n", figures);
+}
+
+}  // namespace scatterlab::cli
