@@ -1,5 +1,5 @@
 // scatterlab searchlight: a pencil beam on a semi-infinite medium behind a refractive interface
-// (Bitterli 2014, §2.3 and Alg. 1), from flags, written to one HDF5 file.
+// (Bitterli 2013, §2.3 and Alg. 1), from flags, written to one HDF5 file.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -173,7 +173,7 @@ Action add_searchlight_command(CLI::App& app, const std::string& command_line, W
   auto* command = app.add_subcommand(
       "searchlight",
       "Pencil beam on a semi-infinite medium z > 0 behind a smooth interface of relative index "
-      "eta (Bitterli 2014, §2.3): diffuse reflectance R_d(r), exitant radiance L(r, theta_o), "
+      "eta (Bitterli 2013, §2.3): diffuse reflectance R_d(r), exitant radiance L(r, theta_o), "
       "fluence phi(r, z) and the totals, each split by scattering order, with standard errors, "
       "to HDF5. Without flags: albedo 0.99, g 0, eta 1.3, normal incidence.");
   auto o = std::make_shared<SearchlightOptions>();
