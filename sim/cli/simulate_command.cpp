@@ -21,6 +21,7 @@
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/parallel/world.hpp"
+#include "scatterlab/tally/scalar_estimate.hpp"
 #include "scatterlab/transport/simulate.hpp"
 #include "value_checks.hpp"
 
@@ -68,9 +69,10 @@ void print_summary(const SimulationSpec& spec, const SimulationOutput& out,
   std::string energy = "  energy per W incident:";
   double total = 0.0;
   for (const char* name : {"absorbed", "absorbed_outside_grid", "escaped"}) {
-    if (const TallyResult* t = find_tally(out.tallies, name)) {
-      energy += fmt::format(" {} {:.6f} ± {:.1e},", name, t->mean[0], t->stderr_of_mean[0]);
-      total += t->mean[0];
+    if (find_tally(out.tallies, name) != nullptr) {
+      const ScalarEstimate value = scalar_estimate(out.tallies, name);
+      energy += fmt::format(" {} {},", name, estimate_text(value));
+      total += value.mean;
     }
   }
   fmt::print("{} total {:.6f}\n", energy, total);

@@ -18,6 +18,7 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
+#include "scatterlab/tally/scalar_estimate.hpp"
 
 namespace scatterlab {
 
@@ -352,7 +353,7 @@ std::string tally_text(const TallySummary& tally) {
   text += "\n";
   if (!tally.description.empty()) text += "      " + tally.description + "\n";
   if (tally.is_scalar()) {
-    text += fmt::format("      {:.6g} ± {:.2g}\n", tally.mean_sum, tally.scalar_stderr);
+    text += "      " + estimate_text({tally.mean_sum, tally.scalar_stderr}) + "\n";
   } else if (tally.nonzero_bins == 0) {
     text += "      all bins zero\n";
   } else {
