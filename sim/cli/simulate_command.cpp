@@ -23,6 +23,7 @@
 #include "scatterlab/parallel/world.hpp"
 #include "scatterlab/tally/scalar_estimate.hpp"
 #include "scatterlab/transport/simulate.hpp"
+#include "scatterlab/validate/point_source_models.hpp"
 #include "value_checks.hpp"
 
 namespace scatterlab::cli {
@@ -222,7 +223,8 @@ int run_one(PlannedRun run, const LongRunOptions& options, const std::string& co
     run.spec.run.threads = out.threads;  // record what ran, not "all cores"
     written = long_run.result_path(out.batches_done, spec.run.batches, run.output);
     if (written) {
-      write_simulation_file(*written, run.spec, out.tallies, provenance);
+      write_simulation_file(*written, run.spec, out.tallies, provenance,
+                            point_source_model_curves(run.spec, out.tallies));
       print_summary(run.spec, out, written->string());
     }
   }

@@ -397,7 +397,8 @@ std::string iso8601_now() {
 }
 
 void write_simulation_file(const std::filesystem::path& path, const SimulationSpec& spec,
-                           const std::vector<TallyResult>& tallies, const Provenance& provenance) {
+                           const std::vector<TallyResult>& tallies, const Provenance& provenance,
+                           const std::vector<ModelResult>& models) {
   AtomicOutput output(path);
   check_tallies(tallies);
   {
@@ -406,6 +407,7 @@ void write_simulation_file(const std::filesystem::path& path, const SimulationSp
     write_parameters(file.root(), spec);
     write_grid(file.root(), spec);
     write_tallies(file.root(), tallies);
+    write_models(file.root(), models);
     file.close();
   }
   output.commit();
@@ -460,9 +462,10 @@ std::string describe(const FileSummary& summary) {
   text += fmt::format("photons run {} ({} scattering events)\n", summary.photons_run,
                       summary.scattering_events);
   if (summary.partial) {
-    text += fmt::format("status      PARTIAL: stopped after {} batches; tallies are the mean of "
-                        "those batches\n",
-                        summary.batches_done);
+    text += fmt::format(
+        "status      PARTIAL: stopped after {} batches; tallies are the mean of "
+        "those batches\n",
+        summary.batches_done);
   }
   if (summary.ranks > 1) text += fmt::format("ranks       {} (MPI processes)\n", summary.ranks);
   if (!summary.merged_from.empty()) {
