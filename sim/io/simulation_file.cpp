@@ -195,20 +195,25 @@ void write_models(hdf5::Group& root, const std::vector<ModelResult>& models) {
   if (models.empty()) return;
   hdf5::Group group = root.create_group("models");
   for (const ModelResult& m : models) {
-    hdf5::Group node = group.has_member(m.model) ? group.open_group(m.model)
-                                                : group.create_group(m.model);
+    hdf5::Group node =
+        group.has_member(m.model) ? group.open_group(m.model) : group.create_group(m.model);
     if (m.values.empty()) {  // not evaluated for this run: say why
       node.write_string_attribute("note", m.description);
       continue;
     }
-    auto write = [&](const std::string& name, const std::vector<double>& values) {
+    auto write = [&](const std::string& name, const std::vector<double>& values,
+                     const std::string& description) {
       hdf5::Dataset dataset = node.write_dataset(name, values, m.shape);
       dataset.write_string_attribute("units", m.units);
-      dataset.write_string_attribute("description", m.description);
+      dataset.write_string_attribute("description", description);
       dataset.write_string_attribute("dims", join(m.dims, ","));
     };
-    write(m.name, m.values);
-    if (!m.error.empty()) write(m.name + "_error", m.error);
+    write(m.name, m.values, m.description);
+    // The error is not the curve: say so, rather than repeat the curve's description.
+    if (!m.error.empty()) {
+      write(m.name + "_error", m.error,
+            "absolute numerical error estimate of " + m.name + ": " + m.description);
+    }
   }
 }
 
