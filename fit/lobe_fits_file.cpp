@@ -385,15 +385,19 @@ void write_fits(const RadianceLobes& lobes, const LobeGrid& grid, const LobeFitR
         chi2.push_back(ok ? fit.chi2_dof : -1.0);
         status.push_back(static_cast<std::int32_t>(fit.status));
       }
-      group.write_dataset("params", params, {nr, nz, names.size()})
-          .write_string_attribute("names", join(names));
+      hdf5::Dataset parameters = group.write_dataset("params", params, {nr, nz, names.size()});
+      parameters.write_string_attribute("names", join(names));
+      parameters.write_string_attribute("description",
+                                        "each (r, z) bin's fitted parameters, in the order of "
+                                        "attr names; 0 where not fitted (see status)");
       group.write_dataset("error", error, {nr, nz})
           .write_string_attribute("description",
                                   "relative L1 error over the sphere, sum Omega |model - L| / "
                                   "sum Omega L over every direction; -1 where not fitted");
       group.write_dataset("error_plane", plane, {nr, nz})
           .write_string_attribute("description",
-                                  "the same over the bins on the phi = 0 / phi = pi plane");
+                                  "the same over the bins on the phi = 0 / phi = pi plane; -1 "
+                                  "where not fitted");
       group.write_dataset("noise", noise, {nr, nz})
           .write_string_attribute("description",
                                   "sqrt(2/pi) sum Omega stderr / sum Omega L: the error an exact "

@@ -1,5 +1,5 @@
 // scatterlab searchlight: a pencil beam on a semi-infinite medium behind a refractive interface
-// (Bitterli 2014, §2.3 and Alg. 1), from flags, written to one HDF5 file.
+// (Bitterli 2013, §2.3 and Alg. 1), from flags, written to one HDF5 file.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -21,6 +21,7 @@
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/models/chandrasekhar_h.hpp"
+#include "scatterlab/tally/scalar_estimate.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/validate/searchlight_models.hpp"
 #include "scene_option.hpp"
@@ -75,13 +76,6 @@ SearchlightOptions default_options() {
   return o;
 }
 
-// A scalar tally's value and its standard error in *error; 0 and 0 when the run has none.
-double scalar(const std::vector<TallyResult>& tallies, const std::string& name, double* error) {
-  const TallyResult* t = find_tally(tallies, name);
-  *error = t != nullptr ? t->stderr_of_mean[0] : 0.0;
-  return t != nullptr ? t->mean[0] : 0.0;
-}
-
 void print_summary(const SearchlightSpec& spec, const SearchlightOutput& out,
                    const std::vector<ModelResult>& models, const std::string& path) {
   fmt::print("scatterlab searchlight: half-space, albedo {}, g {}, eta {}, incidence {} deg\n",
@@ -95,17 +89,15 @@ void print_summary(const SearchlightSpec& spec, const SearchlightOutput& out,
   std::string energy = "  energy per W incident:";
   double total = 0.0;
   for (const char* name : {"specular_reflectance", "diffuse_reflectance", "absorbed", "escaped"}) {
-    double error = 0.0;
-    const double value = scalar(out.tallies, name, &error);
+    const ScalarEstimate value = scalar_estimate(out.tallies, name);
     if (std::string(name) == "escaped" && !std::isfinite(spec.run.escape_radius)) continue;
-    energy += fmt::format(" {} {:.6f} ± {:.1e},", name, value, error);
-    total += value;
+    energy += fmt::format(" {} {},", name, estimate_text(value));
+    total += value.mean;
   }
   fmt::print("{} total {:.6f}\n", energy, total);
   print_figures_of_merit(out, {"diffuse_reflectance", "absorbed", "reflectance", "fluence"});
-  double error = 0.0;
-  const double single = scalar(out.tallies, "diffuse_reflectance_single", &error);
-  fmt::print("  once-scattered part of the diffuse reflectance: {:.6f} ± {:.1e}\n", single, error);
+  fmt::print("  once-scattered part of the diffuse reflectance: {}\n",
+             estimate_text(scalar_estimate(out.tallies, "diffuse_reflectance_single")));
   // The one case with an exact total: index-matched, isotropic (chandrasekhar_h.hpp).
   if (spec.eta == 1.0 && spec.medium.g == 0.0) {
     const double mu0 = std::cos(spec.incidence_deg * std::numbers::pi / 180.0);
@@ -121,12 +113,10 @@ void print_summary(const SearchlightSpec& spec, const SearchlightOutput& out,
       continue;
     }
     if (!m.shape.empty()) continue;
-    double mc_error = 0.0;
-    const double mc = scalar(out.tallies, m.name, &mc_error);
-    fmt::print("  {:<24} {:<28} {:.6f}   Monte Carlo {:.6f} ± {:.1e}", m.model, m.name, m.values[0],
-               mc, mc_error);
-    if (mc_error > 0.0) fmt::print(" ({:+.1f} sigma)", (mc - m.values[0]) / mc_error);
-    fmt::print("\n");
+    const ScalarEstimate mc = scalar_estimate(out.tallies, m.name);
+    const std::string sigma = sigma_text(mc, m.values[0]);
+    fmt::print("  {:<24} {:<28} {:.6f}   Monte Carlo {}{}{}\n", m.model, m.name, m.values[0],
+               estimate_text(mc), sigma.empty() ? "" : " ", sigma);
   }
   fmt::print("  wrote {}\n", path);
 }
@@ -188,9 +178,8 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
   if (root) {
     const Provenance provenance = run_provenance(out, command_line);
     spec.run.threads = out.threads;  // record what ran, not "all cores"
-    double specular_error = 0.0;
     const std::vector<ModelResult> models = searchlight_model_curves(
-        spec, scalar(out.tallies, "specular_reflectance", &specular_error), o.model_fluence);
+        spec, scalar_estimate(out.tallies, "specular_reflectance").mean, o.model_fluence);
     written = long_run.result_path(out.batches_done, spec.run.batches, path);
     if (written) {
       write_searchlight_file(*written, spec, out.tallies, provenance, models);
@@ -206,7 +195,7 @@ Action add_searchlight_command(CLI::App& app, const std::string& command_line, W
   auto* command = app.add_subcommand(
       "searchlight",
       "Pencil beam on a semi-infinite medium z > 0 behind a smooth interface of relative index "
-      "eta (Bitterli 2014, §2.3): diffuse reflectance R_d(r), exitant radiance L(r, theta_o), "
+      "eta (Bitterli 2013, §2.3): diffuse reflectance R_d(r), exitant radiance L(r, theta_o), "
       "fluence phi(r, z) and the totals, each split by scattering order, with standard errors, "
       "to HDF5. Without flags: albedo 0.99, g 0, eta 1.3, normal incidence.");
   auto o = std::make_shared<SearchlightOptions>(default_options());

@@ -24,7 +24,9 @@
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/parallel/world.hpp"
+#include "scatterlab/tally/scalar_estimate.hpp"
 #include "scatterlab/transport/simulate.hpp"
+#include "scatterlab/validate/point_source_models.hpp"
 #include "scene_option.hpp"
 
 namespace scatterlab::cli {
@@ -106,9 +108,10 @@ void print_summary(const SimulationSpec& spec, const SimulationOutput& out,
   std::string energy = "  energy per W incident:";
   double total = 0.0;
   for (const char* name : {"absorbed", "absorbed_outside_grid", "escaped"}) {
-    if (const TallyResult* t = find_tally(out.tallies, name)) {
-      energy += fmt::format(" {} {:.6f} ± {:.1e},", name, t->mean[0], t->stderr_of_mean[0]);
-      total += t->mean[0];
+    if (find_tally(out.tallies, name) != nullptr) {
+      const ScalarEstimate value = scalar_estimate(out.tallies, name);
+      energy += fmt::format(" {} {},", name, estimate_text(value));
+      total += value.mean;
     }
   }
   fmt::print("{} total {:.6f}\n", energy, total);
@@ -259,7 +262,8 @@ int run_one(PlannedRun run, const LongRunOptions& options, double log_interval,
     run.spec.run.threads = out.threads;  // record what ran, not "all cores"
     written = long_run.result_path(out.batches_done, spec.run.batches, run.output);
     if (written) {
-      write_simulation_file(*written, run.spec, out.tallies, provenance);
+      write_simulation_file(*written, run.spec, out.tallies, provenance,
+                            point_source_model_curves(run.spec, out.tallies));
       print_summary(run.spec, out, written->string());
     }
   }

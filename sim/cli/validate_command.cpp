@@ -16,6 +16,7 @@
 #include "progress_reporter.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/tally/scalar_estimate.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/validate/half_space_comparison.hpp"
 #include "scatterlab/validate/point_source_comparison.hpp"
@@ -85,9 +86,9 @@ MonteCarloCurve curve(const std::vector<TallyResult>& tallies, const std::string
   if (t == nullptr) throw std::logic_error("searchlight run has no tally " + name);
   MonteCarloCurve c{t->mean, t->stderr_of_mean};
   if (!total_name.empty()) {
-    const MonteCarloCurve total = curve(tallies, total_name);
-    c.total = total.mean[0];
-    c.total_stderr = total.stderr_of_mean[0];
+    const ScalarEstimate total = scalar_estimate(tallies, total_name);
+    c.total = total.mean;
+    c.total_stderr = total.stderr_of_mean;
   }
   return c;
 }
@@ -105,9 +106,10 @@ int run_searchlight_validation(const SearchlightValidateOptions& o) {
   spec.run.photons = o.quick ? 100'000 : photon_count(o.photons);
   // R_d(r) on 100 rings to 10 mfp; phi(r, z) on 100 x 20 cells to 10 mfp deep: the models'
   // cell averages are 2-D adaptive integrals (~1 ms each).
+  // Batches as `scatterlab searchlight` (run_settings.hpp), so that the same photons and seed
+  // give the same standard errors there and here.
   spec.grid.r.bins = 100;
   spec.grid.z.bins = 20;
-  spec.run.batches = 32;
   spec.run.threads = o.threads;
   spec.run.seed = o.seed;
   spec.validate();
@@ -143,18 +145,20 @@ int run_searchlight_validation(const SearchlightValidateOptions& o) {
   fmt::print(
       "  each model against the Monte Carlo part it models (all = single + multiple); "
       "errors: mean |model - MC| / MC over resolved rings, near (r <= 1 mfp) and far\n");
-  fmt::print("  {:<38} {:<8} {:>9} {:>20} {:>11} {:>11}\n", "model", "part", "R_dr",
+  fmt::print("  {:<38} {:<8} {:>9} {:>21} {:>11} {:>11}\n", "model", "part", "R_dr",
              "Monte Carlo R_dr", "error near", "error far");
   for (const ModelCurve& m : comparison.reflectance) {
     const MonteCarloCurve& mc = reflectance[m.part];
     const std::string part = tally_suffix(m.part).empty() ? "all" : tally_suffix(m.part).substr(1);
-    fmt::print("  {:<38} {:<8} {:>9.6f} {:>10.6f} ± {:.1e} {:>10.2f}% {:>10.2f}%\n", m.model, part,
-               m.total, mc.total, mc.total_stderr, 100.0 * m.near_error, 100.0 * m.far_error);
+    fmt::print("  {:<38} {:<8} {:>9.6f} {:>21} {:>10.2f}% {:>10.2f}%\n", m.model, part, m.total,
+               estimate_text({mc.total, mc.total_stderr}), 100.0 * m.near_error,
+               100.0 * m.far_error);
   }
   fmt::print(
-      "  once scattered: exact total {:.6f}, Monte Carlo {:.6f} ± {:.1e} ({:+.2f} sigma); {} "
-      "rings, max |z| {:.2f}, mean z^2 {:.2f}\n",
-      exact.total, single.total, single.total_stderr, agreement.total_z, agreement.rings,
+      "  once scattered: exact total {:.6f}, Monte Carlo {} {}; {} rings, max |z| {:.2f}, mean "
+      "z^2 {:.2f}\n",
+      exact.total, estimate_text({single.total, single.total_stderr}),
+      sigma_text({single.total, single.total_stderr}, exact.total), agreement.rings,
       agreement.max_abs_z, agreement.mean_squared_z);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

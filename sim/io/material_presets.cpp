@@ -259,7 +259,7 @@ ResolvedMaterial resolve_material(const MaterialRequest& request, const Material
     if (request.g) origin.note = "g set by the user; sigma_s and sigma_a as tabulated";
   } else {
     // Only sigma_s' = sigma_s (1 - g) is measured: g = 0 unless asked, sigma_s' kept (similarity
-    // relation, Bitterli 2014 eqs. 2.23-2.24).
+    // relation, Bitterli 2013 eqs. 2.23-2.24).
     g = request.g.value_or(0.0);
     sigma_s = preset.sigma_s_reduced[k] / (1.0 - g);
     origin.note = request.g ? "the table gives sigma_s' only: sigma_s = sigma_s' / (1 - g) with "

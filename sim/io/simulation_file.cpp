@@ -20,6 +20,7 @@
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
 #include "scatterlab/tally/figure_of_merit.hpp"
+#include "scatterlab/tally/scalar_estimate.hpp"
 
 namespace scatterlab {
 
@@ -226,20 +227,25 @@ void write_models(hdf5::Group& root, const std::vector<ModelResult>& models) {
   if (models.empty()) return;
   hdf5::Group group = root.create_group("models");
   for (const ModelResult& m : models) {
-    hdf5::Group node = group.has_member(m.model) ? group.open_group(m.model)
-                                                : group.create_group(m.model);
+    hdf5::Group node =
+        group.has_member(m.model) ? group.open_group(m.model) : group.create_group(m.model);
     if (m.values.empty()) {  // not evaluated for this run: say why
       node.write_string_attribute("note", m.description);
       continue;
     }
-    auto write = [&](const std::string& name, const std::vector<double>& values) {
+    auto write = [&](const std::string& name, const std::vector<double>& values,
+                     const std::string& description) {
       hdf5::Dataset dataset = node.write_dataset(name, values, m.shape);
       dataset.write_string_attribute("units", m.units);
-      dataset.write_string_attribute("description", m.description);
+      dataset.write_string_attribute("description", description);
       dataset.write_string_attribute("dims", join(m.dims, ","));
     };
-    write(m.name, m.values);
-    if (!m.error.empty()) write(m.name + "_error", m.error);
+    write(m.name, m.values, m.description);
+    // The error is not the curve: say so, rather than repeat the curve's description.
+    if (!m.error.empty()) {
+      write(m.name + "_error", m.error,
+            "absolute numerical error estimate of " + m.name + ": " + m.description);
+    }
   }
 }
 
@@ -371,7 +377,7 @@ std::string tally_text(const TallySummary& tally) {
   text += "\n";
   if (!tally.description.empty()) text += "      " + tally.description + "\n";
   if (tally.is_scalar()) {
-    text += fmt::format("      {:.6g} ± {:.2g}\n", tally.mean_sum, tally.scalar_stderr);
+    text += "      " + estimate_text({tally.mean_sum, tally.scalar_stderr}) + "\n";
   } else if (tally.nonzero_bins == 0) {
     text += "      all bins zero\n";
   } else {
@@ -430,7 +436,8 @@ std::string iso8601_now() {
 }
 
 void write_simulation_file(const std::filesystem::path& path, const SimulationSpec& spec,
-                           const std::vector<TallyResult>& tallies, const Provenance& provenance) {
+                           const std::vector<TallyResult>& tallies, const Provenance& provenance,
+                           const std::vector<ModelResult>& models) {
   AtomicOutput output(path);
   check_tallies(tallies);
   {
@@ -440,6 +447,7 @@ void write_simulation_file(const std::filesystem::path& path, const SimulationSp
     write_grid(file.root(), spec);
     write_tallies(file.root(), tallies);
     write_figures_of_merit(file.root(), tallies, provenance.wall_seconds);
+    write_models(file.root(), models);
     file.close();
   }
   output.commit();
@@ -500,9 +508,10 @@ std::string describe(const FileSummary& summary) {
   text += fmt::format("photons run {} ({} scattering events)\n", summary.photons_run,
                       summary.scattering_events);
   if (summary.partial) {
-    text += fmt::format("status      PARTIAL: stopped after {} batches; tallies are the mean of "
-                        "those batches\n",
-                        summary.batches_done);
+    text += fmt::format(
+        "status      PARTIAL: stopped after {} batches; tallies are the mean of "
+        "those batches\n",
+        summary.batches_done);
   }
   if (summary.ranks > 1) text += fmt::format("ranks       {} (MPI processes)\n", summary.ranks);
   if (!summary.merged_from.empty()) {

@@ -71,8 +71,9 @@ std::vector<TallyDeclaration> declare_tallies(const SimulationSpec& spec) {
                      Score::absorption_depth,
                      {},
                      "mfp",
-                     "first moment of absorbed power along the beam axis, integral of z dA; the "
-                     "mean absorption depth when nothing escapes"});
+                     "first moment in depth z (along the beam axis) of the absorbed power, "
+                     "integral of z dP_absorbed per W incident; the mean absorption depth when "
+                     "every photon is absorbed"});
   return tallies;
 }
 

@@ -2,12 +2,11 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "scatterlab/core/constants.hpp"
-#include "scatterlab/models/point_source_diffusion.hpp"
-#include "scatterlab/models/point_source_exact.hpp"
-#include "scatterlab/models/point_source_grosjean.hpp"
 #include "scatterlab/transport/simulate.hpp"
+#include "scatterlab/validate/point_source_models.hpp"
 
 namespace scatterlab {
 namespace {
@@ -47,12 +46,17 @@ PointSourceComparison compare_point_source(double albedo,
   spec.validate();
   const SimulationOutput out = simulate(spec);
   const TallyResult* fluence = find_tally(out.tallies, "fluence_spherical");
-  if (fluence == nullptr) throw std::logic_error("compare_point_source: no fluence_spherical tally");
+  if (fluence == nullptr)
+    throw std::logic_error("compare_point_source: no fluence_spherical tally");
 
   PointSourceComparison c;
   c.albedo = albedo;
   c.wall_seconds = out.wall_seconds;
   const UniformAxis& axis = settings.rho;
+  PointSourceCurves curves = point_source_shell_averages(albedo, axis.edges());
+  c.exact = std::move(curves.exact);
+  c.diffusion = std::move(curves.diffusion);
+  c.grosjean = std::move(curves.grosjean);
   int within = 0;
   std::vector<bool> resolved;
   for (int i = 0; i < axis.bins; ++i) {
@@ -62,14 +66,11 @@ PointSourceComparison compare_point_source(double albedo,
     c.rho_hi.push_back(hi);
     c.monte_carlo.push_back(fluence->mean[k]);
     c.monte_carlo_stderr.push_back(fluence->stderr_of_mean[k]);
-    c.exact.push_back(point_source_fluence_shell_average(albedo, lo, hi));
-    c.diffusion.push_back(diffusion_point_source_shell_average(albedo, lo, hi));
-    c.grosjean.push_back(grosjean_point_source_shell_average(albedo, lo, hi));
     const double volume = 4.0 / 3.0 * pi * (hi * hi * hi - lo * lo * lo);
-    const double expected_collisions = c.exact.back() * volume * static_cast<double>(settings.photons);
+    const double expected_collisions = c.exact[k] * volume * static_cast<double>(settings.photons);
     resolved.push_back(expected_collisions >= 100.0 && c.monte_carlo_stderr.back() > 0.0);
     if (resolved.back()) {
-      const double z = (c.monte_carlo.back() - c.exact.back()) / c.monte_carlo_stderr.back();
+      const double z = (c.monte_carlo.back() - c.exact[k]) / c.monte_carlo_stderr.back();
       c.max_abs_z = std::max(c.max_abs_z, std::abs(z));
       within += std::abs(z) < 3.0;
       ++c.compared_shells;

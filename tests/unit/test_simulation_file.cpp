@@ -327,6 +327,36 @@ TEST_F(SimulationFileTest, DescribeSummarisesTheFile) {
   EXPECT_EQ(summary.grid[0].bins, 3u);
 }
 
+// /models: a curve with its description, and its numerical error described as an error (not
+// with the curve's own description); a model left out is a group with a note.
+TEST_F(SimulationFileTest, ModelCurvesAndTheirErrorsSayWhatTheyHold) {
+  const fs::path path = directory_ / "run.h5";
+  const std::vector<ModelResult> models = {
+      {"exact",
+       "fluence",
+       {"r", "z"},
+       {3, 4},
+       "mm^-2",
+       "the exact fluence",
+       std::vector<double>(12, 0.5),
+       std::vector<double>(12, 1e-9)},
+      {"dipole", "", {}, {}, "", "not evaluated: because", {}, {}}};
+  write_simulation_file(path, small_spec(), small_tallies(), small_provenance(), models);
+  const hdf5::File file = hdf5::File::open_read_only(path);
+  const hdf5::Group exact = file.root().open_group("models/exact");
+  const hdf5::Dataset curve = exact.open_dataset("fluence");
+  const hdf5::Dataset error = exact.open_dataset("fluence_error");
+  EXPECT_EQ(curve.read_string_attribute("description"), "the exact fluence");
+  EXPECT_EQ(error.read_string_attribute("description"),
+            "absolute numerical error estimate of fluence: the exact fluence");
+  for (const hdf5::Dataset* dataset : {&curve, &error}) {
+    EXPECT_EQ(dataset->read_string_attribute("units"), "mm^-2");
+    EXPECT_EQ(dataset->read_string_attribute("dims"), "r,z");
+  }
+  EXPECT_EQ(file.root().open_group("models/dipole").read_string_attribute("note"),
+            "not evaluated: because");
+}
+
 void expect_not_a_simulation_file(const fs::path& path) {
   try {
     describe_simulation_file(path);

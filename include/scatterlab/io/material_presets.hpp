@@ -80,7 +80,7 @@ struct ResolvedMaterial {
 //   sigma_s_reduced only (Jensen): the table measured sigma_s' = sigma_s (1 - g) alone, so g
 //     is free. By default g = 0 and sigma_s = sigma_s'; a requested g keeps the measured
 //     sigma_s' and takes sigma_s = sigma_s' / (1 - g) (the similarity relation, Wyman et al.
-//     1989; Bitterli 2014 eqs. 2.23-2.24), which leaves the diffusion-regime light unchanged.
+//     1989; Bitterli 2013 eqs. 2.23-2.24), which leaves the diffusion-regime light unchanged.
 // Coefficients are converted from the table's unit to the requested one: a coefficient in 1/mm
 // is 10 times larger in 1/cm.
 ResolvedMaterial resolve_material(

@@ -20,6 +20,9 @@
 //   /tallies/<name>/{mean,stderr}  the tally's shape; a scalar is a rank-0 dataset; attr units
 //   /figures_of_merit/<name>  rank-0: 1 / (R^2 wall_seconds) of the tally
 //                            (tally/figure_of_merit.hpp); attrs units "1/s", description
+//   /models/<model>/<name>  a model's curve beside the tally <name> it compares with (attrs
+//                            units, description, dims), <name>_error its numerical error when
+//                            known; a model left out has only the attribute note (why)
 
 #include <cstddef>
 #include <cstdint>
@@ -67,27 +70,29 @@ void check_finite_tally(const std::string& name, const std::vector<double>& mean
 // The current time as ISO 8601 UTC with second resolution: "YYYY-MM-DDTHH:MM:SSZ".
 std::string iso8601_now();
 
-// Writes the whole file to a temporary name beside `path` and renames it into place, so that a
-// failure leaves no file behind. Throws InputError("out", ...) when the directory does not
-// exist, std::invalid_argument for an inconsistent tally, std::runtime_error for HDF5 failures.
-// Tallies are written in the order given. Does not validate `spec` (the caller did).
-void write_simulation_file(const std::filesystem::path& path, const SimulationSpec& spec,
-                           const std::vector<TallyResult>& tallies, const Provenance& provenance);
-
 // A model's curve on the run's grid, written as /models/<model>/<name> (attrs units, description,
 // dims) and, when the model carries a numerical error estimate, /models/<model>/<name>_error.
 struct ModelResult {
-  std::string model;                // e.g. "dipole", "single_scatter"
-  std::string name;                 // the tally it compares with, e.g. "reflectance"
-  std::vector<std::string> dims;    // empty for a scalar
-  std::vector<std::size_t> shape;   // empty for a scalar
+  std::string model;               // e.g. "dipole", "single_scatter"
+  std::string name;                // the tally it compares with, e.g. "reflectance"
+  std::vector<std::string> dims;   // empty for a scalar
+  std::vector<std::size_t> shape;  // empty for a scalar
   std::string units;
   std::string description;
   std::vector<double> values;
-  std::vector<double> error;        // empty, or one absolute error estimate per value
+  std::vector<double> error;  // empty, or one absolute error estimate per value
 };
 // A ModelResult without values is a model left out of this run: its group gets the attribute
 // "note" with the description (why), and no dataset.
+
+// Writes the whole file to a temporary name beside `path` and renames it into place, so that a
+// failure leaves no file behind. Throws InputError("out", ...) when the directory does not
+// exist, std::invalid_argument for an inconsistent tally, std::runtime_error for HDF5 failures.
+// Tallies are written in the order given. Does not validate `spec` (the caller did). Model
+// curves, if any (the point source's, validate/point_source_models.hpp), go under /models.
+void write_simulation_file(const std::filesystem::path& path, const SimulationSpec& spec,
+                           const std::vector<TallyResult>& tallies, const Provenance& provenance,
+                           const std::vector<ModelResult>& models = {});
 
 // The same file for the half-space (scatterlab searchlight): /parameters adds geometry =
 // "half_space", eta and incidence_deg; /grid holds r, z (with the fluence) and theta_o, the exit

@@ -1,6 +1,6 @@
 #pragma once
 // The half-space z > 0 behind a smooth interface of relative index eta = n_medium / n_outside at
-// z = 0 (Bitterli 2014, §3.2, Alg. 1). A flight that reaches the surface leaves with probability
+// z = 0 (Bitterli 2013, §3.2, Alg. 1). A flight that reaches the surface leaves with probability
 // 1 - F and is internally reflected with probability F, after which the photon flies on for the
 // rest of its sampled path (Alg. 1, lines 6-8: the free path is memoryless, so the mirror image
 // of the remainder is a valid flight).

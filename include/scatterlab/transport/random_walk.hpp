@@ -1,5 +1,5 @@
 #pragma once
-// The random walk of one photon, for every geometry (Vavassori §4.1; Bitterli 2014, Alg. 1):
+// The random walk of one photon, for every geometry (Vavassori §4.1; Bitterli 2013, Alg. 1):
 // exponential free flights of mean 1 mfp, analog absorption with probability 1 - albedo at each
 // collision (so the number of collisions is geometric, §4.1), scattering by the phase function,
 // and whatever the geometry does where a flight meets its surface.

@@ -1,5 +1,5 @@
 #pragma once
-// The searchlight problem (Bitterli 2014, §2.3, Fig. 2.3; Chandrasekhar 1958): a pencil beam
+// The searchlight problem (Bitterli 2013, §2.3, Fig. 2.3; Chandrasekhar 1958): a pencil beam
 // strikes a semi-infinite homogeneous medium z > 0 at the origin. What the run is asked to do,
 // as plain structs validated once, and the run itself.
 //

@@ -11,16 +11,17 @@
 #include <vector>
 
 #include "scatterlab/tally/axis.hpp"
+#include "scatterlab/transport/run_settings.hpp"
 
 namespace scatterlab {
 
 struct PointSourceComparisonSettings {
-  std::uint64_t photons = 1'000'000;  // per albedo
-  std::uint32_t batches = 32;
+  std::uint64_t photons = 1'000'000;              // per albedo
+  std::uint32_t batches = RunSettings{}.batches;  // as simulate: the same standard errors
   std::uint64_t seed = 1;
-  int threads = 0;                           // 0: all hardware threads
-  UniformAxis rho{0.0, 10.0, 100};           // shells, mfp
-  double near_limit = 1.0;                   // mfp: near is rho1 <= near_limit
+  int threads = 0;                  // 0: all hardware threads
+  UniformAxis rho{0.0, 10.0, 100};  // shells, mfp
+  double near_limit = 1.0;          // mfp: near is rho1 <= near_limit
 };
 
 // Mean |model - exact| / exact over the shells of a range.
