@@ -223,7 +223,6 @@ Action add_validate_command(CLI::App& app) {
     OutputPlan plan;
     plan.output_directory("--out", deon->parsed() ? options->out : half_space->out);
     prepare_outputs(plan);
-    plan.make_output_directories();
     if (deon->parsed()) return run_deon(*options);
     if (searchlight->parsed()) return run_searchlight_validation(*half_space);
     return 1;

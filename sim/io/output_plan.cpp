@@ -296,22 +296,26 @@ std::vector<fs::path> OutputPlan::remove_stale_temporaries() const {
   return removed;
 }
 
+void make_output_directory(const fs::path& directory, const std::string& field) {
+  std::error_code error;
+  fs::create_directories(directory, error);
+  const fs::path marker = directory / output_directory_marker;
+  if (!error && !fs::exists(marker, error)) {
+    std::ofstream(marker)
+        << "scatterlab writes its outputs into this directory; a later run may replace them.\n";
+  }
+  if (error || !fs::is_regular_file(marker)) {
+    throw InputError(
+        field,
+        fmt::format("cannot create directory {} with its marker {}: {}", quoted(directory),
+                    output_directory_marker, error ? error.message() : "not written"),
+        "a directory, or a path where one can be made");
+  }
+}
+
 void OutputPlan::make_output_directories() const {
   for (const Entry& entry : entries_) {
-    if (entry.kind != Kind::output_directory) continue;
-    std::error_code error;
-    fs::create_directories(entry.path, error);
-    if (!error && !fs::exists(entry.path / output_directory_marker, error)) {
-      std::ofstream(entry.path / output_directory_marker)
-          << "scatterlab writes its outputs into this directory; a later run may replace them.\n";
-    }
-    if (error || !fs::is_regular_file(entry.path / output_directory_marker)) {
-      throw InputError(
-          entry.field,
-          fmt::format("cannot create directory {} with its marker {}: {}", quoted(entry.path),
-                      output_directory_marker, error ? error.message() : "not written"),
-          "a directory, or a path where one can be made");
-    }
+    if (entry.kind == Kind::output_directory) make_output_directory(entry.path, entry.field);
   }
 }
 

@@ -34,6 +34,11 @@ std::string file_type_text(std::filesystem::file_type type);
 // writes into a directory that holds other files without it.
 inline constexpr const char* output_directory_marker = ".scatterlab-outputs";
 
+// Makes `directory` with its missing parents if it is not there, and leaves the marker in it;
+// throws InputError(field) when it cannot. OutputPlan::make_output_directories calls it for each
+// output directory; a writer that makes its directory when it writes (validate) calls it itself.
+void make_output_directory(const std::filesystem::path& directory, const std::string& field);
+
 class OutputPlan {
  public:
   // A file the command reads.
