@@ -107,11 +107,11 @@ Action add_render_command(CLI::App& app) {
   render->add_option("--threads", options->threads, threads_help());
   add_memory_limit_option(*render);
   render->add_option("--seed", options->seed, "Random seed (pathtrace), in [0, 2^63 - 1]");
-  CLI::Option* out_option =
-      render->add_option("--out", options->out,
-                         "Output OpenEXR file, NAME.exr; the PNG is written beside it as NAME.png "
-                         "(--study: the output directory, made if missing, by default "
-                         "render-study)");
+  CLI::Option* out_option = render->add_option(
+      "--out", options->out,
+      "Output OpenEXR file, NAME.exr; the PNG is written beside it as NAME.png "
+      "(--study: the output directory, new, empty or one scatterlab wrote, made if "
+      "missing; by default render-study)");
   render->add_option("--exposure", options->exposure, "PNG exposure in stops");
   render->add_option("--gamma", options->gamma, "PNG gamma");
   const auto log_interval = add_log_interval_option(*render);

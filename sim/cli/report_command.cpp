@@ -38,7 +38,8 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
       "fails");
   auto options = std::make_shared<ReportOptions>();
   command->add_flag("--quick", options->quick, "Small budgets, for the test suite (minutes)");
-  command->add_option("--out", options->out, "Directory to write (created if missing)");
+  command->add_option("--out", options->out,
+                      "Directory to write: new, empty or one scatterlab wrote (made if missing)");
   command->add_option("--threads", options->profile.threads, threads_help());
   add_memory_limit_option(*command);
   const auto log_interval = add_log_interval_option(*command);

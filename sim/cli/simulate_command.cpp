@@ -337,8 +337,8 @@ Action add_simulate_command(CLI::App& app, const std::string& command_line, Worl
       "--out", o->out,
       "Output HDF5 file (default: the scene's output.path when it has one); for a sweep (a "
       "scene whose keys hold lists of values), the directory for its files, one per "
-      "combination named from its values, at most 1000; done combinations are skipped; a "
-      "directory is made when missing");
+      "combination named from its values, at most 1000; done combinations are skipped; the "
+      "directory is new, empty or one scatterlab wrote, and made when missing");
   command
       ->add_option("--out-dir", o->out_dir,
                    "Directory for the output file (named from the scene's output.path), or a "

@@ -177,8 +177,9 @@ Action add_validate_command(CLI::App& app) {
       "deon",
       "Point-source fluence r^2 phi(r) for albedos 0.01-0.99: Monte Carlo, exact, diffusion, "
       "Grosjean (d'Eon & Irving 2011); error table, CSV and PNG plots");
-  deon->add_option("--out", options->out,
-                   "Directory for the CSV and PNG files (created if missing)");
+  deon->add_option(
+      "--out", options->out,
+      "Directory for the CSV and PNG files: new, empty or one scatterlab wrote (made if missing)");
   CLI::Option* deon_photons = deon->add_option("--photons", options->photons, "Photons per albedo");
   // --quick sets the photons: both would be a silent choice.
   deon->add_flag("--quick", options->quick, "2e4 photons per albedo, for tests; not with --photons")
@@ -196,7 +197,9 @@ Action add_validate_command(CLI::App& app) {
       "the dipole, better dipole and quantized diffusion, its once-scattered part against the "
       "exact refractive single-scatter solution, and its total against their sums and the "
       "Grosjean beam (R_d(r), phi(r, z); linear, log, sqrt and r R plots)");
-  searchlight->add_option("--out", half_space->out, "Directory for the CSV and PNG files");
+  searchlight->add_option(
+      "--out", half_space->out,
+      "Directory for the CSV and PNG files: new, empty or one scatterlab wrote (made if missing)");
   CLI::Option* searchlight_photons =
       searchlight->add_option("--photons", half_space->photons, "Photons");
   searchlight->add_option("--albedo", half_space->albedo, "Albedo");

@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <climits>
 #include <cstring>
+#include <fstream>
 #include <set>
 #include <system_error>
 #include <utility>
@@ -21,6 +22,14 @@ namespace scatterlab {
 namespace fs = std::filesystem;
 
 namespace {
+
+// An existing output directory may take a command's files when nothing there can be someone
+// else's: it is empty, or scatterlab marked it as its own (output_directory_marker).
+bool holds_only_scatterlab_outputs(const fs::path& directory) {
+  std::error_code error;
+  if (fs::exists(directory / output_directory_marker, error)) return true;
+  return fs::is_empty(directory, error) && !error;
+}
 
 constexpr const char* kDistinct = "a path distinct from every input and every other output";
 
@@ -204,6 +213,14 @@ void OutputPlan::check() const {
                        fmt::format("{} exists and is not a directory", quoted(entry.path)),
                        "a directory, or a path where one can be made");
     }
+    if (entry.kind == Kind::output_directory && exists &&
+        !holds_only_scatterlab_outputs(entry.path)) {
+      throw InputError(entry.field,
+                       fmt::format("{} holds files scatterlab did not write (it has no {}); they "
+                                   "are left as they are",
+                                   quoted(entry.path), output_directory_marker),
+                       "a new or empty directory, or one scatterlab wrote its outputs into");
+    }
     if (entry.kind != Kind::output_file && entry.kind != Kind::rewritten_input) continue;
     const std::string accepted =
         "a regular file to replace, or a new file in an existing directory";
@@ -279,17 +296,26 @@ std::vector<fs::path> OutputPlan::remove_stale_temporaries() const {
   return removed;
 }
 
+void make_output_directory(const fs::path& directory, const std::string& field) {
+  std::error_code error;
+  fs::create_directories(directory, error);
+  const fs::path marker = directory / output_directory_marker;
+  if (!error && !fs::exists(marker, error)) {
+    std::ofstream(marker)
+        << "scatterlab writes its outputs into this directory; a later run may replace them.\n";
+  }
+  if (error || !fs::is_regular_file(marker)) {
+    throw InputError(
+        field,
+        fmt::format("cannot create directory {} with its marker {}: {}", quoted(directory),
+                    output_directory_marker, error ? error.message() : "not written"),
+        "a directory, or a path where one can be made");
+  }
+}
+
 void OutputPlan::make_output_directories() const {
   for (const Entry& entry : entries_) {
-    if (entry.kind != Kind::output_directory) continue;
-    std::error_code error;
-    fs::create_directories(entry.path, error);
-    if (error || !fs::is_directory(entry.path)) {
-      throw InputError(entry.field,
-                       fmt::format("cannot create directory {}: {}", quoted(entry.path),
-                                   error ? error.message() : "not a directory"),
-                       "a directory, or a path where one can be made");
-    }
+    if (entry.kind == Kind::output_directory) make_output_directory(entry.path, entry.field);
   }
 }
 

@@ -9,19 +9,11 @@
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
+#include "scatterlab/io/output_plan.hpp"
 #include "scatterlab/io/plot.hpp"
 
 namespace scatterlab {
 namespace {
-
-void make_directory(const std::filesystem::path& directory) {
-  std::error_code error;
-  std::filesystem::create_directories(directory, error);
-  if (error || !std::filesystem::is_directory(directory)) {
-    throw InputError("out", "cannot create directory " + directory.string() + ": " + error.message(),
-                     "a writable directory path");
-  }
-}
 
 std::vector<double> centres(const std::vector<double>& lo, const std::vector<double>& hi) {
   std::vector<double> c(lo.size());
@@ -36,7 +28,9 @@ std::vector<double> times_rho2(const std::vector<double>& rho, const std::vector
   return out;
 }
 
-std::string nan_or(double v) { return std::isnan(v) ? "nan" : fmt::format("{:.6g}", v); }
+std::string nan_or(double v) {
+  return std::isnan(v) ? "nan" : fmt::format("{:.6g}", v);
+}
 
 // A model's name in a legend: what it is and where it is published.
 std::string display_name(const std::string& model) {
@@ -56,7 +50,7 @@ std::string display_name(const std::string& model) {
 
 std::vector<std::filesystem::path> write_point_source_report(
     const std::vector<PointSourceComparison>& comparisons, const std::filesystem::path& directory) {
-  make_directory(directory);
+  make_output_directory(directory, "--out");
   std::vector<std::filesystem::path> written;
   const auto shells = directory / "deon_point_source.csv";
   write_text_file(shells, [&](std::ostream& out) {
@@ -75,7 +69,8 @@ std::vector<std::filesystem::path> write_point_source_report(
   written.push_back(shells);
   const auto errors = directory / "deon_errors.csv";
   write_text_file(errors, [&](std::ostream& out) {
-    out << "# Mean relative error |model - exact| / exact of the shell averages, near (rho < 1 mfp) "
+    out << "# Mean relative error |model - exact| / exact of the shell averages, near (rho < 1 "
+           "mfp) "
            "and far (1 <= rho < rho_max); Monte Carlo over shells expecting >= 100 collisions\n";
     out << "albedo,model,near_relative_error,far_relative_error,max_abs_z,within_3_sigma,"
            "compared_shells\n";
@@ -116,15 +111,16 @@ std::vector<std::filesystem::path> write_point_source_report(
 }
 
 std::string point_source_error_table(const std::vector<PointSourceComparison>& comparisons) {
-  std::string table = fmt::format(
-      "{:>7} | {:>21} | {:>21} | {:>21} | {:>22}\n", "albedo", "diffusion near / far",
-      "Grosjean near / far", "Monte Carlo near/far", "MC vs exact: max|z|, <3σ");
+  std::string table =
+      fmt::format("{:>7} | {:>21} | {:>21} | {:>21} | {:>22}\n", "albedo", "diffusion near / far",
+                  "Grosjean near / far", "Monte Carlo near/far", "MC vs exact: max|z|, <3σ");
   for (const PointSourceComparison& c : comparisons) {
-    table += fmt::format("{:>7} | {:>9.2f}% / {:>7.2f}% | {:>9.2f}% / {:>7.2f}% | {:>9.3f}% / {:>6.3f}% | {:>8.2f}, {:>5.1f}% of {}\n",
-                         c.albedo, 100 * c.diffusion_error.near, 100 * c.diffusion_error.far,
-                         100 * c.grosjean_error.near, 100 * c.grosjean_error.far,
-                         100 * c.monte_carlo_error.near, 100 * c.monte_carlo_error.far,
-                         c.max_abs_z, 100 * c.within_3_sigma, c.compared_shells);
+    table += fmt::format(
+        "{:>7} | {:>9.2f}% / {:>7.2f}% | {:>9.2f}% / {:>7.2f}% | {:>9.3f}% / {:>6.3f}% | {:>8.2f}, "
+        "{:>5.1f}% of {}\n",
+        c.albedo, 100 * c.diffusion_error.near, 100 * c.diffusion_error.far,
+        100 * c.grosjean_error.near, 100 * c.grosjean_error.far, 100 * c.monte_carlo_error.near,
+        100 * c.monte_carlo_error.far, c.max_abs_z, 100 * c.within_3_sigma, c.compared_shells);
   }
   return table;
 }
@@ -132,7 +128,7 @@ std::string point_source_error_table(const std::vector<PointSourceComparison>& c
 std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceComparison& c,
                                                            const std::filesystem::path& directory,
                                                            const std::string& stem) {
-  make_directory(directory);
+  make_output_directory(directory, "--out");
   std::vector<std::filesystem::path> written;
   const std::size_t nr = c.r_edges.size() - 1;
   const std::size_t nz = c.z_edges.empty() ? 0 : c.z_edges.size() - 1;
@@ -140,8 +136,9 @@ std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceCompar
       "sigma_a {:.4g}, sigma_s {:.4g}, g {:.4g}, eta {:.4g}, entry transmittance {:.4f}",
       c.medium.sigma_a, c.medium.sigma_s, c.medium.g, c.medium.eta, c.entry_transmittance);
   // The medium, short enough for a plot title (PLplot: #gs sigma, #gy eta, #d / #u sub/sup).
-  const auto medium_title = fmt::format("#gs#da#u {:.4g}, #gs#ds#u {:.4g}, g {:.4g}, #gy {:.4g}",
-                                        c.medium.sigma_a, c.medium.sigma_s, c.medium.g, c.medium.eta);
+  const auto medium_title =
+      fmt::format("#gs#da#u {:.4g}, #gs#ds#u {:.4g}, g {:.4g}, #gy {:.4g}", c.medium.sigma_a,
+                  c.medium.sigma_s, c.medium.g, c.medium.eta);
   const ModelPart parts[] = {ModelPart::all, ModelPart::single, ModelPart::multiple};
   const auto part_name = [](ModelPart part) {
     const std::string suffix = tally_suffix(part);
@@ -164,7 +161,8 @@ std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceCompar
         out << fmt::format(",monte_carlo_{0},monte_carlo_{0}_stderr", part_name(part));
       }
     }
-    for (const ModelCurve& m : c.reflectance) out << "," << m.model << "[" << part_name(m.part) << "]";
+    for (const ModelCurve& m : c.reflectance)
+      out << "," << m.model << "[" << part_name(m.part) << "]";
     out << "\n";
     for (std::size_t i = 0; i < nr; ++i) {
       out << c.r_edges[i] << "," << c.r_edges[i + 1];
@@ -196,15 +194,19 @@ std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceCompar
   };
   const auto part_title = [](ModelPart part) {
     switch (part) {
-      case ModelPart::single: return "once scattered";
-      case ModelPart::multiple: return "scattered at least twice";
-      case ModelPart::all: return "all scattered light";
+      case ModelPart::single:
+        return "once scattered";
+      case ModelPart::multiple:
+        return "scattered at least twice";
+      case ModelPart::all:
+        return "all scattered light";
     }
     return "";
   };
   for (const ModelPart part : {ModelPart::multiple, ModelPart::all}) {
-    for (const Mode mode : {Mode{"linear", AxisScale::linear, false}, Mode{"log", AxisScale::log, false},
-                            Mode{"sqrt", AxisScale::sqrt, false}, Mode{"rR", AxisScale::linear, true}}) {
+    for (const Mode mode :
+         {Mode{"linear", AxisScale::linear, false}, Mode{"log", AxisScale::log, false},
+          Mode{"sqrt", AxisScale::sqrt, false}, Mode{"rR", AxisScale::linear, true}}) {
       LinePlot plot;
       plot.title = fmt::format("R#dd#u(r), {}: {}", part_title(part), medium_title);
       plot.x_label = "r (mfp)";
@@ -219,10 +221,11 @@ std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceCompar
       }
       for (const ModelCurve& m : c.reflectance) {
         if (m.part != part) continue;
-        plot.series.push_back({display_name(m.model), r, mode.times_r ? times_r(m.values) : m.values, {}, false});
+        plot.series.push_back(
+            {display_name(m.model), r, mode.times_r ? times_r(m.values) : m.values, {}, false});
       }
-      const auto path = directory / fmt::format("{}_reflectance_{}_{}.png", stem, part_name(part),
-                                                mode.name);
+      const auto path =
+          directory / fmt::format("{}_reflectance_{}_{}.png", stem, part_name(part), mode.name);
       write_png(plot, path);
       written.push_back(path);
     }
@@ -239,7 +242,8 @@ std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceCompar
           out << fmt::format(",monte_carlo_{0},monte_carlo_{0}_stderr", part_name(part));
         }
       }
-      for (const ModelCurve& m : c.fluence) out << "," << m.model << "[" << part_name(m.part) << "]";
+      for (const ModelCurve& m : c.fluence)
+        out << "," << m.model << "[" << part_name(m.part) << "]";
       out << "\n";
       for (std::size_t k = 0; k < nr * nz; ++k) {
         const std::size_t i = k / nz, j = k % nz;
@@ -275,7 +279,8 @@ std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceCompar
                                first_row(mc->second.stderr_of_mean), true});
       }
       for (const ModelCurve& m : c.fluence) {
-        if (m.part == part) plot.series.push_back({display_name(m.model), z, first_row(m.values), {}, false});
+        if (m.part == part)
+          plot.series.push_back({display_name(m.model), z, first_row(m.values), {}, false});
       }
       if (plot.series.empty()) continue;
       const auto path = directory / fmt::format("{}_fluence_axis_{}.png", stem, part_name(part));
@@ -310,7 +315,7 @@ std::vector<std::filesystem::path> write_single_scatter_report(
     const std::vector<double>& r_edges, const MonteCarloCurve& mc,
     const SingleScatterReflectance& exact, const std::filesystem::path& directory,
     const std::string& stem) {
-  make_directory(directory);
+  make_output_directory(directory, "--out");
   const std::size_t nr = r_edges.size() - 1;
   const auto csv = directory / fmt::format("{}_single_scatter.csv", stem);
   write_text_file(csv, [&](std::ostream& out) {
@@ -328,7 +333,11 @@ std::vector<std::filesystem::path> write_single_scatter_report(
   std::vector<double> r(nr);
   for (std::size_t i = 0; i < nr; ++i) r[i] = 0.5 * (r_edges[i] + r_edges[i + 1]);
   LinePlot plot{"Once-scattered reflectance: Monte Carlo against the exact solver",
-                "r (mfp)", "R#d1#u(r)", AxisScale::log, false, {}};
+                "r (mfp)",
+                "R#d1#u(r)",
+                AxisScale::log,
+                false,
+                {}};
   plot.series.push_back({"Monte Carlo, once scattered", r, mc.mean, mc.stderr_of_mean, true});
   plot.series.push_back({"exact (refractive single scatter)", r, exact.mean, {}, false});
   const auto png = directory / fmt::format("{}_single_scatter_log.png", stem);

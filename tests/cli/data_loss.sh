@@ -83,6 +83,30 @@ expect_refused "validate deon: output is a file" --out validate deon --quick --o
 expect_refused "validate searchlight: output is a file" --out \
   validate searchlight --quick --out notes.txt
 
+# --- directories of someone else's files: a command that names its own files there never writes
+# into one (a re-run of its own directory is fine) ------------------------------------------------
+mkdir -p theirs
+echo "my report" >theirs/report.md
+printf '[medium]\nalbedo = [0.3, 0.6]\n' >sweep.toml
+expect_refused "report into a directory of other files" --out \
+  report --quick --section refractive_solver --out theirs
+expect_refused "validate deon into a directory of other files" --out \
+  validate deon --quick --out theirs
+expect_refused "validate searchlight into a directory of other files" --out \
+  validate searchlight --quick --out theirs
+expect_refused "render --study into a directory of other files" --out \
+  render --study --quick --out theirs
+expect_refused "a sweep into a directory of other files" --out \
+  simulate sweep.toml "${tiny[@]}" --out theirs
+expect_refused "--out-dir: a directory of other files" --out-dir \
+  simulate "${tiny[@]}" --out-dir theirs
+# Its own directory, marked on the first run, takes the second run's files.
+if "$exe" report --quick --section refractive_solver --threads 1 --out own >/dev/null &&
+  [ -f own/.scatterlab-outputs ] &&
+  "$exe" report --quick --section refractive_solver --threads 1 --out own >/dev/null; then pass
+else fail "report re-run into its own directory: $(ls -A own 2>&1)"; fi
+rm -rf own
+
 # --- paths no filesystem should be given -------------------------------------------------------
 long_name=$(printf 'n%.0s' $(seq 300)).h5
 deep_path=$(printf 'd/%.0s' $(seq 2100))x.h5

@@ -193,6 +193,22 @@ TEST_F(OutputPlanTest, OutputDirectoriesAreMadeWithTheirParents) {
   EXPECT_TRUE(fs::is_directory(directory_ / "a" / "b" / "c"));
 }
 
+TEST_F(OutputPlanTest, ADirectoryOfOtherFilesIsRefusedAMarkedOrEmptyOneTaken) {
+  fs::create_directories(directory_ / "empty");
+  fs::create_directories(directory_ / "mine");
+  std::ofstream(directory_ / "mine" / "report.md") << "my notes\n";
+  OutputPlan into_empty, into_mine;
+  into_empty.output_directory("--out", directory_ / "empty");
+  into_mine.output_directory("--out", directory_ / "mine");
+  EXPECT_EQ(refused_field(into_empty), "");
+  EXPECT_EQ(refused_field(into_mine), "--out");
+  // Once scatterlab has written there, a later run may write again (a re-run, a sweep resumed).
+  into_empty.make_output_directories();
+  EXPECT_TRUE(fs::is_regular_file(directory_ / "empty" / output_directory_marker));
+  std::ofstream(directory_ / "empty" / "report.md") << "a report\n";
+  EXPECT_EQ(refused_field(into_empty), "");
+}
+
 TEST_F(OutputPlanTest, ADirectoryThatCannotBeMadeNamesItsField) {
   OutputPlan plan;
   plan.output_directory("--out", file("notes.txt") / "sub");  // under a file: never, root or not

@@ -29,6 +29,16 @@ bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
 // file" for the rest).
 std::string file_type_text(std::filesystem::file_type type);
 
+// The file that marks a directory as one scatterlab writes its outputs into: a later run may
+// replace the files there (a re-run of a report, a sweep that skips what is done), and no run
+// writes into a directory that holds other files without it.
+inline constexpr const char* output_directory_marker = ".scatterlab-outputs";
+
+// Makes `directory` with its missing parents if it is not there, and leaves the marker in it;
+// throws InputError(field) when it cannot. OutputPlan::make_output_directories calls it for each
+// output directory; a writer that makes its directory when it writes (validate) calls it itself.
+void make_output_directory(const std::filesystem::path& directory, const std::string& field);
+
 class OutputPlan {
  public:
   // A file the command reads.
@@ -38,7 +48,9 @@ class OutputPlan {
   void rewritten_input(std::string field, std::filesystem::path path);
   // A file the command writes whole (replacing one there): HDF5, CSV, image, checkpoint.
   void output_file(std::string field, std::filesystem::path path);
-  // A directory the command writes files into (created if missing).
+  // A directory the command writes files into, under names it chooses (created if missing). Its
+  // files may replace only what scatterlab wrote there: an existing directory must be empty or
+  // hold the marker output_directory_marker, which make_output_directories leaves in each.
   void output_directory(std::string field, std::filesystem::path path);
 
   // Throws InputError naming the first offending field. Reads the filesystem; the one trace it
@@ -49,9 +61,10 @@ class OutputPlan {
   // process is gone: a run killed while writing leaves them. Returns what it removed.
   std::vector<std::filesystem::path> remove_stale_temporaries() const;
 
-  // Makes every output directory that is missing, with its missing parents; throws InputError
-  // naming its field when one cannot be made. After check(), and after the inputs are read, so
-  // that bad input leaves nothing: every command that writes into a directory makes it this way.
+  // Makes every output directory that is missing, with its missing parents, and leaves the
+  // marker in each; throws InputError naming its field when one cannot be made. After check(), and
+  // after the inputs are read, so that bad input leaves nothing: every command that writes into a
+  // directory makes it this way.
   void make_output_directories() const;
 
  private:
