@@ -151,6 +151,7 @@ Action add_render_command(CLI::App& app) {
     if (!(o.gamma > 0.0)) throw InputError("gamma", fmt::format("got {}", o.gamma), "a number > 0");
     settings.threads = o.threads;
     settings.seed = o.seed;
+    check_render_work(scene, settings);
     check_render_memory(scene, settings);
     const std::filesystem::path exr(o.out);
     std::filesystem::path png = exr;

@@ -431,12 +431,36 @@ void check_render_memory(const RenderScene& scene, const RenderSettings& setting
                "a smaller image, fewer light samples or a coarser mesh");
 }
 
+std::uint64_t render_evaluations(const RenderScene& scene, const RenderSettings& settings) {
+  const std::uint64_t lights = settings.method == RenderMethod::pathtrace
+                                   ? 1
+                                   : static_cast<std::uint64_t>(scene.light_samples);
+  return saturating_product(saturating_product(static_cast<std::uint64_t>(scene.width) *
+                                                   static_cast<std::uint64_t>(scene.height),
+                                               static_cast<std::uint64_t>(scene.samples)),
+                            lights);
+}
+
+void check_render_work(const RenderScene& scene, const RenderSettings& settings) {
+  const std::uint64_t evaluations = render_evaluations(scene, settings);
+  if (evaluations <= max_render_evaluations) return;
+  throw InputError(
+      "image.width x image.height x image.samples x image.light_samples",
+      fmt::format("{} x {} x {} x {} = {:.3g} light evaluations (months on one core)", scene.width,
+                  scene.height, scene.samples,
+                  settings.method == RenderMethod::pathtrace ? 1 : scene.light_samples,
+                  static_cast<double>(evaluations)),
+      fmt::format("at most 2^42 = {:.3g}: a smaller image, fewer samples or fewer light samples",
+                  static_cast<double>(max_render_evaluations)));
+}
+
 RenderResult render_single_scatter(const RenderScene& scene, const RenderSettings& settings,
                                    const WorkProgress& progress) {
   if (settings.method == RenderMethod::pathtrace && !(scene.light.radius > 0.0)) {
     throw InputError("light.radius", "0 (a point light) with method pathtrace",
                      "a sphere light of radius > 0 for the path-traced reference");
   }
+  check_render_work(scene, settings);
   check_render_memory(scene, settings);
   const auto start = std::chrono::steady_clock::now();
   RenderResult result;

@@ -224,6 +224,12 @@ expect_refused "render: mesh.frequency = 65" mesh.frequency render bumpy.toml --
 sed -e 's/^\[mesh\]$/[mesh]\nshape = "sphere"\nrings = 5000/' -e '/^shape = "obj"/d' \
   -e '/^path = /d' render.toml >rings.toml
 expect_refused "render: mesh.rings = 5000" mesh.rings render rings.toml --out t.exr
+# Every size in its range, their product months of work: refused before any pixel, as simulate
+# refuses more than 2^53 events.
+expect_refused "render: 16384^2 pixels x 2^20 samples" image.samples \
+  render render.toml --width 16384 --height 16384 --samples 1048576 --out t.exr
+expect_refused "render pathtrace: 16384^2 pixels x 2^20 samples" image.width \
+  render render.toml --method pathtrace --width 16384 --height 16384 --samples 1048576 --out t.exr
 expect_refused "render --out x.png" --out render render.toml --out x.png
 expect_refused "render --out x (no extension)" --out render render.toml --out x
 

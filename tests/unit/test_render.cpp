@@ -240,6 +240,27 @@ TEST(Render, BadScenesGiveOneClearError) {
 }
 
 // The study's error measures on a 2 x 1 image: differences (0.3, -0.4) against (1, 0).
+TEST(Render, WorkIsPixelsTimesSamplesTimesLightPoints) {
+  RenderScene scene;
+  scene.width = 64;
+  scene.height = 32;
+  scene.samples = 8;
+  scene.light_samples = 16;
+  RenderSettings settings;
+  settings.method = RenderMethod::holzschuch;
+  EXPECT_EQ(render_evaluations(scene, settings), 64u * 32u * 8u * 16u);
+  settings.method = RenderMethod::pathtrace;  // one light sample per path
+  EXPECT_EQ(render_evaluations(scene, settings), 64u * 32u * 8u);
+  EXPECT_NO_THROW(check_render_work(scene, settings));
+  // Every size at its largest: 2^28 pixels x 2^20 samples x 2^12 light points = 2^60.
+  scene.width = scene.height = max_image_side;
+  scene.samples = max_samples;
+  scene.light_samples = max_light_samples;
+  settings.method = RenderMethod::walter;
+  EXPECT_EQ(render_evaluations(scene, settings), std::uint64_t{1} << 60);
+  EXPECT_THROW(check_render_work(scene, settings), InputError);
+}
+
 TEST(Render, StudyErrorsAreRmsAndRelativeL2) {
   Image reference(2, 1), image(2, 1);
   reference.values = {1.0, 0.0};

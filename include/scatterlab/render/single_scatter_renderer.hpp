@@ -75,6 +75,16 @@ struct RenderResult {
   double seconds = 0.0;
 };
 
+// A render's work in point-light evaluations: pixels x samples per eye ray x light points (one
+// point for pathtrace, which samples the light once per path). Past max_render_evaluations a
+// render takes months on one core (a microsecond or more per evaluation) and is refused before it
+// starts, as simulate refuses more than 2^53 events: each size is in its range, their product is
+// not.
+inline constexpr std::uint64_t max_render_evaluations = std::uint64_t{1} << 42;
+std::uint64_t render_evaluations(const RenderScene& scene, const RenderSettings& settings);
+// Throws InputError naming the fields whose product is over max_render_evaluations.
+void check_render_work(const RenderScene& scene, const RenderSettings& settings);
+
 // What render_single_scatter holds at its peak: the image and its standard error, the light
 // points and, for holzschuch, one light table per point (RefractedLight::table_bytes).
 MemoryEstimate render_memory(const RenderScene& scene, const RenderSettings& settings);
