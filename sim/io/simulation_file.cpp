@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/core/memory_budget.hpp"
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
 #include "scatterlab/tally/figure_of_merit.hpp"
@@ -274,7 +275,15 @@ std::string string_or_empty(const hdf5::Object& object, const char* name) {
 
 TallySummary summarize_tally(const hdf5::Group& tallies, const std::string& name) {
   const hdf5::Group node = tallies.open_group(name);
-  const hdf5::Array mean = node.read_dataset("mean");
+  const hdf5::Dataset mean_dataset = node.open_dataset("mean");
+  const hdf5::Array mean = mean_dataset.read();  // checks the size it declares first
+  // Held at once: the mean, the stderr and their ratios, whose median is taken (each dataset's
+  // read checks only itself).
+  MemoryEstimate need;
+  need.add_doubles(
+      fmt::format("mean, stderr and their ratios ({} values each)", mean.values.size()),
+      mean.values.size(), 3);
+  check_memory(need, mean_dataset.location(), "a file of smaller tallies");
   const hdf5::Array stderr_of_mean = node.read_dataset("stderr");
   if (stderr_of_mean.shape != mean.shape) {
     throw std::runtime_error("tally '" + name + "': mean and stderr differ in shape");

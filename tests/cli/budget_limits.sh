@@ -80,6 +80,13 @@ expect_refused "merge over --memory-limit 1K" "a.h5:/tallies/radiance/mean" \
   merge a.h5 b.h5 --out t.h5 --memory-limit 1K
 expect_refused "fit over --memory-limit 1K" "a.h5:/tallies/radiance" \
   fit a.h5 --models sg --memory-limit 1K
+# info holds a tally's mean, stderr and their ratios at once: 3 x 3.0 MiB for the default grid's
+# radiance (388800 values), so 6M, which each dataset alone fits, is refused and 10M is not.
+"$exe" simulate "${tiny[@]}" --out default-grid.h5 >/dev/null || fail "setup: default-grid.h5"
+expect_refused "info: mean, stderr and ratios over --memory-limit 6M" \
+  "mean, stderr and their ratios" info default-grid.h5 --memory-limit 6M
+if "$exe" info default-grid.h5 --memory-limit 10M >/dev/null; then pass; else
+  fail "info default-grid.h5 --memory-limit 10M"; fi
 if /usr/bin/python3 -c 'import h5py' 2>/dev/null; then
   # a.h5 with its radiance replaced by one that declares 1e6 x 1e6 doubles, one chunk stored.
   cp a.h5 crafted.h5
