@@ -236,7 +236,7 @@ LobeData RadianceLobes::lobe(std::size_t r, std::size_t z) const {
 }
 
 RadianceLobes read_radiance_lobes(const std::filesystem::path& path) {
-  read_file_summary(path);  // InputError("FILE", ...) unless a readable scatterlab file
+  read_file_header(path);  // InputError("FILE", ...) unless a readable scatterlab file
   RadianceLobes lobes;
   lobes.path = path;
   try {

@@ -183,7 +183,7 @@ bool holds_partial_or_nothing(const std::filesystem::path& path) {
   std::error_code error;
   if (!std::filesystem::exists(std::filesystem::symlink_status(path, error))) return true;
   try {
-    return std::filesystem::is_regular_file(path, error) && read_file_summary(path).partial;
+    return std::filesystem::is_regular_file(path, error) && read_file_header(path).partial;
   } catch (const std::exception&) {
     return false;  // not a scatterlab file
   }
@@ -245,7 +245,7 @@ void LongRun::remove_own_leftovers(const std::filesystem::path& output) const {
   const std::filesystem::path sibling = partial_sibling(output);
   if (!std::filesystem::is_regular_file(sibling, ignored)) return;
   try {
-    const FileSummary summary = read_file_summary(sibling);
+    const FileSummary summary = read_file_header(sibling);
     if (summary.partial && summary.spec_fingerprint == fingerprint_) {
       std::filesystem::remove(sibling, ignored);
     }

@@ -233,7 +233,7 @@ bool already_done(const PlannedRun& run) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(run.output, error)) return false;
   try {
-    const FileSummary summary = read_file_summary(run.output);
+    const FileSummary summary = read_file_header(run.output);
     return !summary.partial && summary.spec_fingerprint == fingerprint(run.spec);
   } catch (const std::exception&) {
     return false;  // not a scatterlab file: replaced by the run

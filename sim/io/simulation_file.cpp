@@ -321,7 +321,9 @@ AxisSummary summarize_axis(const hdf5::Group& grid, const std::string& name) {
   return axis;
 }
 
-FileSummary summarize(const hdf5::File& file) {
+// Everything but the tallies' values when `read_tallies` is false: the attributes, parameters,
+// grid and the names of the models and fits.
+FileSummary summarize(const hdf5::File& file, bool read_tallies) {
   const hdf5::Group& root = file.root();
   FileSummary summary;
   summary.path = file.path();
@@ -353,9 +355,11 @@ FileSummary summarize(const hdf5::File& file) {
   for (const std::string& name : grid.member_names()) {
     summary.grid.push_back(summarize_axis(grid, name));
   }
-  const hdf5::Group tallies = root.open_group("tallies");
-  for (const std::string& name : tallies.member_names()) {
-    summary.tallies.push_back(summarize_tally(tallies, name));
+  if (read_tallies) {
+    const hdf5::Group tallies = root.open_group("tallies");
+    for (const std::string& name : tallies.member_names()) {
+      summary.tallies.push_back(summarize_tally(tallies, name));
+    }
   }
   if (root.has_member("models")) {
     const hdf5::Group models = root.open_group("models");
@@ -480,7 +484,9 @@ void write_searchlight_file(const std::filesystem::path& path, const Searchlight
   output.commit();
 }
 
-FileSummary read_file_summary(const std::filesystem::path& path) {
+namespace {
+
+FileSummary read_summary(const std::filesystem::path& path, bool read_tallies) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) {
     not_a_simulation_file(
@@ -493,12 +499,22 @@ FileSummary read_file_summary(const std::filesystem::path& path) {
     if (!root.has_attribute("format")) not_a_simulation_file(path, "no 'format' attribute");
     const std::string format = root.read_string_attribute("format");
     if (format != "scatterlab") not_a_simulation_file(path, "format is '" + format + "'");
-    return summarize(file);
+    return summarize(file, read_tallies);
   } catch (const InputError&) {
     throw;
   } catch (const std::runtime_error& failure) {
     not_a_simulation_file(path, failure.what());
   }
+}
+
+}  // namespace
+
+FileSummary read_file_summary(const std::filesystem::path& path) {
+  return read_summary(path, true);
+}
+
+FileSummary read_file_header(const std::filesystem::path& path) {
+  return read_summary(path, false);
 }
 
 std::string describe(const FileSummary& summary) {

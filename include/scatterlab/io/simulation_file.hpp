@@ -154,6 +154,10 @@ struct FileSummary {
 
 // Throws InputError("FILE", ...) for a file that is missing, not HDF5, or not a scatterlab file.
 FileSummary read_file_summary(const std::filesystem::path& path);
+// The same without the tallies' values (`tallies` left empty): what a run, a resume, a merge or a
+// fit needs to know of a file (partial, fingerprint, counts, parameters, grid) without reading
+// every tally whole.
+FileSummary read_file_header(const std::filesystem::path& path);
 std::string describe(const FileSummary& summary);
 // read_file_summary + describe: the text of `scatterlab info FILE`.
 std::string describe_simulation_file(const std::filesystem::path& path);
