@@ -14,9 +14,6 @@ source_dir=$(realpath "$2")
 same_tallies=$(realpath "$3")
 source "$(dirname "$0")/harness.sh"
 
-tiny=(--photons 2000 --batches 4 --threads 1)
-grid=(--theta-bins 6 --phi-bins 8 --r-bins 4 --z-bins 4)
-
 # --- 1. defaults in --help -----------------------------------------------------------------------
 commands=(simulate searchlight fit render report "validate deon" "validate searchlight" merge
   info invert)

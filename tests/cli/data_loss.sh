@@ -11,19 +11,12 @@ exe=$(realpath "$1")
 source_dir=$(realpath "$2")
 source "$(dirname "$0")/harness.sh"
 
-# Small runs: every refusal must come before any photon, so these only need to be valid.
-tiny=(--photons 2000 --batches 4 --threads 1)
-grid=(--theta-bins 6 --phi-bins 8 --r-bins 4 --z-bins 4)
-
 # The files a careless user has lying about.
 "$exe" simulate "${tiny[@]}" "${grid[@]}" --seed 1 --out a.h5 >/dev/null || fail "setup: a.h5"
 "$exe" simulate "${tiny[@]}" "${grid[@]}" --seed 2 --out b.h5 >/dev/null || fail "setup: b.h5"
 cp "$source_dir/data/scenes/paper-beam.toml" scene.toml
 cp "$source_dir/data/scenes/searchlight.toml" half.toml
-printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' >tet.obj
-sed -e '/^\[mesh\]/,/^$/c [mesh]\nshape = "obj"\npath = "tet.obj"\nnormals = "flat"\n' \
-  -e 's/^width = .*/width = 4/' -e 's/^height = .*/height = 4/' \
-  "$source_dir/data/scenes/tile.toml" >render.toml
+write_tet_render_scene "$source_dir" 4
 echo "my notes" >notes.txt
 mkfifo fifo
 mkdir dir

@@ -68,3 +68,17 @@ expect_refused() {
     pass
   fi
 }
+
+# The small runs of the refusal scripts: every refusal comes before any photon, so these need only
+# be valid.
+tiny=(--photons 2000 --batches 4 --threads 1)
+grid=(--theta-bins 6 --phi-bins 8 --r-bins 4 --z-bins 4)
+
+# write_tet_render_scene SOURCE_DIR SIDE: tet.obj, a closed tetrahedron, and render.toml, the tile
+# scene's settings rendering it at SIDE x SIDE pixels.
+write_tet_render_scene() {
+  printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' >tet.obj
+  sed -e '/^\[mesh\]/,/^$/c [mesh]\nshape = "obj"\npath = "tet.obj"\nnormals = "flat"\n' \
+    -e "s/^width = .*/width = $2/" -e "s/^height = .*/height = $2/" \
+    "$1/data/scenes/tile.toml" >render.toml
+}

@@ -18,8 +18,6 @@ source "$(dirname "$0")/harness.sh"
 full=$scratch/full    # a small tmpfs, where one can be mounted
 trap 'umount "$full" 2>/dev/null; rm -rf "$work" "$scratch"' EXIT
 
-tiny=(--photons 2000 --batches 4 --threads 1)
-grid=(--theta-bins 6 --phi-bins 8 --r-bins 4 --z-bins 4)
 # Files of a few hundred kB: beyond the limits below.
 large=(--theta-bins 12 --phi-bins 16 --r-bins 12 --z-bins 12)
 
@@ -100,10 +98,7 @@ expect_refused_saying() {
 "$exe" simulate "${tiny[@]}" "${large[@]}" --seed 1 --out a.h5 >/dev/null || fail "setup: a.h5"
 "$exe" simulate "${tiny[@]}" "${large[@]}" --seed 2 --out b.h5 >/dev/null || fail "setup: b.h5"
 "$exe" simulate "${tiny[@]}" "${grid[@]}" --seed 3 --out old.h5 >/dev/null || fail "setup: old.h5"
-printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' >tet.obj
-sed -e '/^\[mesh\]/,/^$/c [mesh]\nshape = "obj"\npath = "tet.obj"\nnormals = "flat"\n' \
-  -e 's/^width = .*/width = 96/' -e 's/^height = .*/height = 96/' \
-  "$source_dir/data/scenes/tile.toml" >render.toml
+write_tet_render_scene "$source_dir" 96
 echo "the previous image" >old.exr
 echo "the previous table" >old.csv
 

@@ -85,6 +85,14 @@ void expect_within_factor(std::uint64_t estimate, std::uint64_t allocated) {
       << "estimated " << format_bytes(estimate) << ", allocated " << format_bytes(allocated);
 }
 
+// The estimate the run of `spec` is checked with, against what `run` allocates at its peak.
+template <typename Spec, typename Run>
+void expect_estimate_covers(const Spec& spec, Run run) {
+  const std::uint64_t estimate = transport_memory(transport_problem(spec), 1, false).bytes();
+  const std::uint64_t allocated = peak_of([&] { (void)run(spec); });
+  expect_within_factor(estimate, allocated);
+}
+
 TEST(MemoryEstimates, SimulationWithEveryTallySplitByOrder) {
   for (const int threads : {1, 2, 4}) {
     SimulationSpec spec;
@@ -95,9 +103,7 @@ TEST(MemoryEstimates, SimulationWithEveryTallySplitByOrder) {
     spec.run.photons = 400;
     spec.run.batches = 8;
     spec.run.threads = threads;
-    const std::uint64_t estimate = transport_memory(transport_problem(spec), 1, false).bytes();
-    const std::uint64_t allocated = peak_of([&] { (void)simulate(spec); });
-    expect_within_factor(estimate, allocated);
+    expect_estimate_covers(spec, [](const auto& s) { return simulate(s); });
   }
 }
 
@@ -109,9 +115,7 @@ TEST(MemoryEstimates, SimulationWithoutRadiance) {
   spec.run.photons = 200;
   spec.run.batches = 4;
   spec.run.threads = 2;
-  const std::uint64_t estimate = transport_memory(transport_problem(spec), 1, false).bytes();
-  const std::uint64_t allocated = peak_of([&] { (void)simulate(spec); });
-  expect_within_factor(estimate, allocated);
+  expect_estimate_covers(spec, [](const auto& s) { return simulate(s); });
 }
 
 TEST(MemoryEstimates, TrackLengthEstimatorWithItsCrossingLists) {
@@ -123,9 +127,7 @@ TEST(MemoryEstimates, TrackLengthEstimatorWithItsCrossingLists) {
   spec.run.photons = 200;
   spec.run.batches = 4;
   spec.run.threads = 3;
-  const std::uint64_t estimate = transport_memory(transport_problem(spec), 1, false).bytes();
-  const std::uint64_t allocated = peak_of([&] { (void)simulate(spec); });
-  expect_within_factor(estimate, allocated);
+  expect_estimate_covers(spec, [](const auto& s) { return simulate(s); });
 }
 
 TEST(MemoryEstimates, Searchlight) {
@@ -135,9 +137,7 @@ TEST(MemoryEstimates, Searchlight) {
   spec.run.photons = 200;
   spec.run.batches = 4;
   spec.run.threads = 2;
-  const std::uint64_t estimate = transport_memory(transport_problem(spec), 1, false).bytes();
-  const std::uint64_t allocated = peak_of([&] { (void)run_searchlight(spec); });
-  expect_within_factor(estimate, allocated);
+  expect_estimate_covers(spec, [](const auto& s) { return run_searchlight(s); });
 }
 
 }  // namespace
