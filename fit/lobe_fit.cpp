@@ -9,6 +9,7 @@
 #include <limits>
 #include <utility>
 
+#include "double_exponential_cost.hpp"
 #include "scatterlab/core/constants.hpp"
 
 namespace scatterlab::fit {
@@ -91,17 +92,6 @@ struct LobeResidual {
   bool operator()(const T* axis, const T* shape, T* residuals) const {
     return chi_residuals(*grid, *observations, typename Model::template Evaluator<T>(axis, shape),
                          residuals);
-  }
-};
-
-struct RidgeResidual {
-  const LobeGrid* grid;
-  const LobeObservations* observations;
-
-  template <typename T>
-  bool operator()(const T* axis, const T* shape, const T* ridge, T* residuals) const {
-    return chi_residuals(*grid, *observations,
-                         AnisotropicRidge::Evaluator<T>(axis, shape, ridge, *grid), residuals);
   }
 };
 
@@ -232,17 +222,8 @@ LobeFit solve(LobeModel model, const LobeGrid& grid, const LobeObservations& o,
       break;
     case LobeModel::dexp_paper:
     case LobeModel::dexp:
-      problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<LobeResidual<DoubleExponential>, ceres::DYNAMIC, 3, 3>(
-              new LobeResidual<DoubleExponential>{&grid, &o}, residuals),
-          nullptr, axis, shape);
-      break;
     case LobeModel::adexp:
-      problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<LobeResidual<AnisotropicDoubleExponential>,
-                                          ceres::DYNAMIC, 3, 4>(
-              new LobeResidual<AnisotropicDoubleExponential>{&grid, &o}, residuals),
-          nullptr, axis, shape);
+      problem.AddResidualBlock(new DoubleExponentialCost(grid, o, model), nullptr, axis, shape);
       break;
     case LobeModel::asg:
       problem.AddResidualBlock(
@@ -252,10 +233,8 @@ LobeFit solve(LobeModel model, const LobeGrid& grid, const LobeObservations& o,
           nullptr, axis, shape);
       break;
     case LobeModel::adexp_ridge:
-      problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<RidgeResidual, ceres::DYNAMIC, 3, 4, 7>(
-              new RidgeResidual{&grid, &o}, residuals),
-          nullptr, axis, shape, ridge);
+      problem.AddResidualBlock(new DoubleExponentialCost(grid, o, model), nullptr, axis, shape,
+                               ridge);
       break;
   }
   if (model == LobeModel::sg) {
