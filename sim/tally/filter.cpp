@@ -54,6 +54,12 @@ Filter exit_angle_filter(const UniformAxis& theta_o) {
           })};
 }
 
+Filter polar_angle_filter(const UniformAxis& psi, double radius) {
+  return {{"psi"}, {count(psi)}, per_bin(psi, [radius](double p0, double p1) {
+            return 2.0 * pi * radius * radius * (std::cos(p0) - std::cos(p1));
+          })};
+}
+
 Filter component_filter(std::size_t components) {
   return {{"component"}, {components}, std::vector<double>(components, 1.0)};
 }

@@ -81,6 +81,8 @@ Scorer::Scorer(const TallyAxes& axes, const TallyBook& book)
       exit_(book.offset(Score::exit)),
       exit_by_radius_(book.offset(Score::exit_by_radius)),
       exit_radiance_(book.offset(Score::exit_radiance)),
+      exit_by_polar_angle_(book.offset(Score::exit_by_polar_angle)),
+      reflected_at_entry_(book.offset(Score::reflected_at_entry)),
       absorbed_(book.offset(Score::absorbed)),
       absorbed_in_grid_(book.offset(Score::absorbed_in_grid)),
       absorbed_outside_grid_(book.offset(Score::absorbed_outside_grid)),
@@ -92,8 +94,8 @@ Scorer::Scorer(const TallyAxes& axes, const TallyBook& book)
   if ((absorbed_in_grid_ == absent) != (absorbed_outside_grid_ == absent)) {
     throw std::invalid_argument("Scorer: absorbed_in_grid and absorbed_outside_grid go together");
   }
-  fluence_only_ = fluence_ != absent && flux_ == absent && radiance_ == absent &&
-                  fluence_spherical_ == absent;
+  fluence_only_ =
+      fluence_ != absent && flux_ == absent && radiance_ == absent && fluence_spherical_ == absent;
   if (radiance_ != absent) {
     theta_binning_ = CosineBinning(axes.theta);
     phi_bins_ = axes.phi.bins;
@@ -104,6 +106,7 @@ Scorer::Scorer(const TallyAxes& axes, const TallyBook& book)
     }
   }
   if (exit_radiance_ != absent) exit_binning_ = CosineBinning(axes.theta_o);
+  if (exit_by_polar_angle_ != absent) polar_binning_ = CosineBinning(axes.psi);
 }
 
 std::vector<double> Scorer::make_crossing_scratch() const {

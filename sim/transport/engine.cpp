@@ -9,6 +9,7 @@
 #include "scatterlab/transport/half_space.hpp"
 #include "scatterlab/transport/infinite_medium.hpp"
 #include "scatterlab/transport/random_walk.hpp"
+#include "scatterlab/transport/sphere.hpp"
 
 namespace scatterlab {
 namespace {
@@ -53,6 +54,9 @@ struct Kernel {
       case GeometryKind::half_space:
         if (problem.eta == 1.0) return with_estimator(HalfSpace<false>(problem.eta), phase);
         return with_estimator(HalfSpace<true>(problem.eta), phase);
+      case GeometryKind::sphere:
+        if (problem.eta == 1.0) return with_estimator(Sphere<false>(problem.radius, 1.0), phase);
+        return with_estimator(Sphere<true>(problem.radius, problem.eta), phase);
     }
     throw std::invalid_argument("transport: unknown geometry");
   }

@@ -108,9 +108,9 @@ TransportProblem transport_problem(const SimulationSpec& given) {
   problem.albedo = spec.medium.albedo;
   problem.g = spec.medium.g;
   problem.geometry = GeometryKind::infinite;
-  problem.source.isotropic = spec.source == SourceKind::point;
+  problem.source.kind = spec.source == SourceKind::point ? Source::Kind::point : Source::Kind::beam;
   const Grid& grid = spec.grid;
-  problem.axes = TallyAxes{grid.r, grid.z, grid.theta, grid.phi, grid.fold_phi, grid.rho, {}};
+  problem.axes = TallyAxes{grid.r, grid.z, grid.theta, grid.phi, grid.fold_phi, grid.rho, {}, {}};
   problem.tallies = declare_tallies(spec);
   problem.split_by_order = spec.tallies.split_by_order;
   problem.estimator = spec.tallies.estimator;

@@ -20,6 +20,13 @@ inline Vec3 isotropic_direction(double u_cos, double u_phi) {
   return {s * phi.cos, s * phi.sin, z};
 }
 
+// Distance from `p` along unit `w` to the sphere |x| = radius, for p inside it or on it.
+inline double distance_to_sphere(const Vec3& p, const Vec3& w, double radius) {
+  const double b = p.dot(w);
+  const double c = p.squaredNorm() - radius * radius;
+  return -b + std::sqrt(std::max(0.0, b * b - c));
+}
+
 // Angle between two (not necessarily unit) vectors, accurate near 0 and pi.
 inline double angle_between(const Vec3& a, const Vec3& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));

@@ -15,9 +15,13 @@ enum class Score : std::size_t {
   radiance,           // r, z, direction (theta, phi)
   fluence_spherical,  // rho
   // Where a photon leaves the medium through its surface, a count:
-  exit,            // no filter: the total
-  exit_by_radius,  // r
-  exit_radiance,   // r, exit angle theta_o
+  exit,                 // no filter: the total
+  exit_by_radius,       // r
+  exit_radiance,        // r, exit angle theta_o
+  exit_by_polar_angle,  // on a sphere: psi, the exit point's angle from the lit pole
+  // Where a light's photon is reflected off the surface before entering (a sphere light), a
+  // count:
+  reflected_at_entry,
   // Where a photon's walk ends, a count (or, for the depth, z):
   absorbed,               // anywhere
   absorbed_in_grid,       // inside the (r, z) grid

@@ -12,6 +12,7 @@
 
 #include "scatterlab/core/frame.hpp"
 #include "scatterlab/tally/angle_binning.hpp"
+#include "scatterlab/tally/surface_exit.hpp"
 #include "scatterlab/tally/tally_axes.hpp"
 #include "scatterlab/tally/tally_book.hpp"
 
@@ -27,18 +28,25 @@ class Scorer {
   // Collision estimator: a photon travelling along `direction` collides at `position` after
   // `order` scatterings. Inlined into the walk, where the branches on absent scores fold into
   // one predictable test (a call per collision costs more than the scoring).
-  [[gnu::always_inline]] void collision(double* buffer, const Vec3& position, const Vec3& direction, int order) const;
+  [[gnu::always_inline]] void collision(double* buffer, const Vec3& position, const Vec3& direction,
+                                        int order) const;
 
   // Track-length estimator: the flight from `start` along `direction` for `length` mfp.
   void flight(double* buffer, std::vector<double>& crossings, const Vec3& start,
               const Vec3& direction, double length, int order) const;
 
-  // A photon leaves through the surface at (x, y) after `order` scatterings, at cos_outside
-  // from the outward normal on the outside (after refraction).
-  void exit(double* buffer, double x, double y, double cos_outside, int order) const {
+  // A photon leaves through the surface at `where` after `order` scatterings
+  // (surface_exit.hpp).
+  void exit(double* buffer, const SurfaceExit& where, int order) const {
     const std::size_t block = split_ ? book_.order_block(order) : 0;
     if (exit_ != absent) add(buffer, exit_, block, 1.0);
+    if (exit_by_polar_angle_ != absent) {
+      add(buffer,
+          exit_by_polar_angle_ + static_cast<std::size_t>(polar_binning_.bin(where.cos_polar)),
+          block, 1.0);
+    }
     if (exit_by_radius_ == absent && exit_radiance_ == absent) return;
+    const double x = where.x, y = where.y, cos_outside = where.cos_outside;
     const int ir = axes_.r.index(std::sqrt(x * x + y * y));
     if (ir < 0) return;
     const auto ring = static_cast<std::size_t>(ir);
@@ -57,6 +65,11 @@ class Scorer {
       buffer[in_grid(position) ? absorbed_in_grid_ : absorbed_outside_grid_] += 1.0;
     }
     if (absorption_depth_ != absent) buffer[absorption_depth_] += position.z();
+  }
+
+  // A light's photon reflected off the surface before it entered.
+  void reflection_at_entry(double* buffer) const {
+    if (reflected_at_entry_ != absent) buffer[reflected_at_entry_] += 1.0;
   }
 
   void escape(double* buffer) const {
@@ -106,7 +119,7 @@ class Scorer {
   bool fluence_only_;  // of the volume scores, only the fluence
   // Offsets of each score's cells (TallyBook::offset), absent when no tally declares it.
   std::size_t fluence_, flux_, radiance_, fluence_spherical_;
-  std::size_t exit_, exit_by_radius_, exit_radiance_;
+  std::size_t exit_, exit_by_radius_, exit_radiance_, exit_by_polar_angle_, reflected_at_entry_;
   std::size_t absorbed_, absorbed_in_grid_, absorbed_outside_grid_, absorption_depth_, escaped_;
   // Strides of the row-major arrays [r][z][theta][phi] and [r][theta_o].
   std::size_t z_bins_, theta_bins_, theta_o_bins_;
@@ -114,11 +127,12 @@ class Scorer {
   CosineBinning theta_binning_;
   CosineBinning phi_binning_;  // over [0, pi]
   CosineBinning exit_binning_;
+  CosineBinning polar_binning_;         // psi on a sphere
   std::vector<double> phi_cotangents_;  // cot of the interior edges of the [0, pi] phi axis
 };
 
-[[gnu::always_inline]] inline void Scorer::collision(double* buffer, const Vec3& position, const Vec3& direction,
-                              int order) const {
+[[gnu::always_inline]] inline void Scorer::collision(double* buffer, const Vec3& position,
+                                                     const Vec3& direction, int order) const {
   const std::size_t block = split_ ? book_.order_block(order) : 0;
   const double r2 = position.x() * position.x() + position.y() * position.y();
   if (fluence_only_) {  // the half-space's one volume tally: a cell index and an add

@@ -19,6 +19,7 @@ struct TallyAxes {
   bool fold_phi = false;
   UniformAxis rho;      // distance from the source, mfp
   UniformAxis theta_o;  // exit angle, outside the medium
+  UniformAxis psi;      // on a sphere: the exit point's polar angle from the lit pole
 };
 
 }  // namespace scatterlab

@@ -18,7 +18,7 @@
 #include "scatterlab/core/frame.hpp"
 #include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/core/random.hpp"
-#include "scatterlab/transport/surface_exit.hpp"
+#include "scatterlab/tally/surface_exit.hpp"
 
 namespace scatterlab {
 

@@ -4,7 +4,8 @@
 // collision (so the number of collisions is geometric, §4.1), scattering by the phase function,
 // and whatever the geometry does where a flight meets its surface.
 //
-// Specialised at compile time on the geometry (infinite_medium.hpp, half_space.hpp), the phase
+// Specialised at compile time on the geometry (infinite_medium.hpp, half_space.hpp, sphere.hpp),
+// the phase
 // function and the volume estimator, so that the loop holds no isotropic/HG branch, no
 // collision/track-length branch, and no boundary code where the geometry has no surface. One
 // Philox call per event (free path, absorption, cos theta, azimuth); no allocation.
@@ -23,21 +24,14 @@
 #include "scatterlab/core/frame.hpp"
 #include "scatterlab/core/random.hpp"
 #include "scatterlab/tally/scorer.hpp"
+#include "scatterlab/tally/surface_exit.hpp"
 #include "scatterlab/transport/source.hpp"
-#include "scatterlab/transport/surface_exit.hpp"
 
 namespace scatterlab {
 
 // How the volume tallies are scored: at each collision, along each flight, or not at all (a
 // run with surface tallies alone).
 enum class VolumeEstimator { none, collision, track_length };
-
-// Distance from `p` along unit `w` to the sphere |x| = radius, for p inside it.
-inline double distance_to_sphere(const Vec3& p, const Vec3& w, double radius) {
-  const double b = p.dot(w);
-  const double c = p.squaredNorm() - radius * radius;
-  return -b + std::sqrt(std::max(0.0, b * b - c));
-}
 
 template <class Geometry, class Phase, VolumeEstimator estimator>
 class RandomWalk {
@@ -72,8 +66,11 @@ class RandomWalk {
     std::uint64_t scatterings = 0;
     for (std::uint64_t photon = first; photon < last; ++photon) {
       PhotonRandom random(seed_, photon);
-      Vec3 position = Vec3::Zero();
-      Vec3 direction = source_.launch(random);
+      Vec3 position = Vec3::Zero(), direction = Vec3::UnitZ();
+      if (!source_.launch(random, position, direction)) {
+        scorer_.reflection_at_entry(buffer);
+        continue;
+      }
       for (int order = 0;; ++order) {
         // One Philox call per event: free path, absorption, cos theta, phi.
         const auto u = random.next4();
@@ -82,7 +79,7 @@ class RandomWalk {
         if constexpr (Geometry::has_surface) {
           SurfaceExit exit;
           if (geometry_.leaves(position, direction, next, flight, random, exit)) {
-            scorer_.exit(buffer, exit.x, exit.y, exit.cos_outside, order);
+            scorer_.exit(buffer, exit, order);
             break;
           }
         }

@@ -19,13 +19,15 @@ namespace scatterlab {
 enum class GeometryKind {
   infinite,    // no surface (infinite_medium.hpp)
   half_space,  // z > 0 behind a smooth interface at z = 0 (half_space.hpp)
+  sphere,      // |x| < radius behind a smooth interface (sphere.hpp)
 };
 
 struct TransportProblem {
   double albedo = 0.5;
   double g = 0.0;  // Henyey-Greenstein mean cosine; 0 samples isotropically
   GeometryKind geometry = GeometryKind::infinite;
-  double eta = 1.0;  // n_medium / n_outside at the surface, where there is one
+  double eta = 1.0;     // n_medium / n_outside at the surface, where there is one
+  double radius = 1.0;  // of the sphere, mfp
   Source source;
   TallyAxes axes;
   std::vector<TallyDeclaration> tallies;

@@ -4,8 +4,9 @@
 namespace scatterlab {
 
 struct SurfaceExit {
-  double x = 0.0, y = 0.0;   // on the surface, about the entry point
+  double x = 0.0, y = 0.0;   // on the surface, about the entry point (the beam axis)
   double cos_outside = 1.0;  // from the outward normal, outside (after refraction)
+  double cos_polar = 1.0;    // on a sphere: cos psi, psi the angle from the lit pole (sphere.hpp)
 };
 
 }  // namespace scatterlab

@@ -1,0 +1,55 @@
+#pragma once
+// The lit sphere (Bitterli 2013, §3.2; Vavassori §4.3): a sphere of radius R filled with the
+// medium, behind a smooth interface of relative index eta, lit by a directional light travelling
+// along +z (the reference Bitterli holds analytic BSSRDFs against) or by a pencil beam entering at
+// the lit pole along the inward normal (the searchlight on a curved surface). What the run is
+// asked to do, as plain structs validated once, and the run itself.
+//
+// Tallies, per unit power that meets the sphere: the radiant exitance M(psi) on the surface
+// against the angle psi from the lit pole (0, 0, -R), the total power that leaves, the power
+// absorbed and the light reflected where it meets the surface; each photon ends in exactly one of
+// them, so they sum to 1 photon by photon. Lengths (radius) are in medium.length_unit, mean free
+// paths by default; transport runs in mfp (length_units.hpp converts).
+
+#include <numbers>
+#include <optional>
+#include <string>
+
+#include "scatterlab/core/medium.hpp"
+#include "scatterlab/tally/axis.hpp"
+#include "scatterlab/transport/engine.hpp"
+#include "scatterlab/transport/run_settings.hpp"
+
+namespace scatterlab {
+
+enum class SphereLight {
+  directional,  // uniform over the sphere's shadow disk, along +z (Bitterli §3.2)
+  pole_beam,    // a pencil beam at the lit pole, along the inward normal +z
+};
+
+struct LitSphereSpec {
+  Medium medium{0.99, 1.0, 0.0, "mfp"};
+  double radius = 1.0;  // in medium.length_unit
+  double eta = 1.3;     // n_medium / n_outside, in [min_eta, max_eta] (searchlight.hpp)
+  SphereLight light = SphereLight::directional;
+  UniformAxis psi{0.0, std::numbers::pi, 36};  // exit point's angle from the lit pole
+  bool split_by_order = true;                  // siblings _unscattered, _single, _multiple
+  RunSettings run{1'000'000, 64, 1, 0};
+
+  // Throws InputError naming the first bad field and what it accepts.
+  void validate() const;
+};
+
+// What shapes the tallies: equal for a run and its resumption (run_settings.hpp).
+std::string fingerprint(const LitSphereSpec& spec);
+
+// The engine's problem for this spec: the sphere geometry, the light, the declared tallies.
+TransportProblem transport_problem(const LitSphereSpec& spec);
+
+// Runs the spec on the transport engine; only the root rank gets tallies.
+TransportOutput run_lit_sphere(const LitSphereSpec& spec, const ProgressCallback& progress = {},
+                               const RunControl& control = {});
+
+std::string to_string(SphereLight light);
+
+}  // namespace scatterlab

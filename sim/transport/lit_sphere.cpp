@@ -1,0 +1,143 @@
+#include "scatterlab/transport/lit_sphere.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/core/fresnel.hpp"
+#include "scatterlab/tally/filter.hpp"
+#include "scatterlab/transport/length_units.hpp"
+#include "scatterlab/transport/searchlight.hpp"
+
+namespace scatterlab {
+
+namespace {
+
+std::string got(double value) {
+  return fmt::format("got {}", value);
+}
+
+// The sphere's tallies, each declared once; all but the light reflected at entry by order.
+std::vector<TallyDeclaration> declare_tallies(const LitSphereSpec& spec, double radius_mfp,
+                                              double pole_reflectance) {
+  std::vector<TallyDeclaration> tallies;
+  tallies.push_back({"exitance",
+                     Score::exit_by_polar_angle,
+                     {polar_angle_filter(spec.psi, radius_mfp)},
+                     "W mfp^-2 per W incident",
+                     "radiant exitance M(psi) on the sphere: power leaving per unit area of the "
+                     "zone at angle psi from the lit pole (0, 0, -R), zone average",
+                     true});
+  tallies.push_back({"exited",
+                     Score::exit,
+                     {},
+                     "W per W incident",
+                     "total power leaving the sphere after it entered (any point, any angle)",
+                     true});
+  tallies.push_back(
+      {"absorbed", Score::absorbed, {}, "W per W incident", "power absorbed in the sphere"});
+  if (spec.light == SphereLight::directional) {
+    tallies.push_back({"reflected_at_entry",
+                       Score::reflected_at_entry,
+                       {},
+                       "W per W incident",
+                       "light reflected where it meets the sphere (Fresnel, each photon's own "
+                       "angle of incidence)"});
+  } else {
+    tallies.push_back({"reflected_at_entry",
+                       Score::exact,
+                       {},
+                       "W per W incident",
+                       "Fresnel reflection of the beam at the pole (exact: no standard error)",
+                       false,
+                       pole_reflectance});
+  }
+  return tallies;
+}
+
+}  // namespace
+
+std::string to_string(SphereLight light) {
+  return light == SphereLight::directional ? "directional" : "pole_beam";
+}
+
+void LitSphereSpec::validate() const {
+  medium.validate();
+  check_length_unit(medium);
+  if (!(radius > 0.0) || !std::isfinite(radius)) {
+    throw InputError("sphere.radius", got(radius), "a finite number > 0 (in medium.length_unit)");
+  }
+  const double radius_mfp = radius * mfp_per_length_unit(medium);
+  if (!(radius_mfp >= 1e-6 && radius_mfp <= 1e6)) {
+    throw InputError("sphere.radius", fmt::format("is {} mfp", radius_mfp),
+                     "a radius of 1e-6 to 1e6 mean free paths");
+  }
+  if (!(eta >= min_eta && eta <= max_eta)) {
+    throw InputError("surface.eta", got(eta),
+                     "a number in [0.1, 10] (n_medium / n_outside; 1 for no interface)");
+  }
+  if (psi.min != 0.0 || std::abs(psi.max - std::numbers::pi) > 1e-12) {
+    throw InputError("grid.psi", fmt::format("spans [{}, {}]", psi.min, psi.max),
+                     "[0, pi]: the angle from the lit pole");
+  }
+  if (psi.bins < 1 || psi.bins > 100'000) {
+    throw InputError("grid.psi.bins", fmt::format("got {}", psi.bins), "an integer in [1, 100000]");
+  }
+  check_run_settings(run);
+  // Every walk ends inside the sphere: by absorption, or by leaving it after about R^2 events.
+  check_run_length(run, medium.albedo, radius_mfp);
+}
+
+std::string fingerprint(const LitSphereSpec& spec) {
+  const Medium& m = spec.medium;
+  return fingerprint_of(fmt::format(
+      "lit_sphere|medium {:a} {:a} {:a} {}|radius {:a}|eta {:a}|light {}|psi {:a},{:a},{}|split "
+      "{}|run {} {} {}",
+      m.albedo, m.g, m.sigma_t, m.length_unit, spec.radius, spec.eta, to_string(spec.light),
+      spec.psi.min, spec.psi.max, spec.psi.bins, spec.split_by_order, spec.run.photons,
+      spec.run.batches, spec.run.seed));
+}
+
+TransportProblem transport_problem(const LitSphereSpec& spec) {
+  const double radius = spec.radius * mfp_per_length_unit(spec.medium);
+  TransportProblem problem;
+  problem.albedo = spec.medium.albedo;
+  problem.g = spec.medium.g;
+  problem.geometry = GeometryKind::sphere;
+  problem.eta = spec.eta;
+  problem.radius = radius;
+  // The beam meets the pole along the normal: no bending, F(1) reflected, 1 - F(1) enters and
+  // carries every other tally (as the searchlight's beam does). The directional light's
+  // reflection depends on where each photon meets the sphere, so it is counted photon by photon.
+  const double pole_reflectance = fresnel_dielectric_reflectance(1.0, spec.eta);
+  if (spec.light == SphereLight::directional) {
+    problem.source.kind = Source::Kind::sphere_light;
+    problem.source.sphere_radius = radius;
+    problem.source.eta = spec.eta;
+  } else {
+    problem.source.kind = Source::Kind::beam;
+    problem.source.position = Vec3(0.0, 0.0, -radius);
+    problem.source.direction = Vec3::UnitZ();
+    problem.photon_power = 1.0 - pole_reflectance;
+  }
+  problem.axes.psi = spec.psi;
+  problem.tallies = declare_tallies(spec, radius, pole_reflectance);
+  problem.split_by_order = spec.split_by_order;
+  problem.estimator = Estimator::collision;
+  problem.run = spec.run;
+  problem.run.escape_radius = std::numeric_limits<double>::infinity();
+  problem.size_fields = "grid.psi.bins, run.threads";
+  return problem;
+}
+
+TransportOutput run_lit_sphere(const LitSphereSpec& spec, const ProgressCallback& progress,
+                               const RunControl& control) {
+  spec.validate();
+  TransportOutput out = transport(transport_problem(spec), progress, control);
+  tallies_to_length_unit(out.tallies, spec.medium);  // back from mfp (length_units.hpp)
+  return out;
+}
+
+}  // namespace scatterlab
