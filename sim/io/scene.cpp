@@ -34,7 +34,8 @@ class SceneReader : public TomlReader {
     if (const auto* geometry = subtable(root, "geometry", "")) {
       check_keys(*geometry, "geometry", {"type"});
       read_geometry_type(*geometry, "infinite",
-                         "\"infinite\" (a half-space scene runs with scatterlab searchlight)");
+                         "\"infinite\" or \"sphere\" (a half-space scene runs with scatterlab "
+                         "searchlight)");
     }
     if (const auto* medium = subtable(root, "medium", "")) {
       scene.material = read_medium(*medium, spec.medium, spec.material, nullptr);
@@ -100,6 +101,54 @@ class SceneReader : public TomlReader {
     if (const auto* tallies = subtable(root, "tallies", "")) {
       check_keys(*tallies, "tallies", {"fluence"});
       if (const auto on = boolean(*tallies, "fluence", "tallies")) spec.tallies.fluence = *on;
+    }
+    if (const auto* run = subtable(root, "run", "")) read_run(*run, spec.run);
+    scene.output_path = read_output(root);
+    if (validation_ == Validation::on_read) spec.validate();
+    return scene;
+  }
+
+  // The lit sphere's scene (scene.hpp): [geometry] type = "sphere", radius, eta; [source] type;
+  // [grid] psi; [tallies] split_by_order; the medium, run and output as above.
+  LitSphereScene read_lit_sphere(const toml::table& root) {
+    check_keys(root, "", {"geometry", "medium", "source", "grid", "tallies", "run", "output"});
+    LitSphereScene scene;
+    LitSphereSpec& spec = scene.spec;
+    if (const auto* medium = subtable(root, "medium", "")) {
+      scene.material = read_medium(*medium, spec.medium, spec.material, &spec.eta);
+    }
+    if (const toml::table* geometry = subtable(root, "geometry", "")) {
+      check_keys(*geometry, "geometry", {"type", "radius", "eta"});
+      read_geometry_type(*geometry, "sphere", "\"sphere\"");
+      if (const auto radius = number(*geometry, "radius", "geometry",
+                                     "a finite number > 0 (in medium.length_unit)")) {
+        spec.radius = *radius;
+      }
+      if (const auto eta = number(*geometry, "eta", "geometry", "a number in [0.1, 10]")) {
+        spec.eta = *eta;
+        scene.eta_given = true;
+      }
+    }
+    if (const auto* source = subtable(root, "source", "")) {
+      check_keys(*source, "source", {"type"});
+      const std::string_view accepted = "\"directional\" or \"pole_beam\"";
+      if (const auto type = string(*source, "type", "source", accepted)) {
+        if (*type == "directional") {
+          spec.light = SphereLight::directional;
+        } else if (*type == "pole_beam") {
+          spec.light = SphereLight::pole_beam;
+        } else {
+          wrong_type(*source->get("type"), "source.type", accepted);
+        }
+      }
+    }
+    if (const auto* grid = subtable(root, "grid", "")) {
+      check_keys(*grid, "grid", {"psi"});
+      read_axis(*grid, "psi", {"bins"}, spec.psi);
+    }
+    if (const auto* tallies = subtable(root, "tallies", "")) {
+      check_keys(*tallies, "tallies", {"split_by_order"});
+      if (const auto on = boolean(*tallies, "split_by_order", "tallies")) spec.split_by_order = *on;
     }
     if (const auto* run = subtable(root, "run", "")) read_run(*run, spec.run);
     scene.output_path = read_output(root);
@@ -424,6 +473,23 @@ SearchlightScene parse_searchlight_scene(std::string_view toml_text, const std::
 
 SearchlightScene load_searchlight_scene(const std::filesystem::path& path, Validation validation) {
   return parse_searchlight_scene(read_text(path), path.string(), validation);
+}
+
+LitSphereScene parse_lit_sphere_scene(std::string_view toml_text, const std::string& origin,
+                                      Validation validation) {
+  return SceneReader(origin, validation).read_lit_sphere(parse_toml(toml_text, origin));
+}
+
+LitSphereScene load_lit_sphere_scene(const std::filesystem::path& path, Validation validation) {
+  return parse_lit_sphere_scene(read_text(path), path.string(), validation);
+}
+
+std::string scene_geometry(const std::filesystem::path& path) {
+  const toml::table root = parse_toml(read_text(path), path.string());
+  if (const toml::table* geometry = root["geometry"].as_table()) {
+    if (const auto type = (*geometry)["type"].value<std::string>()) return *type;
+  }
+  return "infinite";
 }
 
 }  // namespace scatterlab

@@ -157,6 +157,20 @@ void write_searchlight_parameters(hdf5::Group& root, const SearchlightSpec& spec
   parameters.write_int64_attribute("threads", spec.run.threads);
 }
 
+void write_lit_sphere_parameters(hdf5::Group& root, const LitSphereSpec& spec) {
+  hdf5::Group parameters = root.create_group("parameters");
+  parameters.write_string_attribute("geometry", "sphere");
+  parameters.write_string_attribute("source", to_string(spec.light));
+  parameters.write_double_attribute("radius", spec.radius);
+  parameters.write_double_attribute("eta", spec.eta);
+  write_medium(parameters, spec.medium);
+  write_material(parameters, spec.material);
+  write_run(parameters, spec.run);
+  parameters.write_string_attribute("estimator", "collision");
+  parameters.write_bool_attribute("split_by_order", spec.split_by_order);
+  parameters.write_int64_attribute("threads", spec.run.threads);
+}
+
 void write_axis(hdf5::Group& grid, const char* name, const UniformAxis& axis,
                 const std::string& units) {
   const std::vector<double> edges = axis.edges();
@@ -479,6 +493,23 @@ void write_searchlight_file(const std::filesystem::path& path, const Searchlight
     write_tallies(file.root(), tallies);
     write_figures_of_merit(file.root(), tallies, provenance.wall_seconds);
     write_models(file.root(), models);
+    file.close();
+  }
+  output.commit();
+}
+
+void write_lit_sphere_file(const std::filesystem::path& path, const LitSphereSpec& spec,
+                           const std::vector<TallyResult>& tallies, const Provenance& provenance) {
+  AtomicOutput output(path);
+  check_tallies(tallies);
+  {
+    hdf5::File file = hdf5::File::create(output.temporary_path());
+    write_provenance(file.root(), provenance, spec.run.batches, fingerprint(spec));
+    write_lit_sphere_parameters(file.root(), spec);
+    hdf5::Group grid = file.root().create_group("grid");
+    write_axis(grid, "psi", spec.psi, "rad");
+    write_tallies(file.root(), tallies);
+    write_figures_of_merit(file.root(), tallies, provenance.wall_seconds);
     file.close();
   }
   output.commit();

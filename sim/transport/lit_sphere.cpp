@@ -67,15 +67,15 @@ void LitSphereSpec::validate() const {
   medium.validate();
   check_length_unit(medium);
   if (!(radius > 0.0) || !std::isfinite(radius)) {
-    throw InputError("sphere.radius", got(radius), "a finite number > 0 (in medium.length_unit)");
+    throw InputError("geometry.radius", got(radius), "a finite number > 0 (in medium.length_unit)");
   }
   const double radius_mfp = radius * mfp_per_length_unit(medium);
   if (!(radius_mfp >= 1e-6 && radius_mfp <= 1e6)) {
-    throw InputError("sphere.radius", fmt::format("is {} mfp", radius_mfp),
+    throw InputError("geometry.radius", fmt::format("is {} mfp", radius_mfp),
                      "a radius of 1e-6 to 1e6 mean free paths");
   }
   if (!(eta >= min_eta && eta <= max_eta)) {
-    throw InputError("surface.eta", got(eta),
+    throw InputError("geometry.eta", got(eta),
                      "a number in [0.1, 10] (n_medium / n_outside; 1 for no interface)");
   }
   if (psi.min != 0.0 || std::abs(psi.max - std::numbers::pi) > 1e-12) {

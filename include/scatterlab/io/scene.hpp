@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "scatterlab/io/material_presets.hpp"
+#include "scatterlab/transport/lit_sphere.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/transport/simulation.hpp"
 
@@ -45,8 +46,8 @@ namespace scatterlab {
 enum class Validation { on_read, by_caller };
 
 struct Scene {
-  SimulationSpec spec;                     // validated unless read with Validation::by_caller
-  std::optional<std::string> output_path;  // [output] path, as written; the CLI resolves it
+  SimulationSpec spec;                      // validated unless read with Validation::by_caller
+  std::optional<std::string> output_path;   // [output] path, as written; the CLI resolves it
   std::optional<MaterialRequest> material;  // [medium] material and its keys, as written
 };
 
@@ -73,8 +74,8 @@ struct SweepPoint {
 
 // A sweep is one run and one output file per point, all planned (and every memory estimate
 // checked) before the first run starts, and a directory of a thousand files is already more than
-// one study reads. Past this many, a study is split into several sweep files. The count is taken from the lengths
-// of the lists before any point is made.
+// one study reads. Past this many, a study is split into several sweep files. The count is taken
+// from the lengths of the lists before any point is made.
 inline constexpr std::uint64_t max_sweep_points = 1'000;
 
 // Throws InputError naming the swept keys when their lists make more than max_sweep_points.
@@ -94,8 +95,8 @@ std::vector<SweepPoint> load_sweep(const std::filesystem::path& path,
 //   [tallies]  fluence = bool
 //   [run]      as above;  [output] path
 struct SearchlightScene {
-  SearchlightSpec spec;                    // validated unless read with Validation::by_caller
-  std::optional<std::string> output_path;  // [output] path, as written
+  SearchlightSpec spec;                     // validated unless read with Validation::by_caller
+  std::optional<std::string> output_path;   // [output] path, as written
   std::optional<MaterialRequest> material;  // [medium] material and its keys, as written
   bool eta_given = false;                   // geometry.eta or surface.eta in the file
 };
@@ -104,5 +105,29 @@ SearchlightScene parse_searchlight_scene(std::string_view toml_text, const std::
                                          Validation validation = Validation::on_read);
 SearchlightScene load_searchlight_scene(const std::filesystem::path& path,
                                         Validation validation = Validation::on_read);
+
+// The lit sphere's scene (scatterlab simulate on a scene whose geometry.type is "sphere";
+// data/scenes/lit-sphere.toml), as strict as the above:
+//   [geometry] type = "sphere", radius (in medium.length_unit), eta = n_medium / n_outside
+//   [medium]   as above; a material brings its table's eta unless geometry.eta is given
+//   [source]   type = "directional" | "pole_beam"
+//   [grid]     psi = { bins }       (the angle from the lit pole, over [0, pi])
+//   [tallies]  split_by_order = bool
+//   [run]      photons, batches, seed, threads;  [output] path
+struct LitSphereScene {
+  LitSphereSpec spec;                       // validated unless read with Validation::by_caller
+  std::optional<std::string> output_path;   // [output] path, as written
+  std::optional<MaterialRequest> material;  // [medium] material and its keys, as written
+  bool eta_given = false;                   // geometry.eta in the file
+};
+
+LitSphereScene parse_lit_sphere_scene(std::string_view toml_text, const std::string& origin,
+                                      Validation validation = Validation::on_read);
+LitSphereScene load_lit_sphere_scene(const std::filesystem::path& path,
+                                     Validation validation = Validation::on_read);
+
+// The scene's geometry.type ("infinite" when it gives none), for a command that runs more than
+// one; the file's other errors are left to its reader.
+std::string scene_geometry(const std::filesystem::path& path);
 
 }  // namespace scatterlab

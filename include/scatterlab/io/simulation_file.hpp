@@ -13,7 +13,8 @@
 //                            photons, batches, seed, estimator, escape_radius (when finite),
 //                            split_by_order, threads
 //   /grid/{r,z,theta,phi[,rho]}   bin edges, attr units (the length unit, "mfp" by default, or
-//                            "rad"); attr phi_folded on /grid
+//                            "rad"); attr phi_folded on /grid (the half-space's and the
+//                            sphere's grids are below)
 //   /parameters        with a measured material (io/material_presets.hpp) also: material,
 //                            material_table, material_citation, channel, material_note
 //   /tallies/<name>    attrs units, description, dims ("r,z,theta,phi"; "" for a scalar)
@@ -34,6 +35,7 @@
 
 #include "scatterlab/tally/tally_result.hpp"
 #include "scatterlab/transport/engine.hpp"
+#include "scatterlab/transport/lit_sphere.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/transport/simulation.hpp"
 
@@ -101,6 +103,13 @@ void write_simulation_file(const std::filesystem::path& path, const SimulationSp
 void write_searchlight_file(const std::filesystem::path& path, const SearchlightSpec& spec,
                             const std::vector<TallyResult>& tallies, const Provenance& provenance,
                             const std::vector<ModelResult>& models = {});
+
+// The same file for the lit sphere (transport/lit_sphere.hpp): /parameters adds geometry =
+// "sphere", source (directional or pole_beam), radius and eta; /grid holds psi, the angle of a
+// point of the surface from the lit pole; the tallies are those declared in
+// sim/transport/lit_sphere.cpp.
+void write_lit_sphere_file(const std::filesystem::path& path, const LitSphereSpec& spec,
+                           const std::vector<TallyResult>& tallies, const Provenance& provenance);
 
 // What `scatterlab info FILE` reports, read back from a file.
 struct AxisSummary {

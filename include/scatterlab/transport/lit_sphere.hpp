@@ -35,6 +35,7 @@ struct LitSphereSpec {
   UniformAxis psi{0.0, std::numbers::pi, 36};  // exit point's angle from the lit pole
   bool split_by_order = true;                  // siblings _unscattered, _single, _multiple
   RunSettings run{1'000'000, 64, 1, 0};
+  std::optional<MaterialOrigin> material;  // set when the medium came from a measured table
 
   // Throws InputError naming the first bad field and what it accepts.
   void validate() const;

@@ -1,0 +1,139 @@
+#include "lit_sphere_scene.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <exception>
+#include <optional>
+#include <string_view>
+
+#include "prepare_outputs.hpp"
+#include "progress_reporter.hpp"
+#include "run_figures.hpp"
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/io/output_plan.hpp"
+#include "scatterlab/io/scene.hpp"
+#include "scatterlab/io/simulation_file.hpp"
+#include "scatterlab/tally/scalar_estimate.hpp"
+
+namespace scatterlab::cli {
+namespace {
+
+// simulate's flags that mean something for a sphere; any other given is refused.
+constexpr std::array<std::string_view, 18> kSphereFlags = {
+    "SCENE",         "--scene",        "--out",        "--albedo",
+    "--g",           "--sigma-t",      "--material",   "--channel",
+    "--length-unit", "--photons",      "--batches",    "--seed",
+    "--threads",     "--split-orders", "--checkpoint", "--checkpoint-interval",
+    "--resume",      "--log-interval"};
+
+void refuse_other_flags(const CLI::App& command, const std::string& scene) {
+  for (const CLI::Option* option : command.get_options()) {
+    if (option->count() == 0) continue;
+    const std::string name = option->get_name();
+    if (name == "--memory-limit" || name == "--help") continue;
+    if (std::find(kSphereFlags.begin(), kSphereFlags.end(), name) != kSphereFlags.end()) continue;
+    throw InputError(name,
+                     fmt::format("is not for a sphere scene ({} has geometry.type = "
+                                 "\"sphere\"; set the sphere in the file)",
+                                 scene),
+                     "the medium's flags, --photons, --batches, --seed, --threads, "
+                     "--split-orders, --out, the checkpoint flags and --log-interval");
+  }
+}
+
+LitSphereSpec sphere_spec(const CLI::App& command, const SphereFlags& flags,
+                          const LitSphereScene& scene) {
+  auto given = [&command](const char* flag) { return command.get_option(flag)->count() > 0; };
+  LitSphereSpec spec = scene.spec;
+  const std::optional<double> material_eta =
+      apply_medium_options(command, flags.medium, flags.albedo, flags.g, flags.sigma_t,
+                           scene.material, spec.medium, spec.material);
+  // A material brings its table's index unless the scene gives one.
+  if (material_eta && !scene.eta_given) spec.eta = *material_eta;
+  if (given("--split-orders")) spec.split_by_order = flags.split_orders;
+  apply_run_options(command, flags.run, spec.run);
+  spec.validate();
+  return spec;
+}
+
+void print_summary(const LitSphereSpec& spec, const TransportOutput& out, const std::string& path) {
+  fmt::print("scatterlab simulate: sphere of radius {} {}, {} light, albedo {}, g {}, eta {}\n",
+             spec.radius, spec.medium.length_unit, to_string(spec.light), spec.medium.albedo,
+             spec.medium.g, spec.eta);
+  if (spec.material) {
+    fmt::print("  material {} ({}), {} channel\n", spec.material->name, spec.material->library,
+               spec.material->channel);
+  }
+  print_run_time(out);
+  // Each photon ends in exactly one of these: they sum to 1 photon by photon.
+  std::string energy = "  energy per W incident:";
+  double total = 0.0;
+  for (const char* name : {"reflected_at_entry", "exited", "absorbed"}) {
+    const ScalarEstimate value = scalar_estimate(out.tallies, name);
+    energy += fmt::format(" {} {},", name, estimate_text(value));
+    total += value.mean;
+  }
+  fmt::print("{} total {:.6f}\n", energy, total);
+  print_figures_of_merit(out, {"exited", "absorbed", "exitance"});
+  fmt::print("  wrote {}: exitance [{}] against the angle from the lit pole\n", path,
+             spec.psi.bins);
+}
+
+}  // namespace
+
+int run_lit_sphere_scene(CLI::App& command, const SphereFlags& flags,
+                         const LongRunOptions& long_run_options, double log_interval,
+                         const std::string& command_line, World& world) {
+  refuse_other_flags(command, flags.scene);
+  const LitSphereScene scene = load_lit_sphere_scene(flags.scene, Validation::on_read);
+  LitSphereSpec spec = sphere_spec(command, flags, scene);
+  const bool out_given = command.get_option("--out")->count() > 0;
+  const std::filesystem::path output =
+      out_given ? flags.out : scene.output_path.value_or("lit-sphere.h5");
+  const std::string output_field = out_given || !scene.output_path ? "--out" : "output.path";
+  check_transport_memory(transport_problem(spec), world.size(), long_run_options.resume);
+
+  OutputPlan plan;
+  plan.input("--scene", flags.scene);
+  plan.output_file(output_field, output);
+  plan.output_file("--checkpoint", checkpoint_path(long_run_options, output));
+  // As in every run: the root checks and makes the outputs, and every rank learns the outcome.
+  std::exception_ptr failure;
+  try {
+    prepare_outputs(plan, world.is_root());
+    if (world.is_root()) plan.make_output_directories();
+  } catch (const InputError&) {
+    failure = std::current_exception();
+  }
+  const bool ready = world.communicator().broadcast_from_root(failure ? 0 : 1) != 0;
+  if (failure) std::rethrow_exception(failure);
+  if (!ready) return 2;
+
+  const bool root = world.is_root();
+  LongRun long_run(long_run_options, output, fingerprint(spec), world.communicator());
+  if (root && long_run.resumed_batches() > 0) {
+    fmt::print("scatterlab simulate: resuming after batch {} of {} from {}\n",
+               long_run.resumed_batches(), spec.run.batches, long_run.checkpoint_path().string());
+  }
+  ProgressReporter reporter("simulate", "batches", log_interval);
+  ProgressCallback progress;
+  if (root) progress = [&reporter](const BatchProgress& done) { reporter.update(done); };
+  const TransportOutput out = run_lit_sphere(spec, progress, long_run.control());
+  reporter.finish();
+
+  std::optional<std::filesystem::path> written;
+  if (root) {
+    const Provenance provenance = run_provenance(out, command_line);
+    spec.run.threads = out.threads;  // record what ran, not "all cores"
+    written = long_run.result_path(out.batches_done, spec.run.batches, output);
+    if (written) {
+      write_lit_sphere_file(*written, spec, out.tallies, provenance);
+      print_summary(spec, out, written->string());
+    }
+  }
+  return long_run.finish(out.batches_done, spec.run.batches, output, written);
+}
+
+}  // namespace scatterlab::cli
