@@ -1,0 +1,77 @@
+// Cost of the sphere's random walk (the lit sphere): photons/s and ns per scattering event per
+// core with the sphere's tallies on (exitance by angle from the lit pole, totals, split by
+// order), for the same media as the HalfSpace rows of bench_half_space.cpp, so that the two
+// rows of a medium compare the boundary test's cost per event. A pole beam into a sphere of
+// 10 mfp stands beside the half-space's beam; a directional light on a sphere of 1 mfp shows the
+// cost per photon of the entry (a Fresnel choice and a refraction) over short walks.
+//
+//   ./build/bench/scatterlab_bench --benchmark_filter='Sphere|HalfSpace/'
+//       --benchmark_counters_tabular=true
+#include <benchmark/benchmark.h>
+
+#include <vector>
+
+#include "scatterlab/core/phase_function.hpp"
+#include "scatterlab/tally/scorer.hpp"
+#include "scatterlab/tally/tally_book.hpp"
+#include "scatterlab/transport/lit_sphere.hpp"
+#include "scatterlab/transport/random_walk.hpp"
+#include "scatterlab/transport/sphere.hpp"
+
+namespace scatterlab {
+namespace {
+
+LitSphereSpec lit_sphere(double albedo, double g, double eta, double radius, SphereLight light) {
+  LitSphereSpec spec;
+  spec.medium.albedo = albedo;
+  spec.medium.g = g;
+  spec.eta = eta;
+  spec.radius = radius;
+  spec.light = light;
+  return spec;
+}
+
+template <class Phase, bool fresnel>
+void run_walk(benchmark::State& state, const Phase& phase, const LitSphereSpec& spec) {
+  const TransportProblem problem = transport_problem(spec);
+  const TallyBook book(problem.tallies, problem.split_by_order);
+  const Scorer scorer(problem.axes, book);
+  const RandomWalk<Sphere<fresnel>, Phase, VolumeEstimator::none> walk(
+      Sphere<fresnel>(problem.radius, problem.eta), phase, problem.source, scorer, problem.albedo,
+      problem.run.escape_radius, problem.run.seed);
+  auto scratch = walk.make_scratch();
+  std::vector<double> buffer(book.size(), 0.0);
+  std::uint64_t photon = 0, scatterings = 0;
+  for (auto _ : state) {
+    scatterings += walk.run(photon, photon + 1000, buffer.data(), scratch);
+    photon += 1000;
+  }
+  benchmark::DoNotOptimize(buffer.data());
+  state.counters["photons/s"] =
+      benchmark::Counter(static_cast<double>(photon), benchmark::Counter::kIsRate);
+  state.counters["ns/scatter"] =
+      benchmark::Counter(static_cast<double>(scatterings) * 1e-9,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["scatters/photon"] =
+      static_cast<double>(scatterings) / static_cast<double>(photon);
+}
+
+template <class Phase>
+void Sphere(benchmark::State& state, Phase phase, LitSphereSpec spec) {
+  if (spec.eta != 1.0) return run_walk<Phase, true>(state, phase, spec);
+  run_walk<Phase, false>(state, phase, spec);
+}
+
+const IsotropicPhase iso{};
+const HenyeyGreenstein hg075{0.75};
+
+// Benchmark names are not numbers: the formatter would split hg_g0.75 into hg_g0 .75.
+// clang-format off
+BENCHMARK_CAPTURE(Sphere, pole_R10_iso_albedo0.99_eta1, iso, lit_sphere(0.99, 0.0, 1.0, 10.0, SphereLight::pole_beam));
+BENCHMARK_CAPTURE(Sphere, pole_R10_iso_albedo0.99_eta1.33, iso, lit_sphere(0.99, 0.0, 1.33, 10.0, SphereLight::pole_beam));
+BENCHMARK_CAPTURE(Sphere, pole_R10_hg_g0.75_albedo0.9_eta1.33, hg075, lit_sphere(0.9, 0.75, 1.33, 10.0, SphereLight::pole_beam));
+BENCHMARK_CAPTURE(Sphere, directional_R1_iso_albedo0.99_eta1.33, iso, lit_sphere(0.99, 0.0, 1.33, 1.0, SphereLight::directional));
+// clang-format on
+
+}  // namespace
+}  // namespace scatterlab
