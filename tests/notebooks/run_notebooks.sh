@@ -29,6 +29,8 @@ done
 mkdir -p "$data/render-study"
 "$exe" render --study --quick --out "$data/render-study" \
   "$source_dir/data/scenes/bumpy-sphere.toml" "$source_dir/data/scenes/tile.toml" >/dev/null
+"$exe" simulate "$source_dir/data/scenes/lit-sphere.toml" --albedo 0.9 --g 0.5 --photons 2e5 \
+  --batches 16 --out "$data/lit-sphere.h5" >/dev/null
 for albedo in 0.3 0.9; do
   "$exe" simulate --source point --albedo "$albedo" --g 0 --photons 5e4 --batches 16 \
     --out "$data/point-$albedo.h5" >/dev/null
