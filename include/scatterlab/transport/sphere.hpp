@@ -7,6 +7,9 @@
 // reflected remainder can reach the surface again, after a chord of 2 R cos theta_i, at the same
 // angle of incidence: the reflections repeat until the flight ends inside or the photon leaves.
 //
+// Under total internal reflection (eta > 1, beyond the critical angle) every hit of a flight is
+// at the same angle and reflected: the whole chords are taken as one rotation about the centre.
+//
 // The exit point is reported as the cosine of its polar angle psi from the lit pole, the point
 // (0, 0, -R) that faces light travelling along +z (cos psi = -z / R), and as (x, y).
 //
@@ -15,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scatterlab/core/constants.hpp"
 #include "scatterlab/core/frame.hpp"
 #include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/core/random.hpp"
@@ -49,13 +53,38 @@ class Sphere {
         const FresnelDielectric surface = fresnel_dielectric_terms(cos_inside, exit_eta_);
         // A flight exactly tangent to the surface (cos 0, probability 0) would be reflected
         // into itself for ever: it leaves.
-        if (!(random.next4()[0] < surface.reflectance()) || !(cos_inside > 0.0)) {
+        if (!(cos_inside > 0.0)) {
           exit.cos_outside = surface.cos_transmitted;
           return true;
         }
         flight -= to_surface;
+        const Vec3 reflected = (direction - 2.0 * cos_inside * normal).normalized();
+        if (surface.total_internal_reflection) {
+          // Every later hit of this flight is at the same angle, so totally reflected too:
+          // each whole chord (2 R cos theta_i) it still covers turns the photon about the
+          // centre by pi - 2 theta_i, in the plane of the hit and the direction. One rotation
+          // for all of them, where a loop would count 1 / cos theta_i bounces per mfp near
+          // grazing incidence; no random number is drawn (F = 1).
+          const double chord = 2.0 * radius_ * cos_inside;
+          const double chords = std::floor(flight / chord);
+          position = hit;
+          direction = reflected;
+          if (chords >= 1.0) {
+            const double turn = chords * (pi - 2.0 * std::acos(cos_inside));
+            const Eigen::AngleAxisd rotation(turn, hit.cross(reflected).normalized());
+            position = rotation * hit;
+            direction = (rotation * reflected).normalized();
+            flight -= chords * chord;
+          }
+          next = position + flight * direction;
+          continue;
+        }
+        if (!(random.next4()[0] < surface.reflectance())) {
+          exit.cos_outside = surface.cos_transmitted;
+          return true;
+        }
         position = hit;
-        direction = (direction - 2.0 * cos_inside * normal).normalized();
+        direction = reflected;
         next = position + flight * direction;
       } else {
         exit.cos_outside = cos_inside;
