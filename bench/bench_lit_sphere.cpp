@@ -17,6 +17,7 @@
 #include "scatterlab/transport/lit_sphere.hpp"
 #include "scatterlab/transport/random_walk.hpp"
 #include "scatterlab/transport/sphere.hpp"
+#include "walk_timing.hpp"
 
 namespace scatterlab {
 namespace {
@@ -39,21 +40,7 @@ void run_walk(benchmark::State& state, const Phase& phase, const LitSphereSpec& 
   const RandomWalk<Sphere<fresnel>, Phase, VolumeEstimator::none> walk(
       Sphere<fresnel>(problem.radius, problem.eta), phase, problem.source, scorer, problem.albedo,
       problem.run.escape_radius, problem.run.seed);
-  auto scratch = walk.make_scratch();
-  std::vector<double> buffer(book.size(), 0.0);
-  std::uint64_t photon = 0, scatterings = 0;
-  for (auto _ : state) {
-    scatterings += walk.run(photon, photon + 1000, buffer.data(), scratch);
-    photon += 1000;
-  }
-  benchmark::DoNotOptimize(buffer.data());
-  state.counters["photons/s"] =
-      benchmark::Counter(static_cast<double>(photon), benchmark::Counter::kIsRate);
-  state.counters["ns/scatter"] =
-      benchmark::Counter(static_cast<double>(scatterings) * 1e-9,
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-  state.counters["scatters/photon"] =
-      static_cast<double>(scatterings) / static_cast<double>(photon);
+  bench::time_walk(state, walk, book.size());
 }
 
 template <class Phase>

@@ -17,6 +17,7 @@
 #include "scatterlab/transport/infinite_medium.hpp"
 #include "scatterlab/transport/random_walk.hpp"
 #include "scatterlab/transport/simulate.hpp"
+#include "walk_timing.hpp"
 
 namespace scatterlab {
 namespace {
@@ -28,14 +29,6 @@ SimulationSpec scene(double g, double albedo, bool radiance, Estimator estimator
   spec.tallies.radiance = radiance;
   spec.tallies.estimator = estimator;
   return spec;
-}
-
-void report(benchmark::State& state, std::uint64_t photons, std::uint64_t scatterings) {
-  state.counters["photons/s"] =
-      benchmark::Counter(static_cast<double>(photons), benchmark::Counter::kIsRate);
-  state.counters["ns/scatter"] =
-      benchmark::Counter(static_cast<double>(scatterings) * 1e-9,
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 // The ceiling: per event one Philox call, a free path, an HG cosine, an azimuth and a frame
@@ -61,7 +54,7 @@ void BareLoop(benchmark::State& state, Phase phase, double albedo) {
     photons += 1000;
   }
   benchmark::DoNotOptimize(sink);
-  report(state, photons, scatterings);
+  bench::report_walk(state, photons, scatterings);
 }
 
 template <class Phase, VolumeEstimator estimator>
@@ -80,7 +73,7 @@ void run_walk(benchmark::State& state, const Phase& phase, const SimulationSpec&
     photon += 1000;
   }
   benchmark::DoNotOptimize(buffer.data());
-  report(state, photon, scatterings);
+  bench::report_walk(state, photon, scatterings);
 }
 
 // Picks the kernel the scene needs, as the engine does, outside the timed loop.
@@ -103,7 +96,7 @@ void WholeRun(benchmark::State& state) {
     photons += out.photons;
     scatterings += out.scattering_events;
   }
-  report(state, photons, scatterings);
+  bench::report_walk(state, photons, scatterings);
 }
 
 const HenyeyGreenstein forward{0.9};

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <array>
-#include <exception>
 #include <optional>
 #include <string_view>
 
@@ -99,17 +98,7 @@ int run_lit_sphere_scene(CLI::App& command, const SphereFlags& flags,
   plan.input("--scene", flags.scene);
   plan.output_file(output_field, output);
   plan.output_file("--checkpoint", checkpoint_path(long_run_options, output));
-  // As in every run: the root checks and makes the outputs, and every rank learns the outcome.
-  std::exception_ptr failure;
-  try {
-    prepare_outputs(plan, world.is_root());
-    if (world.is_root()) plan.make_output_directories();
-  } catch (const InputError&) {
-    failure = std::current_exception();
-  }
-  const bool ready = world.communicator().broadcast_from_root(failure ? 0 : 1) != 0;
-  if (failure) std::rethrow_exception(failure);
-  if (!ready) return 2;
+  prepare_outputs(plan, world.is_root());
 
   const bool root = world.is_root();
   LongRun long_run(long_run_options, output, fingerprint(spec), world.communicator());

@@ -82,3 +82,17 @@ write_tet_render_scene() {
     -e "s/^width = .*/width = $2/" -e "s/^height = .*/height = $2/" \
     "$1/data/scenes/tile.toml" >render.toml
 }
+
+# expect_info NAME FILE PATTERN...: `info FILE` shows every pattern (extended regex).
+expect_info() {
+  local name=$1 file=$2
+  shift 2
+  "$exe" info "$file" >"$work/info" 2>&1 || { fail "$name: info failed: $(cat "$work/info")"; return; }
+  for pattern in "$@"; do
+    if ! grep -Eq -- "$pattern" "$work/info"; then
+      fail "$name: info lacks '$pattern': $(cat "$work/info")"
+      return
+    fi
+  done
+  pass
+}

@@ -12,20 +12,6 @@ source "$source_dir/tests/cli/harness.sh"
 scene=$source_dir/data/scenes/lit-sphere.toml
 small=(--photons 20000 --batches 8 --threads 2)
 
-# expect_info NAME FILE PATTERN...: `info FILE` shows every pattern (extended regex).
-expect_info() {
-  local name=$1 file=$2
-  shift 2
-  "$exe" info "$file" >"$work/info" 2>&1 || { fail "$name: info failed: $(cat "$work/info")"; return; }
-  for pattern in "$@"; do
-    if ! grep -Eq -- "$pattern" "$work/info"; then
-      fail "$name: info lacks '$pattern': $(cat "$work/info")"
-      return
-    fi
-  done
-  pass
-}
-
 # The shipped scene: the summary's energy balance sums to 1, the file holds the sphere.
 if "$exe" simulate --scene "$scene" "${small[@]}" --out "$work/sphere.h5" >"$work/stdout" \
   2>"$work/stderr"; then

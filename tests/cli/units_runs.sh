@@ -14,20 +14,6 @@ small=(--photons 4000 --batches 4 --threads 2)
 # expect_error COMMAND NAME FIELD ARGS...: exit 2, FIELD on the one line of stderr, no file.
 expect_error() { expect_command_error "$@"; }
 
-# expect_info NAME FILE PATTERN...: `info FILE` shows every pattern (extended regex).
-expect_info() {
-  local name=$1 file=$2
-  shift 2
-  "$exe" info "$file" >"$work/info" 2>&1 || { fail "$name: info failed: $(cat "$work/info")"; return; }
-  for pattern in "$@"; do
-    if ! grep -Eq -- "$pattern" "$work/info"; then
-      fail "$name: info lacks '$pattern': $(cat "$work/info")"
-      return
-    fi
-  done
-  pass
-}
-
 # A Narasimhan material, one channel: coefficients, grid and tallies in mm, the material recorded.
 # (Espresso absorbs: few events per photon, so the run is quick under the sanitizers too.)
 if "$exe" simulate --material espresso --channel red --tallies fluence --r-max 2 --z-min -1 \
