@@ -14,26 +14,16 @@
 #include "scatterlab/core/quadrature.hpp"
 #include "scatterlab/transport/lit_sphere.hpp"
 #include "scatterlab/transport/searchlight.hpp"
+#include "simulation_fixtures.hpp"
 
 namespace scatterlab {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-const TallyResult& find(const TransportOutput& out, const std::string& name) {
-  for (const TallyResult& t : out.tallies) {
-    if (t.name == name) return t;
-  }
-  ADD_FAILURE() << "no tally named " << name;
-  static const TallyResult none{"", {}, {}, "", "", {0.0}, {0.0}};
-  return none;
-}
-double value(const TransportOutput& out, const std::string& name) {
-  return find(out, name).mean.at(0);
-}
-double error(const TransportOutput& out, const std::string& name) {
-  return find(out, name).stderr_of_mean.at(0);
-}
+using testing::find_tally;
+using testing::scalar;
+using testing::scalar_error;
 
 LitSphereSpec sphere(double albedo, double g, double eta, double radius, std::uint64_t photons) {
   LitSphereSpec spec;
@@ -85,13 +75,14 @@ TEST(LitSphere, IndexMatchedAbsorbingSphereTransmitsItsChords) {
   const auto primitive = [c](double mu) {
     return -2.0 / (c * c) * (1.0 + c * mu) * std::exp(-c * mu);
   };
-  EXPECT_NEAR(value(out, "exited"), primitive(1.0) - primitive(0.0), 4.0 * error(out, "exited"));
-  EXPECT_LT(error(out, "exited"), 1e-3);
-  EXPECT_NEAR(value(out, "absorbed"), 1.0 - value(out, "exited"), 1e-12);
-  EXPECT_EQ(value(out, "reflected_at_entry"), 0.0);
-  EXPECT_EQ(value(out, "exited_single"), 0.0);
+  EXPECT_NEAR(scalar(out, "exited"), primitive(1.0) - primitive(0.0),
+              4.0 * scalar_error(out, "exited"));
+  EXPECT_LT(scalar_error(out, "exited"), 1e-3);
+  EXPECT_NEAR(scalar(out, "absorbed"), 1.0 - scalar(out, "exited"), 1e-12);
+  EXPECT_EQ(scalar(out, "reflected_at_entry"), 0.0);
+  EXPECT_EQ(scalar(out, "exited_single"), 0.0);
 
-  const TallyResult& exitance = find(out, "exitance");
+  const TallyResult& exitance = find_tally(out, "exitance");
   for (int k = 0; k < spec.psi.bins; ++k) {
     const double psi0 = spec.psi.edge(k), psi1 = spec.psi.edge(k + 1);
     const double area = 2.0 * kPi * radius * radius * (std::cos(psi0) - std::cos(psi1));
@@ -109,11 +100,12 @@ TEST(LitSphere, AbsorbingSphereBehindFresnelMatchesTheFresnelWeightedChords) {
     const double radius = 0.5;
     const TransportOutput out = run_lit_sphere(sphere(0.0, 0.0, eta, radius, 400'000));
     const ChordTotals exact = absorbing_sphere(radius, eta);
-    EXPECT_NEAR(value(out, "reflected_at_entry"), exact.reflected,
-                4.0 * error(out, "reflected_at_entry"))
+    EXPECT_NEAR(scalar(out, "reflected_at_entry"), exact.reflected,
+                4.0 * scalar_error(out, "reflected_at_entry"))
         << "eta " << eta;
-    EXPECT_NEAR(value(out, "exited"), exact.exited, 4.0 * error(out, "exited")) << "eta " << eta;
-    EXPECT_LT(error(out, "exited"), 1e-3);
+    EXPECT_NEAR(scalar(out, "exited"), exact.exited, 4.0 * scalar_error(out, "exited"))
+        << "eta " << eta;
+    EXPECT_LT(scalar_error(out, "exited"), 1e-3);
   }
 }
 
@@ -147,7 +139,7 @@ TEST(LitSphere, AbsorbingSphereBehindFresnelPutsItsChordsWhereSnellSays) {
       weight *= f * attenuation;
     }
   }
-  const TallyResult& exitance = find(out, "exitance");
+  const TallyResult& exitance = find_tally(out, "exitance");
   for (int k = 0; k < spec.psi.bins; ++k) {
     const double area =
         2.0 * kPi * radius * radius * (std::cos(spec.psi.edge(k)) - std::cos(spec.psi.edge(k + 1)));
@@ -166,21 +158,22 @@ TEST(LitSphere, EnergyBalancesPhotonByPhotonAndOrdersSum) {
       spec.light = light;
       const TransportOutput out = run_lit_sphere(spec);
       const std::string label = to_string(light) + " eta " + std::to_string(eta);
-      EXPECT_NEAR(value(out, "reflected_at_entry") + value(out, "exited") + value(out, "absorbed"),
-                  1.0, 1e-12)
+      EXPECT_NEAR(
+          scalar(out, "reflected_at_entry") + scalar(out, "exited") + scalar(out, "absorbed"), 1.0,
+          1e-12)
           << label;
-      EXPECT_NEAR(value(out, "exited_unscattered") + value(out, "exited_single") +
-                      value(out, "exited_multiple"),
-                  value(out, "exited"), 1e-12)
+      EXPECT_NEAR(scalar(out, "exited_unscattered") + scalar(out, "exited_single") +
+                      scalar(out, "exited_multiple"),
+                  scalar(out, "exited"), 1e-12)
           << label;
       // The exitance over the whole surface is the light that exited.
-      const TallyResult& exitance = find(out, "exitance");
+      const TallyResult& exitance = find_tally(out, "exitance");
       double total = 0.0;
       for (int k = 0; k < spec.psi.bins; ++k) {
         total += exitance.mean[static_cast<std::size_t>(k)] * 2.0 * kPi * spec.radius *
                  spec.radius * (std::cos(spec.psi.edge(k)) - std::cos(spec.psi.edge(k + 1)));
       }
-      EXPECT_NEAR(total, value(out, "exited"), 1e-12) << label;
+      EXPECT_NEAR(total, scalar(out, "exited"), 1e-12) << label;
     }
   }
 }
@@ -208,15 +201,16 @@ TEST(LitSphere, LargeSphereUnderAPoleBeamIsTheHalfSpace) {
   flat.tallies.fluence = false;
   const TransportOutput plane = run_searchlight(flat);
 
-  EXPECT_DOUBLE_EQ(value(curved, "reflected_at_entry"), value(plane, "specular_reflectance"));
-  const TallyResult& exitance = find(curved, "exitance");
-  const TallyResult& reflectance = find(plane, "reflectance");
+  EXPECT_DOUBLE_EQ(scalar(curved, "reflected_at_entry"), scalar(plane, "specular_reflectance"));
+  const TallyResult& exitance = find_tally(curved, "exitance");
+  const TallyResult& reflectance = find_tally(plane, "reflectance");
   for (std::size_t k = 0; k < 10; ++k) {
     const double combined = std::hypot(exitance.stderr_of_mean[k], reflectance.stderr_of_mean[k]);
     EXPECT_NEAR(exitance.mean[k], reflectance.mean[k], 4.0 * combined) << "ring " << k;
   }
-  const double combined = std::hypot(error(curved, "exited"), error(plane, "diffuse_reflectance"));
-  EXPECT_NEAR(value(curved, "exited"), value(plane, "diffuse_reflectance"), 4.0 * combined);
+  const double combined =
+      std::hypot(scalar_error(curved, "exited"), scalar_error(plane, "diffuse_reflectance"));
+  EXPECT_NEAR(scalar(curved, "exited"), scalar(plane, "diffuse_reflectance"), 4.0 * combined);
   EXPECT_LT(combined, 2e-3);
 }
 
