@@ -130,15 +130,31 @@ class SceneReader : public TomlReader {
       }
     }
     if (const auto* source = subtable(root, "source", "")) {
-      check_keys(*source, "source", {"type"});
-      const std::string_view accepted = "\"directional\" or \"pole_beam\"";
+      check_keys(*source, "source", {"type", "origin", "direction"});
+      const std::string_view accepted = "\"directional\", \"pole_beam\" or \"beam\"";
       if (const auto type = string(*source, "type", "source", accepted)) {
         if (*type == "directional") {
           spec.light = SphereLight::directional;
         } else if (*type == "pole_beam") {
           spec.light = SphereLight::pole_beam;
+        } else if (*type == "beam") {
+          spec.light = SphereLight::beam;
         } else {
           wrong_type(*source->get("type"), "source.type", accepted);
+        }
+      }
+      const std::string_view vector = "three numbers [x, y, z]";
+      if (const auto origin = vector3(*source, "origin", "source", vector)) {
+        spec.beam_origin = *origin;
+      }
+      if (const auto direction = vector3(*source, "direction", "source", vector)) {
+        spec.beam_direction = *direction;
+      }
+      for (const char* key : {"origin", "direction"}) {
+        if (source->get(key) != nullptr && spec.light != SphereLight::beam) {
+          throw InputError(std::string("source.") + key,
+                           "given for a light that is not a beam" + at(*source->get(key)),
+                           "source.origin and source.direction with source.type = \"beam\"");
         }
       }
     }

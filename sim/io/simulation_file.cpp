@@ -162,6 +162,12 @@ void write_lit_sphere_parameters(hdf5::Group& root, const LitSphereSpec& spec) {
   parameters.write_string_attribute("geometry", "sphere");
   parameters.write_string_attribute("source", to_string(spec.light));
   parameters.write_double_attribute("radius", spec.radius);
+  if (spec.light == SphereLight::beam) {
+    parameters.write_string_attribute(
+        "beam", fmt::format("from ({}, {}, {}) along ({}, {}, {})", spec.beam_origin[0],
+                            spec.beam_origin[1], spec.beam_origin[2], spec.beam_direction[0],
+                            spec.beam_direction[1], spec.beam_direction[2]));
+  }
   parameters.write_double_attribute("eta", spec.eta);
   write_medium(parameters, spec.medium);
   write_material(parameters, spec.material);

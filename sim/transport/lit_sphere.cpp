@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <stdexcept>
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/fresnel.hpp"
@@ -50,7 +52,8 @@ std::vector<TallyDeclaration> declare_tallies(const LitSphereSpec& spec, double 
                        Score::exact,
                        {},
                        "W per W incident",
-                       "Fresnel reflection of the beam at the pole (exact: no standard error)",
+                       "Fresnel reflection of the beam where it meets the sphere (exact: no "
+                       "standard error)",
                        false,
                        pole_reflectance});
   }
@@ -59,8 +62,40 @@ std::vector<TallyDeclaration> declare_tallies(const LitSphereSpec& spec, double 
 
 }  // namespace
 
+// Where the beam meets the sphere of radius R about the origin, and at what cosine of
+// incidence; nullopt when it misses (or only grazes) it.
+namespace {
+
+struct BeamEntry {
+  Vec3 point, direction;
+  double cos_incidence;
+};
+std::optional<BeamEntry> beam_entry(const LitSphereSpec& spec, double radius_mfp) {
+  const double mfp_per_unit = mfp_per_length_unit(spec.medium);
+  const Vec3 origin =
+      Vec3(spec.beam_origin[0], spec.beam_origin[1], spec.beam_origin[2]) * mfp_per_unit;
+  const Vec3 direction =
+      Vec3(spec.beam_direction[0], spec.beam_direction[1], spec.beam_direction[2]).normalized();
+  // |o + t w|^2 = R^2: t^2 + 2 b t + c = 0, the nearer root for an origin outside.
+  const double b = origin.dot(direction), c = origin.squaredNorm() - radius_mfp * radius_mfp;
+  const double discriminant = b * b - c;
+  if (!(discriminant > 0.0) || !(b < 0.0)) return std::nullopt;
+  const Vec3 point = origin + (-b - std::sqrt(discriminant)) * direction;
+  return BeamEntry{point, direction, std::clamp(-direction.dot(point) / radius_mfp, 0.0, 1.0)};
+}
+
+}  // namespace
+
 std::string to_string(SphereLight light) {
-  return light == SphereLight::directional ? "directional" : "pole_beam";
+  switch (light) {
+    case SphereLight::directional:
+      return "directional";
+    case SphereLight::pole_beam:
+      return "pole_beam";
+    case SphereLight::beam:
+      return "beam";
+  }
+  return "unknown";
 }
 
 void LitSphereSpec::validate() const {
@@ -85,6 +120,28 @@ void LitSphereSpec::validate() const {
   if (psi.bins < 1 || psi.bins > 100'000) {
     throw InputError("grid.psi.bins", fmt::format("got {}", psi.bins), "an integer in [1, 100000]");
   }
+  if (light == SphereLight::beam) {
+    for (const double x : beam_origin) {
+      if (!std::isfinite(x)) {
+        throw InputError("source.origin", "is not finite", "three finite numbers [x, y, z]");
+      }
+    }
+    const double length = std::hypot(beam_direction[0], beam_direction[1], beam_direction[2]);
+    if (!(length > 0.0) || !std::isfinite(length)) {
+      throw InputError("source.direction", "is zero or not finite",
+                       "three finite numbers [x, y, z], not all 0");
+    }
+    const double origin_mfp =
+        std::hypot(beam_origin[0], beam_origin[1], beam_origin[2]) * mfp_per_length_unit(medium);
+    if (!(origin_mfp > radius_mfp)) {
+      throw InputError("source.origin", "is not outside the sphere",
+                       "a point farther than geometry.radius from the centre");
+    }
+    if (!beam_entry(*this, radius_mfp)) {
+      throw InputError("source.direction", "misses the sphere from source.origin",
+                       "a direction from source.origin that meets the sphere");
+    }
+  }
   check_run_settings(run);
   // Every walk ends inside the sphere: by absorption, or by leaving it after about R^2 events.
   check_run_length(run, medium.albedo, radius_mfp);
@@ -93,11 +150,12 @@ void LitSphereSpec::validate() const {
 std::string fingerprint(const LitSphereSpec& spec) {
   const Medium& m = spec.medium;
   return fingerprint_of(fmt::format(
-      "lit_sphere|medium {:a} {:a} {:a} {}|radius {:a}|eta {:a}|light {}|psi {:a},{:a},{}|split "
-      "{}|run {} {} {}",
+      "lit_sphere|medium {:a} {:a} {:a} {}|radius {:a}|eta {:a}|light {}|beam {:a} {:a} {:a} {:a} "
+      "{:a} {:a}|psi {:a},{:a},{}|split {}|run {} {} {}",
       m.albedo, m.g, m.sigma_t, m.length_unit, spec.radius, spec.eta, to_string(spec.light),
-      spec.psi.min, spec.psi.max, spec.psi.bins, spec.split_by_order, spec.run.photons,
-      spec.run.batches, spec.run.seed));
+      spec.beam_origin[0], spec.beam_origin[1], spec.beam_origin[2], spec.beam_direction[0],
+      spec.beam_direction[1], spec.beam_direction[2], spec.psi.min, spec.psi.max, spec.psi.bins,
+      spec.split_by_order, spec.run.photons, spec.run.batches, spec.run.seed));
 }
 
 TransportProblem transport_problem(const LitSphereSpec& spec) {
@@ -111,7 +169,9 @@ TransportProblem transport_problem(const LitSphereSpec& spec) {
   // The beam meets the pole along the normal: no bending, F(1) reflected, 1 - F(1) enters and
   // carries every other tally (as the searchlight's beam does). The directional light's
   // reflection depends on where each photon meets the sphere, so it is counted photon by photon.
-  const double pole_reflectance = fresnel_dielectric_reflectance(1.0, spec.eta);
+  // A beam from outside is refracted at its entry point; beyond the critical angle of an
+  // eta < 1 sphere nothing enters, and every tally is scaled by the transmitted power, 0.
+  double beam_reflectance = fresnel_dielectric_reflectance(1.0, spec.eta);
   if (spec.light == SphereLight::directional) {
     problem.source.kind = Source::Kind::sphere_light;
     problem.source.sphere_radius = radius;
@@ -120,10 +180,18 @@ TransportProblem transport_problem(const LitSphereSpec& spec) {
     problem.source.kind = Source::Kind::beam;
     problem.source.position = Vec3(0.0, 0.0, -radius);
     problem.source.direction = Vec3::UnitZ();
-    problem.photon_power = 1.0 - pole_reflectance;
+    if (spec.light == SphereLight::beam) {
+      const std::optional<BeamEntry> entry = beam_entry(spec, radius);
+      if (!entry) throw std::invalid_argument("transport_problem: the beam misses the sphere");
+      problem.source.position = entry->point;
+      problem.source.direction = entry->direction;
+      refract(entry->direction, entry->point / radius, spec.eta, problem.source.direction);
+      beam_reflectance = fresnel_dielectric_reflectance(entry->cos_incidence, spec.eta);
+    }
+    problem.photon_power = 1.0 - beam_reflectance;
   }
   problem.axes.psi = spec.psi;
-  problem.tallies = declare_tallies(spec, radius, pole_reflectance);
+  problem.tallies = declare_tallies(spec, radius, beam_reflectance);
   problem.split_by_order = spec.split_by_order;
   problem.estimator = Estimator::collision;
   problem.run = spec.run;

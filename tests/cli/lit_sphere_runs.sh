@@ -42,6 +42,23 @@ else
   fail "pole beam: $(cat "$work/stderr")"
 fi
 
+# A beam from outside, off the axis: the file says where it came from.
+cat >"$work/beam.toml" <<'TOML'
+[geometry]
+type = "sphere"
+radius = 1.0
+[source]
+type = "beam"
+origin = [0.5, 0.0, -3.0]
+direction = [0, 0, 1]
+TOML
+if "$exe" simulate "$work/beam.toml" "${small[@]}" --out "$work/beam.h5" >"$work/stdout" \
+  2>"$work/stderr"; then
+  expect_info beam "$work/beam.h5" "source +beam" "beam +from \(0\.5, 0, -3\) along \(0, 0, 1\)"
+else
+  fail "beam: $(cat "$work/stderr")"
+fi
+
 # A material: its table's eta and mm, the radius in mm.
 cat >"$work/marble.toml" <<'TOML'
 [geometry]
@@ -74,6 +91,10 @@ bad radius_typo geometry.radiuss $'[geometry]\ntype = "sphere"\nradiuss = 2'
 bad eta geometry.eta $'[geometry]\ntype = "sphere"\neta = 50'
 bad light source.type $'[geometry]\ntype = "sphere"\n[source]\ntype = "laser"'
 bad psi grid.psi.bins $'[geometry]\ntype = "sphere"\n[grid]\npsi = { bins = 0 }'
+bad miss source.direction $'[geometry]\ntype = "sphere"\n[source]\ntype = "beam"\norigin = [0, 0, -3]\ndirection = [1, 0, 0]'
+bad inside source.origin $'[geometry]\ntype = "sphere"\n[source]\ntype = "beam"\norigin = [0, 0, 0.5]'
+bad not_beam source.origin $'[geometry]\ntype = "sphere"\n[source]\norigin = [0, 0, -3]'
+bad vector source.direction $'[geometry]\ntype = "sphere"\n[source]\ntype = "beam"\ndirection = [0, 1]'
 bad cube geometry.type $'[geometry]\ntype = "cube"'
 if grep -q "sphere" "$work/stderr"; then pass; else
   fail "an unknown geometry does not list sphere: $(cat "$work/stderr")"; fi

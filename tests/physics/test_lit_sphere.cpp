@@ -214,6 +214,33 @@ TEST(LitSphere, LargeSphereUnderAPoleBeamIsTheHalfSpace) {
   EXPECT_LT(combined, 2e-3);
 }
 
+TEST(LitSphere, ABeamFromOutsideIsRefractedWhereItMeetsTheSphere) {
+  // Aimed at the lit pole along the normal it is the pole beam, bit for bit.
+  LitSphereSpec pole = sphere(0.9, 0.5, 1.3, 1.5, 20'000);
+  pole.light = SphereLight::pole_beam;
+  LitSphereSpec aimed = pole;
+  aimed.light = SphereLight::beam;
+  aimed.beam_origin = {0.0, 0.0, -4.0};
+  aimed.beam_direction = {0.0, 0.0, 2.0};
+  const TransportOutput a = run_lit_sphere(pole), b = run_lit_sphere(aimed);
+  ASSERT_EQ(a.tallies.size(), b.tallies.size());
+  for (std::size_t t = 0; t < a.tallies.size(); ++t) {
+    EXPECT_EQ(a.tallies[t].mean, b.tallies[t].mean) << a.tallies[t].name;
+    EXPECT_EQ(a.tallies[t].stderr_of_mean, b.tallies[t].stderr_of_mean) << a.tallies[t].name;
+  }
+  // Off the axis it meets the surface at cos theta_i = sqrt(1 - (x / R)^2): F of that angle is
+  // reflected, exactly, and every photon that entered ends exited or absorbed.
+  LitSphereSpec oblique = aimed;
+  oblique.beam_origin = {0.9, 0.0, -4.0};
+  oblique.beam_direction = {0.0, 0.0, 1.0};
+  const TransportOutput out = run_lit_sphere(oblique);
+  const double cos_incidence = std::sqrt(1.0 - 0.9 * 0.9 / (1.5 * 1.5));
+  EXPECT_NEAR(scalar(out, "reflected_at_entry"), fresnel_dielectric_reflectance(cos_incidence, 1.3),
+              1e-12);
+  EXPECT_NEAR(scalar(out, "reflected_at_entry") + scalar(out, "exited") + scalar(out, "absorbed"),
+              1.0, 1e-12);
+}
+
 TEST(LitSphere, BadSpecsNameTheField) {
   LitSphereSpec spec;
   spec.radius = -1.0;
@@ -224,6 +251,15 @@ TEST(LitSphere, BadSpecsNameTheField) {
   spec = LitSphereSpec{};
   spec.psi.max = 1.0;
   EXPECT_THROW(spec.validate(), InputError);
+  spec = LitSphereSpec{};
+  spec.light = SphereLight::beam;
+  spec.beam_direction = {1.0, 0.0, 0.0};  // from (0, 0, -2): passes the sphere by
+  EXPECT_THROW(spec.validate(), InputError);
+  spec.beam_direction = {0.0, 0.0, 1.0};
+  spec.beam_origin = {0.0, 0.0, -0.5};  // inside
+  EXPECT_THROW(spec.validate(), InputError);
+  spec.beam_origin = {0.0, 0.0, -2.0};
+  EXPECT_NO_THROW(spec.validate());
 }
 
 }  // namespace

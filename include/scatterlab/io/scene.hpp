@@ -110,7 +110,8 @@ SearchlightScene load_searchlight_scene(const std::filesystem::path& path,
 // data/scenes/lit-sphere.toml), as strict as the above:
 //   [geometry] type = "sphere", radius (in medium.length_unit), eta = n_medium / n_outside
 //   [medium]   as above; a material brings its table's eta unless geometry.eta is given
-//   [source]   type = "directional" | "pole_beam"
+//   [source]   type = "directional" | "pole_beam" | "beam"; for a beam, origin = [x, y, z]
+//              (outside the sphere, in medium.length_unit) and direction = [x, y, z]
 //   [grid]     psi = { bins }       (the angle from the lit pole, over [0, pi])
 //   [tallies]  split_by_order = bool
 //   [run]      photons, batches, seed, threads;  [output] path

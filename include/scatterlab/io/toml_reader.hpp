@@ -9,6 +9,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -120,6 +121,28 @@ class TomlReader {
     // An integer where a number is expected is fine: albedo = 1 means 1.0.
     if (const auto* value = node->as_integer()) return static_cast<double>(value->get());
     wrong_type(*node, dotted(path, key), accepted);
+  }
+
+  // Three numbers, [x, y, z].
+  std::optional<std::array<double, 3>> vector3(const toml::table& table, std::string_view key,
+                                               const std::string& path,
+                                               std::string_view accepted) const {
+    const toml::node* node = table.get(key);
+    if (node == nullptr) return std::nullopt;
+    const toml::array* list = node->as_array();
+    if (list == nullptr || list->size() != 3) wrong_type(*node, dotted(path, key), accepted);
+    std::array<double, 3> values{};
+    for (std::size_t i = 0; i < 3; ++i) {
+      const toml::node& item = *list->get(i);
+      if (const auto* value = item.as_floating_point()) {
+        values[i] = value->get();
+      } else if (const auto* whole = item.as_integer()) {
+        values[i] = static_cast<double>(whole->get());
+      } else {
+        wrong_type(item, dotted(path, key), accepted);
+      }
+    }
+    return values;
   }
 
   // An integer, or a float that is a whole number (photons = 1e7).

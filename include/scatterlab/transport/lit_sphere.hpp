@@ -11,6 +11,7 @@
 // them, so they sum to 1 photon by photon. Lengths (radius) are in medium.length_unit, mean free
 // paths by default; transport runs in mfp (length_units.hpp converts).
 
+#include <array>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -25,6 +26,7 @@ namespace scatterlab {
 enum class SphereLight {
   directional,  // uniform over the sphere's shadow disk, along +z (Bitterli §3.2)
   pole_beam,    // a pencil beam at the lit pole, along the inward normal +z
+  beam,         // a pencil beam from beam_origin along beam_direction, outside the sphere
 };
 
 struct LitSphereSpec {
@@ -32,6 +34,10 @@ struct LitSphereSpec {
   double radius = 1.0;  // in medium.length_unit
   double eta = 1.3;     // n_medium / n_outside, in [min_eta, max_eta] (searchlight.hpp)
   SphereLight light = SphereLight::directional;
+  // The beam (light = beam): from a point outside the sphere (in medium.length_unit) along a
+  // direction that meets it; refracted where it meets the surface, its Fresnel reflection exact.
+  std::array<double, 3> beam_origin{0.0, 0.0, -2.0};
+  std::array<double, 3> beam_direction{0.0, 0.0, 1.0};
   UniformAxis psi{0.0, std::numbers::pi, 36};  // exit point's angle from the lit pole
   bool split_by_order = true;                  // siblings _unscattered, _single, _multiple
   RunSettings run{1'000'000, 64, 1, 0};
