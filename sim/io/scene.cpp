@@ -109,7 +109,7 @@ class SceneReader : public TomlReader {
   }
 
   // The lit sphere's scene (scene.hpp): [geometry] type = "sphere", radius, eta; [source] type;
-  // [grid] psi; [tallies] split_by_order; the medium, run and output as above.
+  // [grid] psi, azimuth; [tallies] split_by_order; the medium, run and output as above.
   LitSphereScene read_lit_sphere(const toml::table& root) {
     check_keys(root, "", {"geometry", "medium", "source", "grid", "tallies", "run", "output"});
     LitSphereScene scene;
@@ -159,8 +159,9 @@ class SceneReader : public TomlReader {
       }
     }
     if (const auto* grid = subtable(root, "grid", "")) {
-      check_keys(*grid, "grid", {"psi"});
+      check_keys(*grid, "grid", {"psi", "azimuth"});
       read_axis(*grid, "psi", {"bins"}, spec.psi);
+      read_axis(*grid, "azimuth", {"bins"}, spec.azimuth);
     }
     if (const auto* tallies = subtable(root, "tallies", "")) {
       check_keys(*tallies, "tallies", {"split_by_order"});

@@ -514,6 +514,7 @@ void write_lit_sphere_file(const std::filesystem::path& path, const LitSphereSpe
     write_lit_sphere_parameters(file.root(), spec);
     hdf5::Group grid = file.root().create_group("grid");
     write_axis(grid, "psi", spec.psi, "rad");
+    write_axis(grid, "azimuth", spec.azimuth, "rad");
     write_tallies(file.root(), tallies);
     write_figures_of_merit(file.root(), tallies, provenance.wall_seconds);
     file.close();

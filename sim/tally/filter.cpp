@@ -54,10 +54,13 @@ Filter exit_angle_filter(const UniformAxis& theta_o) {
           })};
 }
 
-Filter polar_angle_filter(const UniformAxis& psi, double radius) {
-  return {{"psi"}, {count(psi)}, per_bin(psi, [radius](double p0, double p1) {
-            return 2.0 * pi * radius * radius * (std::cos(p0) - std::cos(p1));
-          })};
+Filter sphere_patch_filter(const UniformAxis& psi, const UniformAxis& azimuth, double radius) {
+  Filter f{{"psi", "azimuth"}, {count(psi), count(azimuth)}, {}};
+  for (int k = 0; k < psi.bins; ++k) {
+    const double band = std::cos(psi.edge(k)) - std::cos(psi.edge(k + 1));
+    f.measures.insert(f.measures.end(), count(azimuth), radius * radius * band * azimuth.width());
+  }
+  return f;
 }
 
 Filter component_filter(std::size_t components) {

@@ -106,7 +106,10 @@ Scorer::Scorer(const TallyAxes& axes, const TallyBook& book)
     }
   }
   if (exit_radiance_ != absent) exit_binning_ = CosineBinning(axes.theta_o);
-  if (exit_by_polar_angle_ != absent) polar_binning_ = CosineBinning(axes.psi);
+  if (exit_by_polar_angle_ != absent) {
+    polar_binning_ = CosineBinning(axes.psi);
+    azimuth_bins_ = static_cast<std::size_t>(std::max(axes.azimuth.bins, 1));
+  }
 }
 
 std::vector<double> Scorer::make_crossing_scratch() const {

@@ -27,10 +27,11 @@ std::vector<TallyDeclaration> declare_tallies(const LitSphereSpec& spec, double 
   std::vector<TallyDeclaration> tallies;
   tallies.push_back({"exitance",
                      Score::exit_by_polar_angle,
-                     {polar_angle_filter(spec.psi, radius_mfp)},
+                     {sphere_patch_filter(spec.psi, spec.azimuth, radius_mfp)},
                      "W mfp^-2 per W incident",
-                     "radiant exitance M(psi) on the sphere: power leaving per unit area of the "
-                     "zone at angle psi from the lit pole (0, 0, -R), zone average",
+                     "radiant exitance M(psi, azimuth) on the sphere: power leaving per unit area "
+                     "of the patch at angle psi from the lit pole (0, 0, -R) and azimuth about z "
+                     "from +x, patch average",
                      true});
   tallies.push_back({"exited",
                      Score::exit,
@@ -120,6 +121,14 @@ void LitSphereSpec::validate() const {
   if (psi.bins < 1 || psi.bins > 100'000) {
     throw InputError("grid.psi.bins", fmt::format("got {}", psi.bins), "an integer in [1, 100000]");
   }
+  if (azimuth.min != 0.0 || std::abs(azimuth.max - 2.0 * std::numbers::pi) > 1e-12) {
+    throw InputError("grid.azimuth", fmt::format("spans [{}, {}]", azimuth.min, azimuth.max),
+                     "[0, 2 pi]: the azimuth about z");
+  }
+  if (azimuth.bins < 1 || static_cast<double>(azimuth.bins) * psi.bins > 1e7) {
+    throw InputError("grid.azimuth.bins", fmt::format("got {}", azimuth.bins),
+                     "an integer >= 1, with grid.psi.bins x grid.azimuth.bins at most 1e7");
+  }
   if (light == SphereLight::beam) {
     for (const double x : beam_origin) {
       if (!std::isfinite(x)) {
@@ -151,11 +160,11 @@ std::string fingerprint(const LitSphereSpec& spec) {
   const Medium& m = spec.medium;
   return fingerprint_of(fmt::format(
       "lit_sphere|medium {:a} {:a} {:a} {}|radius {:a}|eta {:a}|light {}|beam {:a} {:a} {:a} {:a} "
-      "{:a} {:a}|psi {:a},{:a},{}|split {}|run {} {} {}",
+      "{:a} {:a}|psi {:a},{:a},{}|azimuth {}|split {}|run {} {} {}",
       m.albedo, m.g, m.sigma_t, m.length_unit, spec.radius, spec.eta, to_string(spec.light),
       spec.beam_origin[0], spec.beam_origin[1], spec.beam_origin[2], spec.beam_direction[0],
       spec.beam_direction[1], spec.beam_direction[2], spec.psi.min, spec.psi.max, spec.psi.bins,
-      spec.split_by_order, spec.run.photons, spec.run.batches, spec.run.seed));
+      spec.azimuth.bins, spec.split_by_order, spec.run.photons, spec.run.batches, spec.run.seed));
 }
 
 TransportProblem transport_problem(const LitSphereSpec& spec) {
@@ -191,12 +200,13 @@ TransportProblem transport_problem(const LitSphereSpec& spec) {
     problem.photon_power = 1.0 - beam_reflectance;
   }
   problem.axes.psi = spec.psi;
+  problem.axes.azimuth = spec.azimuth;
   problem.tallies = declare_tallies(spec, radius, beam_reflectance);
   problem.split_by_order = spec.split_by_order;
   problem.estimator = Estimator::collision;
   problem.run = spec.run;
   problem.run.escape_radius = std::numeric_limits<double>::infinity();
-  problem.size_fields = "grid.psi.bins, run.threads";
+  problem.size_fields = "grid.psi.bins x grid.azimuth.bins, run.threads";
   return problem;
 }
 

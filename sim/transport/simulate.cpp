@@ -110,7 +110,12 @@ TransportProblem transport_problem(const SimulationSpec& given) {
   problem.geometry = GeometryKind::infinite;
   problem.source.kind = spec.source == SourceKind::point ? Source::Kind::point : Source::Kind::beam;
   const Grid& grid = spec.grid;
-  problem.axes = TallyAxes{grid.r, grid.z, grid.theta, grid.phi, grid.fold_phi, grid.rho, {}, {}};
+  problem.axes.r = grid.r;
+  problem.axes.z = grid.z;
+  problem.axes.theta = grid.theta;
+  problem.axes.phi = grid.phi;
+  problem.axes.fold_phi = grid.fold_phi;
+  problem.axes.rho = grid.rho;
   problem.tallies = declare_tallies(spec);
   problem.split_by_order = spec.tallies.split_by_order;
   problem.estimator = spec.tallies.estimator;

@@ -19,7 +19,8 @@ if "$exe" simulate --scene "$scene" "${small[@]}" --out "$work/sphere.h5" >"$wor
   if grep -Eq "energy per W incident: reflected_at_entry .*, exited .*, absorbed .* total 1\.000000" \
     "$work/stdout"; then pass; else fail "energy line: $(cat "$work/stdout")"; fi
   expect_info sphere "$work/sphere.h5" "geometry +sphere" "source +directional" "radius +1$" \
-    "eta +1\.3" "psi +36 bins in \[0, 3\.14159\] rad" "exitance +\[36\] \(psi\), W mfp\^-2" \
+    "eta +1\.3" "psi +36 bins in \[0, 3\.14159\] rad" \
+    "exitance +\[36 x 1\] \(psi,azimuth\), W mfp\^-2" \
     "exitance_multiple" "reflected_at_entry +scalar"
 else
   fail "lit-sphere.toml: $(cat "$work/stderr")"
@@ -51,10 +52,13 @@ radius = 1.0
 type = "beam"
 origin = [0.5, 0.0, -3.0]
 direction = [0, 0, 1]
+[grid]
+azimuth = { bins = 8 }
 TOML
 if "$exe" simulate "$work/beam.toml" "${small[@]}" --out "$work/beam.h5" >"$work/stdout" \
   2>"$work/stderr"; then
-  expect_info beam "$work/beam.h5" "source +beam" "beam +from \(0\.5, 0, -3\) along \(0, 0, 1\)"
+  expect_info beam "$work/beam.h5" "source +beam" "beam +from \(0\.5, 0, -3\) along \(0, 0, 1\)" \
+    "azimuth +8 bins in \[0, 6\.28319\] rad" "exitance +\[36 x 8\] \(psi,azimuth\)"
 else
   fail "beam: $(cat "$work/stderr")"
 fi

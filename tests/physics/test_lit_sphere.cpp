@@ -241,6 +241,34 @@ TEST(LitSphere, ABeamFromOutsideIsRefractedWhereItMeetsTheSphere) {
               1.0, 1e-12);
 }
 
+TEST(LitSphere, ExitanceByAzimuthSumsToTheZonesAndMirrorsAnOffAxisBeam) {
+  // Binning draws no random number: the same photons with 8 azimuth bins sum, patch by patch
+  // times area, to the zones of one bin.
+  LitSphereSpec spec = sphere(0.9, 0.5, 1.3, 1.0, 100'000);
+  spec.light = SphereLight::beam;
+  spec.beam_origin = {0.6, 0.0, -3.0};
+  spec.beam_direction = {0.0, 0.0, 1.0};
+  spec.psi.bins = 12;
+  const TransportOutput zones = run_lit_sphere(spec);
+  spec.azimuth.bins = 8;
+  const TransportOutput patches = run_lit_sphere(spec);
+  const TallyResult& zone = find_tally(zones, "exitance");
+  const TallyResult& patch = find_tally(patches, "exitance");
+  ASSERT_EQ(patch.shape, (std::vector<std::size_t>{12, 8}));
+  for (std::size_t k = 0; k < 12; ++k) {
+    double sum = 0.0;
+    for (std::size_t a = 0; a < 8; ++a) sum += patch.mean[k * 8 + a] / 8.0;  // equal areas
+    EXPECT_NEAR(sum, zone.mean[k], 1e-12 * (1.0 + zone.mean[k])) << "zone " << k;
+    // The beam lies in the x-z plane: azimuth a and 2 pi - a are mirror images.
+    for (std::size_t a = 0; a < 4; ++a) {
+      const std::size_t i = k * 8 + a, j = k * 8 + (7 - a);
+      EXPECT_NEAR(patch.mean[i], patch.mean[j],
+                  4.0 * std::hypot(patch.stderr_of_mean[i], patch.stderr_of_mean[j]) + 1e-15)
+          << "zone " << k << ", azimuth bin " << a;
+    }
+  }
+}
+
 TEST(LitSphere, BadSpecsNameTheField) {
   LitSphereSpec spec;
   spec.radius = -1.0;

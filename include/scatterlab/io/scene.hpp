@@ -112,7 +112,8 @@ SearchlightScene load_searchlight_scene(const std::filesystem::path& path,
 //   [medium]   as above; a material brings its table's eta unless geometry.eta is given
 //   [source]   type = "directional" | "pole_beam" | "beam"; for a beam, origin = [x, y, z]
 //              (outside the sphere, in medium.length_unit) and direction = [x, y, z]
-//   [grid]     psi = { bins }       (the angle from the lit pole, over [0, pi])
+//   [grid]     psi = { bins }       (the angle from the lit pole, over [0, pi]),
+//              azimuth = { bins }   (about z from +x, over [0, 2 pi]; 1 by default)
 //   [tallies]  split_by_order = bool
 //   [run]      photons, batches, seed, threads;  [output] path
 struct LitSphereScene {

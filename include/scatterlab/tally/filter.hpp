@@ -36,9 +36,9 @@ Filter shell_filter(const UniformAxis& rho);
 // Exit angle theta_o from the outward normal, by projected solid angle over all azimuths:
 // integral of cos theta dw = pi (sin^2 theta1 - sin^2 theta0), in sr.
 Filter exit_angle_filter(const UniformAxis& theta_o);
-// On a sphere of radius R, the polar angle psi of a point from the lit pole, by the area of each
-// zone: 2 pi R^2 (cos psi0 - cos psi1), in mfp^2.
-Filter polar_angle_filter(const UniformAxis& psi, double radius);
+// On a sphere of radius R, a point's polar angle psi from the lit pole and its azimuth about the
+// z axis, by the area of each patch: R^2 (cos psi0 - cos psi1) (azimuth1 - azimuth0), in mfp^2.
+Filter sphere_patch_filter(const UniformAxis& psi, const UniformAxis& azimuth, double radius);
 // The components of a vector (E_r, E_z): measure 1.
 Filter component_filter(std::size_t components);
 

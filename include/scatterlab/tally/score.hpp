@@ -18,7 +18,7 @@ enum class Score : std::size_t {
   exit,                 // no filter: the total
   exit_by_radius,       // r
   exit_radiance,        // r, exit angle theta_o
-  exit_by_polar_angle,  // on a sphere: psi, the exit point's angle from the lit pole
+  exit_by_polar_angle,  // on a sphere: psi (the angle from the lit pole) and the azimuth
   // Where a light's photon is reflected off the surface before entering (a sphere light), a
   // count:
   reflected_at_entry,

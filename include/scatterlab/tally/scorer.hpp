@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "scatterlab/core/frame.hpp"
@@ -41,9 +42,15 @@ class Scorer {
     const std::size_t block = split_ ? book_.order_block(order) : 0;
     if (exit_ != absent) add(buffer, exit_, block, 1.0);
     if (exit_by_polar_angle_ != absent) {
-      add(buffer,
-          exit_by_polar_angle_ + static_cast<std::size_t>(polar_binning_.bin(where.cos_polar)),
-          block, 1.0);
+      const std::size_t zone =
+          exit_by_polar_angle_ +
+          static_cast<std::size_t>(polar_binning_.bin(where.cos_polar)) * azimuth_bins_;
+      // One azimuth bin (a light symmetric about z) needs no angle.
+      if (azimuth_bins_ == 1) {
+        add(buffer, zone, block, 1.0);
+      } else {
+        add_by_azimuth(buffer, zone, block, where.x, where.y);
+      }
     }
     if (exit_by_radius_ == absent && exit_radiance_ == absent) return;
     const double x = where.x, y = where.y, cos_outside = where.cos_outside;
@@ -83,6 +90,38 @@ class Scorer {
 
  private:
   static constexpr std::size_t absent = TallyBook::absent;
+
+  // Adds an exit at (x, y) to its azimuth bin about z (from +x, over [0, 2 pi)) in the zone at
+  // `zone`. Light in the plane y = 0 exactly (a beam in the x-z plane that has not scattered out
+  // of it: a delta on a bin edge) is shared equally between the two bins that meet there, as the
+  // radiance's phi is (add_radiance); on the z axis, where every azimuth meets, among all.
+  void add_by_azimuth(double* buffer, std::size_t zone, std::size_t block, double x,
+                      double y) const {
+    const std::size_t bins = azimuth_bins_;
+    if (y == 0.0) {
+      if (x == 0.0) {
+        for (std::size_t a = 0; a < bins; ++a) {
+          add(buffer, zone + a, block, 1.0 / static_cast<double>(bins));
+        }
+        return;
+      }
+      if (x > 0.0) {
+        add(buffer, zone, block, 0.5);
+        add(buffer, zone + bins - 1, block, 0.5);
+        return;
+      }
+      if (bins % 2 == 0) {
+        add(buffer, zone + bins / 2 - 1, block, 0.5);
+        add(buffer, zone + bins / 2, block, 0.5);
+        return;
+      }
+    }
+    double angle = std::atan2(y, x);
+    if (angle < 0.0) angle += 2.0 * std::numbers::pi;
+    const int bin = std::clamp(static_cast<int>(angle * axes_.azimuth.inverse_width()), 0,
+                               axes_.azimuth.bins - 1);
+    add(buffer, zone + static_cast<std::size_t>(bin), block, 1.0);
+  }
 
   // Adds v at `index` of the all-orders block and, when split, of the order's block.
   void add(double* buffer, std::size_t index, std::size_t order_block, double v) const {
@@ -128,6 +167,7 @@ class Scorer {
   CosineBinning phi_binning_;  // over [0, pi]
   CosineBinning exit_binning_;
   CosineBinning polar_binning_;         // psi on a sphere
+  std::size_t azimuth_bins_ = 1;        // about z, on a sphere
   std::vector<double> phi_cotangents_;  // cot of the interior edges of the [0, pi] phi axis
 };
 

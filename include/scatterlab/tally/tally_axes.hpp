@@ -20,6 +20,7 @@ struct TallyAxes {
   UniformAxis rho;      // distance from the source, mfp
   UniformAxis theta_o;  // exit angle, outside the medium
   UniformAxis psi;      // on a sphere: the exit point's polar angle from the lit pole
+  UniformAxis azimuth;  // on a sphere: the exit point's azimuth about z, from +x, over [0, 2 pi)
 };
 
 }  // namespace scatterlab

@@ -39,7 +39,10 @@ struct LitSphereSpec {
   std::array<double, 3> beam_origin{0.0, 0.0, -2.0};
   std::array<double, 3> beam_direction{0.0, 0.0, 1.0};
   UniformAxis psi{0.0, std::numbers::pi, 36};  // exit point's angle from the lit pole
-  bool split_by_order = true;                  // siblings _unscattered, _single, _multiple
+  // The exit point's azimuth about z, from +x: one bin for a light symmetric about z (the
+  // directional light, the pole beam), more for a beam off the axis.
+  UniformAxis azimuth{0.0, 2.0 * std::numbers::pi, 1};
+  bool split_by_order = true;  // siblings _unscattered, _single, _multiple
   RunSettings run{1'000'000, 64, 1, 0};
   std::optional<MaterialOrigin> material;  // set when the medium came from a measured table
 
