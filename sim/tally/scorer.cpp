@@ -94,6 +94,9 @@ Scorer::Scorer(const TallyAxes& axes, const TallyBook& book)
   if ((absorbed_in_grid_ == absent) != (absorbed_outside_grid_ == absent)) {
     throw std::invalid_argument("Scorer: absorbed_in_grid and absorbed_outside_grid go together");
   }
+  for (const TallyDeclaration& d : book.declarations()) {
+    if (d.score == Score::absorbed) absorbed_by_order_ = d.by_order && split_;
+  }
   fluence_only_ =
       fluence_ != absent && flux_ == absent && radiance_ == absent && fluence_spherical_ == absent;
   if (radiance_ != absent) {

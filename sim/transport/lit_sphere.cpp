@@ -40,7 +40,7 @@ std::vector<TallyDeclaration> declare_tallies(const LitSphereSpec& spec, double 
                      "total power leaving the sphere after it entered (any point, any angle)",
                      true});
   tallies.push_back(
-      {"absorbed", Score::absorbed, {}, "W per W incident", "power absorbed in the sphere"});
+      {"absorbed", Score::absorbed, {}, "W per W incident", "power absorbed in the sphere", true});
   if (spec.light == SphereLight::directional) {
     tallies.push_back({"reflected_at_entry",
                        Score::reflected_at_entry,

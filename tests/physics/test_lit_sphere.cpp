@@ -81,6 +81,7 @@ TEST(LitSphere, IndexMatchedAbsorbingSphereTransmitsItsChords) {
   EXPECT_NEAR(scalar(out, "absorbed"), 1.0 - scalar(out, "exited"), 1e-12);
   EXPECT_EQ(scalar(out, "reflected_at_entry"), 0.0);
   EXPECT_EQ(scalar(out, "exited_single"), 0.0);
+  EXPECT_EQ(scalar(out, "absorbed_unscattered"), scalar(out, "absorbed"));  // nothing scatters
 
   const TallyResult& exitance = find_tally(out, "exitance");
   for (int k = 0; k < spec.psi.bins; ++k) {
@@ -162,10 +163,12 @@ TEST(LitSphere, EnergyBalancesPhotonByPhotonAndOrdersSum) {
           scalar(out, "reflected_at_entry") + scalar(out, "exited") + scalar(out, "absorbed"), 1.0,
           1e-12)
           << label;
-      EXPECT_NEAR(scalar(out, "exited_unscattered") + scalar(out, "exited_single") +
-                      scalar(out, "exited_multiple"),
-                  scalar(out, "exited"), 1e-12)
-          << label;
+      for (const std::string total : {"exited", "absorbed"}) {
+        EXPECT_NEAR(scalar(out, total + "_unscattered") + scalar(out, total + "_single") +
+                        scalar(out, total + "_multiple"),
+                    scalar(out, total), 1e-12)
+            << label << " " << total;
+      }
       // The exitance over the whole surface is the light that exited.
       const TallyResult& exitance = find_tally(out, "exitance");
       double total = 0.0;

@@ -66,8 +66,12 @@ class Scorer {
     }
   }
 
-  void absorption(double* buffer, const Vec3& position) const {
-    if (absorbed_ != absent) buffer[absorbed_] += 1.0;
+  // A photon absorbed at `position` after `order` scatterings.
+  void absorption(double* buffer, const Vec3& position, int order) const {
+    if (absorbed_ != absent) {
+      buffer[absorbed_] += 1.0;
+      if (absorbed_by_order_) buffer[absorbed_ + book_.order_block(order)] += 1.0;
+    }
     if (absorbed_in_grid_ != absent) {
       buffer[in_grid(position) ? absorbed_in_grid_ : absorbed_outside_grid_] += 1.0;
     }
@@ -155,7 +159,8 @@ class Scorer {
   TallyAxes axes_;
   const TallyBook& book_;
   bool split_;
-  bool fluence_only_;  // of the volume scores, only the fluence
+  bool fluence_only_;               // of the volume scores, only the fluence
+  bool absorbed_by_order_ = false;  // the absorbed total has per-order siblings in this run
   // Offsets of each score's cells (TallyBook::offset), absent when no tally declares it.
   std::size_t fluence_, flux_, radiance_, fluence_spherical_;
   std::size_t exit_, exit_by_radius_, exit_radiance_, exit_by_polar_angle_, reflected_at_entry_;

@@ -99,7 +99,7 @@ class RandomWalk {
           scorer_.collision(buffer, position, direction, order);
         }
         if (u[1] >= albedo_) {
-          scorer_.absorption(buffer, position);
+          scorer_.absorption(buffer, position, order);
           break;
         }
         const double cos_theta = phase_.sample_cos_theta(u[2]);
