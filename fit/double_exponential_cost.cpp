@@ -16,7 +16,8 @@ namespace scatterlab::fit {
 namespace {
 
 using Jet3 = ceres::Jet<double, 3>;  // d/dp
-using Jet8 = ceres::Jet<double, 8>;  // d/d(a, ridge)
+constexpr int kRidge = AnisotropicRidge::kRidge;
+using Jet8 = ceres::Jet<double, 1 + kRidge>;  // d/d(a, ridge)
 
 constexpr std::size_t kMaxNodes = 2 * 8 * 8;  // a folded grid's bin at quadrature order 8
 
@@ -72,7 +73,7 @@ bool DoubleExponentialCost::Evaluate(double const* const* parameters, double* re
   const double* p = parameters[0];
   const double* shape = parameters[1];
   const double a = shape[0], b = shape[1], gamma = shape[2];
-  const double eta = shape_size_ == 4 ? shape[3] : 0.0;
+  const double eta = shape_size_ == AnisotropicDoubleExponential::kShape ? shape[3] : 0.0;
   const double along_scale = 0.5 * std::exp(eta), across_scale = 0.5 * std::exp(-eta);
 
   // The tangents and their 3 x 3 Jacobians in p, once per evaluation.
@@ -85,13 +86,13 @@ bool DoubleExponentialCost::Evaluate(double const* const* parameters, double* re
 
   // The ridge in Jets over (a, c, g, k, theta_on, width, c_spread, kappa); the smooth part of
   // this Evaluator is not used.
-  Jet8 axis8[3], shape8[4], ridge8[7];
+  Jet8 axis8[3], shape8[AnisotropicDoubleExponential::kShape], ridge8[kRidge];
   std::optional<AnisotropicRidge::Evaluator<Jet8>> ridge;
   if (with_ridge_) {
     for (int k = 0; k < 3; ++k) axis8[k] = Jet8(p[k]);
-    for (int k = 0; k < 4; ++k) shape8[k] = Jet8(shape[k]);  // adexp_ridge: shape_size_ 4
+    for (int k = 0; k < shape_size_; ++k) shape8[k] = Jet8(shape[k]);
     shape8[0] = Jet8(a, 0);
-    for (int k = 0; k < 7; ++k) ridge8[k] = Jet8(parameters[2][k], 1 + k);
+    for (int k = 0; k < kRidge; ++k) ridge8[k] = Jet8(parameters[2][k], 1 + k);
     ridge.emplace(axis8, shape8, ridge8, grid_);
   }
 
@@ -114,9 +115,10 @@ bool DoubleExponentialCost::Evaluate(double const* const* parameters, double* re
       t.log_value = a + b * t.ramp;
       largest = std::max(largest, t.log_value);
     }
-    // theta-gradient of the sum: (a, b, gamma, A, B, t1, t2, p), in the header's order.
+    // The sum, which is also its a-derivative, and its gradient in the other intermediates
+    // (b, gamma, A, B, t1, t2, p; the header's order).
     double sum = 0.0;
-    std::array<double, 5> scalar{};
+    std::array<double, 4> scalar{};
     Eigen::Vector3d d_t1 = Eigen::Vector3d::Zero(), d_t2 = d_t1, d_p = d_t1;
     for (std::size_t q = 0; q < nodes.size(); ++q) {
       const NodeTerms& t = terms[q];
@@ -124,11 +126,10 @@ bool DoubleExponentialCost::Evaluate(double const* const* parameters, double* re
       sum += weight;
       if (!want_jacobian) continue;
       const double g = t.s > 0.0 ? weight * b * t.growth / (2.0 * t.s) : 0.0;
-      scalar[0] += weight;
-      scalar[1] += weight * t.ramp;
-      scalar[2] += weight * b * t.ramp_gamma;
-      scalar[3] += g * t.u * t.u;
-      scalar[4] += g * t.v * t.v;
+      scalar[0] += weight * t.ramp;
+      scalar[1] += weight * b * t.ramp_gamma;
+      scalar[2] += g * t.u * t.u;
+      scalar[3] += g * t.v * t.v;
       d_t1 += (2.0 * g * along_scale * t.u) * nodes[q].direction;
       d_t2 += (2.0 * g * across_scale * t.v) * nodes[q].direction;
       d_p -= (g * t.rho) * nodes[q].direction;
@@ -156,18 +157,18 @@ bool DoubleExponentialCost::Evaluate(double const* const* parameters, double* re
       if (!all_finite(row, 3)) return false;
     }
     if (double* row = jacobians[1] ? jacobians[1] + shape_size_ * i : nullptr) {
-      row[0] = factor * scalar[0] + extra.v[0] * inverse_sigma;
-      row[1] = factor * scalar[1];
-      row[2] = factor * scalar[2];
-      if (shape_size_ == 4) {
-        row[3] = factor * (scalar[3] * along_scale - scalar[4] * across_scale);  // dA/deta = A
+      row[0] = factor * sum + extra.v[0] * inverse_sigma;
+      row[1] = factor * scalar[0];
+      row[2] = factor * scalar[1];
+      if (shape_size_ == AnisotropicDoubleExponential::kShape) {
+        row[3] = factor * (scalar[2] * along_scale - scalar[3] * across_scale);  // dA/deta = A
       }
       if (!all_finite(row, shape_size_)) return false;
     }
     if (with_ridge_ && jacobians[2]) {
-      double* row = jacobians[2] + 7 * i;
-      for (int k = 0; k < 7; ++k) row[k] = extra.v[1 + k] * inverse_sigma;
-      if (!all_finite(row, 7)) return false;
+      double* row = jacobians[2] + kRidge * i;
+      for (int k = 0; k < kRidge; ++k) row[k] = extra.v[1 + k] * inverse_sigma;
+      if (!all_finite(row, kRidge)) return false;
     }
   }
   return true;

@@ -21,9 +21,34 @@ std::string got(double value) {
   return fmt::format("got {}", value);
 }
 
+struct BeamEntry {
+  Vec3 point, direction;
+  double cos_incidence;
+};
+
+// Where a beam from outside meets the sphere of radius R about the origin, and at what cosine of
+// incidence; nullopt when it misses (or only grazes) it. The pole beam meets (0, 0, -R) along
+// the normal.
+std::optional<BeamEntry> beam_entry(const LitSphereSpec& spec, double radius_mfp) {
+  if (spec.light == SphereLight::pole_beam) {
+    return BeamEntry{Vec3(0.0, 0.0, -radius_mfp), Vec3::UnitZ(), 1.0};
+  }
+  const double mfp_per_unit = mfp_per_length_unit(spec.medium);
+  const Vec3 origin =
+      Vec3(spec.beam_origin[0], spec.beam_origin[1], spec.beam_origin[2]) * mfp_per_unit;
+  const Vec3 direction =
+      Vec3(spec.beam_direction[0], spec.beam_direction[1], spec.beam_direction[2]).normalized();
+  // |o + t w|^2 = R^2: t^2 + 2 b t + c = 0, the nearer root for an origin outside.
+  const double b = origin.dot(direction), c = origin.squaredNorm() - radius_mfp * radius_mfp;
+  const double discriminant = b * b - c;
+  if (!(discriminant > 0.0) || !(b < 0.0)) return std::nullopt;
+  const Vec3 point = origin + (-b - std::sqrt(discriminant)) * direction;
+  return BeamEntry{point, direction, std::clamp(-direction.dot(point) / radius_mfp, 0.0, 1.0)};
+}
+
 // The sphere's tallies, each declared once; all but the light reflected at entry by order.
 std::vector<TallyDeclaration> declare_tallies(const LitSphereSpec& spec, double radius_mfp,
-                                              double pole_reflectance) {
+                                              double beam_reflectance) {
   std::vector<TallyDeclaration> tallies;
   tallies.push_back({"exitance",
                      Score::exit_by_polar_angle,
@@ -56,33 +81,9 @@ std::vector<TallyDeclaration> declare_tallies(const LitSphereSpec& spec, double 
                        "Fresnel reflection of the beam where it meets the sphere (exact: no "
                        "standard error)",
                        false,
-                       pole_reflectance});
+                       beam_reflectance});
   }
   return tallies;
-}
-
-}  // namespace
-
-// Where the beam meets the sphere of radius R about the origin, and at what cosine of
-// incidence; nullopt when it misses (or only grazes) it.
-namespace {
-
-struct BeamEntry {
-  Vec3 point, direction;
-  double cos_incidence;
-};
-std::optional<BeamEntry> beam_entry(const LitSphereSpec& spec, double radius_mfp) {
-  const double mfp_per_unit = mfp_per_length_unit(spec.medium);
-  const Vec3 origin =
-      Vec3(spec.beam_origin[0], spec.beam_origin[1], spec.beam_origin[2]) * mfp_per_unit;
-  const Vec3 direction =
-      Vec3(spec.beam_direction[0], spec.beam_direction[1], spec.beam_direction[2]).normalized();
-  // |o + t w|^2 = R^2: t^2 + 2 b t + c = 0, the nearer root for an origin outside.
-  const double b = origin.dot(direction), c = origin.squaredNorm() - radius_mfp * radius_mfp;
-  const double discriminant = b * b - c;
-  if (!(discriminant > 0.0) || !(b < 0.0)) return std::nullopt;
-  const Vec3 point = origin + (-b - std::sqrt(discriminant)) * direction;
-  return BeamEntry{point, direction, std::clamp(-direction.dot(point) / radius_mfp, 0.0, 1.0)};
 }
 
 }  // namespace
@@ -175,28 +176,24 @@ TransportProblem transport_problem(const LitSphereSpec& spec) {
   problem.geometry = GeometryKind::sphere;
   problem.eta = spec.eta;
   problem.radius = radius;
-  // The beam meets the pole along the normal: no bending, F(1) reflected, 1 - F(1) enters and
-  // carries every other tally (as the searchlight's beam does). The directional light's
-  // reflection depends on where each photon meets the sphere, so it is counted photon by photon.
-  // A beam from outside is refracted at its entry point; beyond the critical angle of an
-  // eta < 1 sphere nothing enters, and every tally is scaled by the transmitted power, 0.
-  double beam_reflectance = fresnel_dielectric_reflectance(1.0, spec.eta);
+  // A beam is refracted where it meets the sphere, F of its incidence reflected, and 1 - F enters
+  // and carries every other tally (as the searchlight's beam does); beyond the critical angle of
+  // an eta < 1 sphere nothing enters, and every tally is scaled by the transmitted power, 0. The
+  // directional light's reflection depends on where each photon meets the sphere, so it is
+  // counted photon by photon.
+  double beam_reflectance = 0.0;
   if (spec.light == SphereLight::directional) {
     problem.source.kind = Source::Kind::sphere_light;
     problem.source.sphere_radius = radius;
     problem.source.eta = spec.eta;
   } else {
+    const std::optional<BeamEntry> entry = beam_entry(spec, radius);
+    if (!entry) throw std::invalid_argument("transport_problem: the beam misses the sphere");
     problem.source.kind = Source::Kind::beam;
-    problem.source.position = Vec3(0.0, 0.0, -radius);
-    problem.source.direction = Vec3::UnitZ();
-    if (spec.light == SphereLight::beam) {
-      const std::optional<BeamEntry> entry = beam_entry(spec, radius);
-      if (!entry) throw std::invalid_argument("transport_problem: the beam misses the sphere");
-      problem.source.position = entry->point;
-      problem.source.direction = entry->direction;
-      refract(entry->direction, entry->point / radius, spec.eta, problem.source.direction);
-      beam_reflectance = fresnel_dielectric_reflectance(entry->cos_incidence, spec.eta);
-    }
+    problem.source.position = entry->point;
+    problem.source.direction = entry->direction;
+    refract(entry->direction, entry->point / radius, spec.eta, problem.source.direction);
+    beam_reflectance = fresnel_dielectric_reflectance(entry->cos_incidence, spec.eta);
     problem.photon_power = 1.0 - beam_reflectance;
   }
   problem.axes.psi = spec.psi;

@@ -5,8 +5,7 @@
 // and whatever the geometry does where a flight meets its surface.
 //
 // Specialised at compile time on the geometry (infinite_medium.hpp, half_space.hpp, sphere.hpp),
-// the phase
-// function and the volume estimator, so that the loop holds no isotropic/HG branch, no
+// the phase function and the volume estimator, so that the loop holds no isotropic/HG branch, no
 // collision/track-length branch, and no boundary code where the geometry has no surface. One
 // Philox call per event (free path, absorption, cos theta, azimuth); no allocation.
 //
