@@ -54,6 +54,16 @@ Filter exit_angle_filter(const UniformAxis& theta_o) {
           })};
 }
 
+Filter exit_solid_angle_filter(const UniformAxis& theta_o) {
+  return {{"theta_o"}, {count(theta_o)}, per_bin(theta_o, [](double t0, double t1) {
+            return 2.0 * pi * (std::cos(t0) - std::cos(t1));
+          })};
+}
+
+Filter layer_filter(std::size_t layers) {
+  return {{"layer"}, {layers}, std::vector<double>(layers, 1.0)};
+}
+
 Filter sphere_patch_filter(const UniformAxis& psi, const UniformAxis& azimuth, double radius) {
   Filter f{{"psi", "azimuth"}, {count(psi), count(azimuth)}, {}};
   for (int k = 0; k < psi.bins; ++k) {

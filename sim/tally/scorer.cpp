@@ -78,9 +78,11 @@ Scorer::Scorer(const TallyAxes& axes, const TallyBook& book)
       flux_(book.offset(Score::flux)),
       radiance_(book.offset(Score::radiance)),
       fluence_spherical_(book.offset(Score::fluence_spherical)),
-      exit_(book.offset(Score::exit)),
-      exit_by_radius_(book.offset(Score::exit_by_radius)),
-      exit_radiance_(book.offset(Score::exit_radiance)),
+      exited_{book.offset(Score::exit), book.offset(Score::exit_by_radius),
+              book.offset(Score::exit_by_angle), book.offset(Score::exit_radiance)},
+      transmitted_{book.offset(Score::transmitted), book.offset(Score::transmitted_by_radius),
+                   book.offset(Score::transmitted_by_angle),
+                   book.offset(Score::transmitted_by_radius_angle)},
       exit_by_polar_angle_(book.offset(Score::exit_by_polar_angle)),
       reflected_at_entry_(book.offset(Score::reflected_at_entry)),
       absorbed_(book.offset(Score::absorbed)),
@@ -88,6 +90,9 @@ Scorer::Scorer(const TallyAxes& axes, const TallyBook& book)
       absorbed_outside_grid_(book.offset(Score::absorbed_outside_grid)),
       absorption_depth_(book.offset(Score::absorption_depth)),
       escaped_(book.offset(Score::escaped)),
+      absorbed_by_layer_(book.offset(Score::absorbed_by_layer)),
+      absorbed_by_depth_(book.offset(Score::absorbed_by_depth)),
+      absorbed_by_radius_depth_(book.offset(Score::absorbed_by_radius_depth)),
       z_bins_(static_cast<std::size_t>(axes.z.bins)),
       theta_bins_(static_cast<std::size_t>(axes.theta.bins)),
       theta_o_bins_(static_cast<std::size_t>(axes.theta_o.bins)) {
@@ -108,7 +113,11 @@ Scorer::Scorer(const TallyAxes& axes, const TallyBook& book)
       phi_cotangents_.push_back(1.0 / std::tan(half_turn.edge(k)));
     }
   }
-  if (exit_radiance_ != absent) exit_binning_ = CosineBinning(axes.theta_o);
+  for (const SideScores& side : {exited_, transmitted_}) {
+    if (side.by_angle != absent || side.by_radius_angle != absent) {
+      exit_binning_ = CosineBinning(axes.theta_o);
+    }
+  }
   if (exit_by_polar_angle_ != absent) {
     polar_binning_ = CosineBinning(axes.psi);
     azimuth_bins_ = static_cast<std::size_t>(std::max(axes.azimuth.bins, 1));

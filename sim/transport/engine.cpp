@@ -9,6 +9,7 @@
 #include "scatterlab/transport/half_space.hpp"
 #include "scatterlab/transport/infinite_medium.hpp"
 #include "scatterlab/transport/random_walk.hpp"
+#include "scatterlab/transport/slab.hpp"
 #include "scatterlab/transport/sphere.hpp"
 
 namespace scatterlab {
@@ -22,11 +23,12 @@ struct Kernel {
   const ProgressCallback& progress;
   const RunControl& control;
 
-  template <class Geometry, class Phase, VolumeEstimator estimator>
+  template <class Geometry, class Phase, VolumeEstimator estimator,
+            Weighting weighting = Weighting::analog>
   BatchOutcome run(const Geometry& geometry, const Phase& phase) const {
-    const RandomWalk<Geometry, Phase, estimator> walk(geometry, phase, problem.source, scorer,
-                                                      problem.albedo, problem.run.escape_radius,
-                                                      problem.run.seed);
+    const RandomWalk<Geometry, Phase, estimator, weighting> walk(
+        geometry, phase, problem.source, scorer, problem.albedo, problem.run.escape_radius,
+        problem.run.seed);
     return run_batches(problem.run, book.size(), walk, progress, control);
   }
 
@@ -45,6 +47,20 @@ struct Kernel {
     }
   }
 
+  // The layers hold their own media (the phase function is unused) and are scored at events
+  // alone.
+  BatchOutcome slab() const {
+    if (book.scores_volume()) {
+      throw std::invalid_argument("transport: a slab is scored at absorption and exit only");
+    }
+    const Slab geometry(problem.layers, problem.n_above, problem.n_below);
+    if (problem.weighting == Weighting::implicit_capture) {
+      return run<Slab, IsotropicPhase, VolumeEstimator::none, Weighting::implicit_capture>(
+          geometry, IsotropicPhase{});
+    }
+    return run<Slab, IsotropicPhase, VolumeEstimator::none>(geometry, IsotropicPhase{});
+  }
+
   // eta = 1: no Fresnel arithmetic and no extra random numbers at the surface.
   template <class Phase>
   BatchOutcome with_geometry(const Phase& phase) const {
@@ -57,12 +73,18 @@ struct Kernel {
       case GeometryKind::sphere:
         if (problem.eta == 1.0) return with_estimator(Sphere<false>(problem.radius, 1.0), phase);
         return with_estimator(Sphere<true>(problem.radius, problem.eta), phase);
+      case GeometryKind::slab:
+        return slab();
     }
     throw std::invalid_argument("transport: unknown geometry");
   }
 
   // g = 0 samples isotropically: no HG arithmetic where the scene does not need it.
   BatchOutcome select() const {
+    if (problem.weighting != Weighting::analog && problem.geometry != GeometryKind::slab) {
+      throw std::invalid_argument("transport: implicit capture runs only in a slab");
+    }
+    if (problem.geometry == GeometryKind::slab) return slab();
     return problem.g == 0.0 ? with_geometry(IsotropicPhase{})
                             : with_geometry(HenyeyGreenstein{problem.g});
   }

@@ -36,6 +36,12 @@ Filter shell_filter(const UniformAxis& rho);
 // Exit angle theta_o from the outward normal, by projected solid angle over all azimuths:
 // integral of cos theta dw = pi (sin^2 theta1 - sin^2 theta0), in sr.
 Filter exit_angle_filter(const UniformAxis& theta_o);
+// Exit angle theta_o by solid angle: 2 pi (cos theta0 - cos theta1), in sr: MCML's R_d(alpha) and
+// T_t(alpha) are per steradian, not per projected steradian (the MCML manual, Wang & Jacques
+// 1992, "Scored physical quantities").
+Filter exit_solid_angle_filter(const UniformAxis& theta_o);
+// A slab's layers, counted from the lit side: measure 1.
+Filter layer_filter(std::size_t layers);
 // On a sphere of radius R, a point's polar angle psi from the lit pole and its azimuth about the
 // z axis, by the area of each patch: R^2 (cos psi0 - cos psi1) (azimuth1 - azimuth0), in mfp^2.
 Filter sphere_patch_filter(const UniformAxis& psi, const UniformAxis& azimuth, double radius);

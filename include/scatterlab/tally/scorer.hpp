@@ -36,46 +36,71 @@ class Scorer {
   void flight(double* buffer, std::vector<double>& crossings, const Vec3& start,
               const Vec3& direction, double length, int order) const;
 
-  // A photon leaves through the surface at `where` after `order` scatterings
-  // (surface_exit.hpp).
-  void exit(double* buffer, const SurfaceExit& where, int order) const {
+  // A photon of weight `weight` leaves through the surface at `where` after `order`
+  // scatterings (surface_exit.hpp): through a slab's far side, the transmitted scores; else the
+  // exit scores of the side it entered.
+  void exit(double* buffer, const SurfaceExit& where, int order, double weight = 1.0) const {
     const std::size_t block = split_ ? book_.order_block(order) : 0;
-    if (exit_ != absent) add(buffer, exit_, block, 1.0);
+    const SideScores& side = where.transmitted ? transmitted_ : exited_;
+    if (side.total != absent) add(buffer, side.total, block, weight);
     if (exit_by_polar_angle_ != absent) {
       const std::size_t zone =
           exit_by_polar_angle_ +
           static_cast<std::size_t>(polar_binning_.bin(where.cos_polar)) * azimuth_bins_;
       // One azimuth bin (a light symmetric about z) needs no angle.
       if (azimuth_bins_ == 1) {
-        add(buffer, zone, block, 1.0);
+        add(buffer, zone, block, weight);
       } else {
-        add_by_azimuth(buffer, zone, block, where.x, where.y);
+        add_by_azimuth(buffer, zone, block, where.x, where.y, weight);
       }
     }
-    if (exit_by_radius_ == absent && exit_radiance_ == absent) return;
-    const double x = where.x, y = where.y, cos_outside = where.cos_outside;
+    const double cos_outside = where.cos_outside;
+    if (side.by_angle != absent) {
+      add(buffer, side.by_angle + static_cast<std::size_t>(exit_binning_.bin(cos_outside)), block,
+          weight);
+    }
+    if (side.by_radius == absent && side.by_radius_angle == absent) return;
+    const double x = where.x, y = where.y;
     const int ir = axes_.r.index(std::sqrt(x * x + y * y));
     if (ir < 0) return;
     const auto ring = static_cast<std::size_t>(ir);
-    if (exit_by_radius_ != absent) add(buffer, exit_by_radius_ + ring, block, 1.0);
-    if (exit_radiance_ != absent) {
+    if (side.by_radius != absent) add(buffer, side.by_radius + ring, block, weight);
+    if (side.by_radius_angle != absent) {
       add(buffer,
-          exit_radiance_ + ring * theta_o_bins_ +
+          side.by_radius_angle + ring * theta_o_bins_ +
               static_cast<std::size_t>(exit_binning_.bin(cos_outside)),
-          block, 1.0);
+          block, weight);
     }
   }
 
-  // A photon absorbed at `position` after `order` scatterings.
-  void absorption(double* buffer, const Vec3& position, int order) const {
+  // A photon absorbed at `position`, in a slab's `layer`, after `order` scatterings: all of its
+  // weight (analog absorption, weight 1) or the part deposited at a collision (implicit capture).
+  void absorption(double* buffer, const Vec3& position, int order, int layer = 0,
+                  double weight = 1.0) const {
     if (absorbed_ != absent) {
-      buffer[absorbed_] += 1.0;
-      if (absorbed_by_order_) buffer[absorbed_ + book_.order_block(order)] += 1.0;
+      buffer[absorbed_] += weight;
+      if (absorbed_by_order_) buffer[absorbed_ + book_.order_block(order)] += weight;
     }
     if (absorbed_in_grid_ != absent) {
-      buffer[in_grid(position) ? absorbed_in_grid_ : absorbed_outside_grid_] += 1.0;
+      buffer[in_grid(position) ? absorbed_in_grid_ : absorbed_outside_grid_] += weight;
     }
-    if (absorption_depth_ != absent) buffer[absorption_depth_] += position.z();
+    if (absorption_depth_ != absent) buffer[absorption_depth_] += weight * position.z();
+    if (absorbed_by_layer_ != absent) {
+      buffer[absorbed_by_layer_ + static_cast<std::size_t>(layer)] += weight;
+    }
+    if (absorbed_by_depth_ == absent && absorbed_by_radius_depth_ == absent) return;
+    const int iz = axes_.z.index(position.z());
+    if (iz < 0) return;
+    const auto slice = static_cast<std::size_t>(iz);
+    if (absorbed_by_depth_ != absent) buffer[absorbed_by_depth_ + slice] += weight;
+    if (absorbed_by_radius_depth_ != absent) {
+      const int ir =
+          axes_.r.index(std::sqrt(position.x() * position.x() + position.y() * position.y()));
+      if (ir >= 0) {
+        buffer[absorbed_by_radius_depth_ + static_cast<std::size_t>(ir) * z_bins_ + slice] +=
+            weight;
+      }
+    }
   }
 
   // A light's photon reflected off the surface before it entered.
@@ -83,8 +108,8 @@ class Scorer {
     if (reflected_at_entry_ != absent) buffer[reflected_at_entry_] += 1.0;
   }
 
-  void escape(double* buffer) const {
-    if (escaped_ != absent) buffer[escaped_] += 1.0;
+  void escape(double* buffer, double weight = 1.0) const {
+    if (escaped_ != absent) buffer[escaped_] += weight;
   }
 
   bool in_grid(const Vec3& p) const {
@@ -99,24 +124,24 @@ class Scorer {
   // `zone`. Light in the plane y = 0 exactly (a beam in the x-z plane that has not scattered out
   // of it: a delta on a bin edge) is shared equally between the two bins that meet there, as the
   // radiance's phi is (add_radiance); on the z axis, where every azimuth meets, among all.
-  void add_by_azimuth(double* buffer, std::size_t zone, std::size_t block, double x,
-                      double y) const {
+  void add_by_azimuth(double* buffer, std::size_t zone, std::size_t block, double x, double y,
+                      double weight) const {
     const std::size_t bins = azimuth_bins_;
     if (y == 0.0) {
       if (x == 0.0) {
         for (std::size_t a = 0; a < bins; ++a) {
-          add(buffer, zone + a, block, 1.0 / static_cast<double>(bins));
+          add(buffer, zone + a, block, weight / static_cast<double>(bins));
         }
         return;
       }
       if (x > 0.0) {
-        add(buffer, zone, block, 0.5);
-        add(buffer, zone + bins - 1, block, 0.5);
+        add(buffer, zone, block, 0.5 * weight);
+        add(buffer, zone + bins - 1, block, 0.5 * weight);
         return;
       }
       if (bins % 2 == 0) {
-        add(buffer, zone + bins / 2 - 1, block, 0.5);
-        add(buffer, zone + bins / 2, block, 0.5);
+        add(buffer, zone + bins / 2 - 1, block, 0.5 * weight);
+        add(buffer, zone + bins / 2, block, 0.5 * weight);
         return;
       }
     }
@@ -124,7 +149,7 @@ class Scorer {
     if (angle < 0.0) angle += 2.0 * std::numbers::pi;
     const int bin = std::clamp(static_cast<int>(angle * axes_.azimuth.inverse_width()), 0,
                                axes_.azimuth.bins - 1);
-    add(buffer, zone + static_cast<std::size_t>(bin), block, 1.0);
+    add(buffer, zone + static_cast<std::size_t>(bin), block, weight);
   }
 
   // Adds v at `index` of the all-orders block and, when split, of the order's block.
@@ -163,8 +188,14 @@ class Scorer {
   bool absorbed_by_order_ = false;  // the absorbed total has per-order siblings in this run
   // Offsets of each score's cells (TallyBook::offset), absent when no tally declares it.
   std::size_t fluence_, flux_, radiance_, fluence_spherical_;
-  std::size_t exit_, exit_by_radius_, exit_radiance_, exit_by_polar_angle_, reflected_at_entry_;
+  // The scores of light leaving through one side: the total, by r, by theta_o, by both.
+  struct SideScores {
+    std::size_t total, by_radius, by_angle, by_radius_angle;
+  };
+  SideScores exited_, transmitted_;
+  std::size_t exit_by_polar_angle_, reflected_at_entry_;
   std::size_t absorbed_, absorbed_in_grid_, absorbed_outside_grid_, absorption_depth_, escaped_;
+  std::size_t absorbed_by_layer_, absorbed_by_depth_, absorbed_by_radius_depth_;
   // Strides of the row-major arrays [r][z][theta][phi] and [r][theta_o].
   std::size_t z_bins_, theta_bins_, theta_o_bins_;
   int phi_bins_ = 1;

@@ -7,6 +7,7 @@ struct SurfaceExit {
   double x = 0.0, y = 0.0;   // on the surface, about the entry point (the beam axis)
   double cos_outside = 1.0;  // from the outward normal, outside (after refraction)
   double cos_polar = 1.0;    // on a sphere: cos psi, psi the angle from the lit pole (sphere.hpp)
+  bool transmitted = false;  // left a slab through its far side (slab.hpp), not the lit one
 };
 
 }  // namespace scatterlab

@@ -26,6 +26,7 @@ template <bool fresnel>
 class HalfSpace {
  public:
   static constexpr bool has_surface = true;
+  static constexpr bool layered = false;
 
   explicit HalfSpace(double eta) : exit_eta_(1.0 / eta) {}
 

@@ -6,6 +6,7 @@ namespace scatterlab {
 
 struct InfiniteMedium {
   static constexpr bool has_surface = false;
+  static constexpr bool layered = false;
 };
 
 }  // namespace scatterlab

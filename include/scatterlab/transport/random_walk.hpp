@@ -4,15 +4,22 @@
 // collision (so the number of collisions is geometric, §4.1), scattering by the phase function,
 // and whatever the geometry does where a flight meets its surface.
 //
-// Specialised at compile time on the geometry (infinite_medium.hpp, half_space.hpp, sphere.hpp),
-// the phase function and the volume estimator, so that the loop holds no isotropic/HG branch, no
-// collision/track-length branch, and no boundary code where the geometry has no surface. One
-// Philox call per event (free path, absorption, cos theta, azimuth); no allocation.
+// Specialised at compile time on the geometry (infinite_medium.hpp, half_space.hpp, sphere.hpp,
+// slab.hpp), the phase function, the volume estimator and the weighting (weighting.hpp), so that
+// the loop holds no isotropic/HG branch, no collision/track-length branch, no boundary code where
+// the geometry has no surface and no weight where absorption is analog. One Philox call per event
+// (free path, absorption or roulette, cos theta, azimuth); no allocation.
 //
-// A geometry provides `static constexpr bool has_surface` and, when it has one,
+// A geometry provides `static constexpr bool has_surface` and `layered`. A homogeneous one with a
+// surface provides
 //   bool leaves(Vec3& position, Vec3& direction, Vec3& next, double flight, PhotonRandom&,
 //               SurfaceExit&) const;
-// which moves a flight that meets the surface and says whether the photon left through it.
+// which moves a flight (in mfp) that meets the surface and says whether the photon left through
+// it. A layered one holds its own media (the walk's albedo and phase function are unused) and
+// provides layer_of, albedo(layer), sample_cos_theta(layer, xi) and
+//   bool leaves(Vec3& position, Vec3& direction, int& layer, double optical, PhotonRandom&,
+//               SurfaceExit&) const;
+// which spends a free path of `optical` optical depths through its layers.
 
 #include <cmath>
 #include <cstdint>
@@ -25,6 +32,7 @@
 #include "scatterlab/tally/scorer.hpp"
 #include "scatterlab/tally/surface_exit.hpp"
 #include "scatterlab/transport/source.hpp"
+#include "scatterlab/transport/weighting.hpp"
 
 namespace scatterlab {
 
@@ -32,11 +40,15 @@ namespace scatterlab {
 // run with surface tallies alone).
 enum class VolumeEstimator { none, collision, track_length };
 
-template <class Geometry, class Phase, VolumeEstimator estimator>
+template <class Geometry, class Phase, VolumeEstimator estimator,
+          Weighting weighting = Weighting::analog>
 class RandomWalk {
   // A flight that is bent at a surface is not one straight track.
   static_assert(!(Geometry::has_surface && estimator == VolumeEstimator::track_length),
                 "the track-length estimator needs a geometry without a surface");
+  // Layers are scored at their events alone (absorption, exit).
+  static_assert(!(Geometry::layered && estimator != VolumeEstimator::none),
+                "a layered geometry has no volume estimator");
 
  public:
   // `escape_radius`: photons farther than this from the origin are stopped and counted as
@@ -70,16 +82,30 @@ class RandomWalk {
         scorer_.reflection_at_entry(buffer);
         continue;
       }
+      // Constant 1 under analog absorption, where the compiler folds it away.
+      double weight = 1.0;
+      int layer = 0;
+      if constexpr (Geometry::layered) layer = geometry_.layer_of(position, direction);
       for (int order = 0;; ++order) {
-        // One Philox call per event: free path, absorption, cos theta, phi.
+        // One Philox call per event: free path, absorption (or roulette), cos theta, phi.
         const auto u = random.next4();
-        const double flight = -std::log(u[0]);
-        Vec3 next = position + flight * direction;
-        if constexpr (Geometry::has_surface) {
+        const double flight = -std::log(u[0]);  // mfp, or optical depth in layers
+        Vec3 next;
+        if constexpr (Geometry::layered) {
           SurfaceExit exit;
-          if (geometry_.leaves(position, direction, next, flight, random, exit)) {
-            scorer_.exit(buffer, exit, order);
+          if (geometry_.leaves(position, direction, layer, flight, random, exit)) {
+            scorer_.exit(buffer, exit, order, weight);
             break;
+          }
+          next = position;
+        } else {
+          next = position + flight * direction;
+          if constexpr (Geometry::has_surface) {
+            SurfaceExit exit;
+            if (geometry_.leaves(position, direction, next, flight, random, exit)) {
+              scorer_.exit(buffer, exit, order, weight);
+              break;
+            }
           }
         }
         if (next.squaredNorm() > escape_radius2_) {
@@ -87,7 +113,7 @@ class RandomWalk {
             scorer_.flight(buffer, crossings, position, direction,
                            distance_to_sphere(position, direction, escape_radius_), order);
           }
-          scorer_.escape(buffer);
+          scorer_.escape(buffer, weight);
           break;
         }
         if constexpr (estimator == VolumeEstimator::track_length) {
@@ -97,11 +123,29 @@ class RandomWalk {
         if constexpr (estimator == VolumeEstimator::collision) {
           scorer_.collision(buffer, position, direction, order);
         }
-        if (u[1] >= albedo_) {
-          scorer_.absorption(buffer, position, order);
+        double albedo = albedo_;
+        if constexpr (Geometry::layered) albedo = geometry_.albedo(layer);
+        if constexpr (weighting == Weighting::implicit_capture) {
+          // MCML's drop and roulette (weighting.hpp): deposit the absorbed part of the weight;
+          // below the threshold, survive with probability roulette_chance at 1 / roulette_chance
+          // times the weight, with u[1], which absorption no longer needs.
+          const double deposited = weight * (1.0 - albedo);
+          scorer_.absorption(buffer, position, order, layer, deposited);
+          weight -= deposited;
+          if (weight < roulette_threshold) {
+            if (!(weight > 0.0) || u[1] >= roulette_chance) break;
+            weight /= roulette_chance;
+          }
+        } else if (u[1] >= albedo) {
+          scorer_.absorption(buffer, position, order, layer);
           break;
         }
-        const double cos_theta = phase_.sample_cos_theta(u[2]);
+        double cos_theta;
+        if constexpr (Geometry::layered) {
+          cos_theta = geometry_.sample_cos_theta(layer, u[2]);
+        } else {
+          cos_theta = phase_.sample_cos_theta(u[2]);
+        }
         const UnitCircle phi = azimuth(u[3]);
         direction = scatter_direction(direction, cos_theta, phi.cos, phi.sin);
         ++scatterings;

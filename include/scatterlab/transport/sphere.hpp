@@ -30,6 +30,7 @@ template <bool fresnel>
 class Sphere {
  public:
   static constexpr bool has_surface = true;
+  static constexpr bool layered = false;
 
   Sphere(double radius, double eta)
       : radius_(radius), radius2_(radius * radius), exit_eta_(1.0 / eta) {}

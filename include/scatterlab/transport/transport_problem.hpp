@@ -2,7 +2,8 @@
 // What the transport engine runs: one medium in one geometry, a source, the declared tallies
 // and how many photons. Every command's spec (the infinite medium's SimulationSpec, the
 // searchlight's SearchlightSpec) becomes one of these; the engine picks the one compiled kernel
-// it needs (engine.hpp). Lengths are in mean free paths (sigma_t = 1).
+// it needs (engine.hpp). Lengths are in mean free paths (sigma_t = 1), but in a slab, whose layers
+// each have their own sigma_t, in the spec's length unit.
 
 #include <cstdint>
 #include <string>
@@ -12,7 +13,9 @@
 #include "scatterlab/tally/tally_declaration.hpp"
 #include "scatterlab/transport/estimator.hpp"
 #include "scatterlab/transport/run_settings.hpp"
+#include "scatterlab/transport/slab.hpp"
 #include "scatterlab/transport/source.hpp"
+#include "scatterlab/transport/weighting.hpp"
 
 namespace scatterlab {
 
@@ -20,6 +23,7 @@ enum class GeometryKind {
   infinite,    // no surface (infinite_medium.hpp)
   half_space,  // z > 0 behind a smooth interface at z = 0 (half_space.hpp)
   sphere,      // |x| < radius behind a smooth interface (sphere.hpp)
+  slab,        // layers from z = 0 down, between two ambient media (slab.hpp)
 };
 
 struct TransportProblem {
@@ -28,6 +32,11 @@ struct TransportProblem {
   GeometryKind geometry = GeometryKind::infinite;
   double eta = 1.0;     // n_medium / n_outside at the surface, where there is one
   double radius = 1.0;  // of the sphere, mfp
+  // The slab's layers, top down (albedo, g and eta above are unused there), and the indices of
+  // the media above and below it.
+  std::vector<SlabLayer> layers;
+  double n_above = 1.0, n_below = 1.0;
+  Weighting weighting = Weighting::analog;  // implicit capture only in a slab
   Source source;
   TallyAxes axes;
   std::vector<TallyDeclaration> tallies;
