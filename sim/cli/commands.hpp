@@ -24,6 +24,7 @@ Action add_merge_command(CLI::App& app, const std::string& command_line);
 Action add_report_command(CLI::App& app, const std::string& command_line);
 Action add_render_command(CLI::App& app);
 Action add_invert_command(CLI::App& app);
+Action add_mcml_command(CLI::App& app, const std::string& command_line, World& world);
 
 // --photons as a double, so that 1e8 reads as it does in scene files; throws InputError
 // ("run.photons") unless it is a whole number that fits.

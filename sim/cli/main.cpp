@@ -166,6 +166,7 @@ int run(int argc, char** argv) {
   const auto report = scatterlab::cli::add_report_command(app, command_line);
   const auto render = scatterlab::cli::add_render_command(app);
   const auto invert = scatterlab::cli::add_invert_command(app);
+  const auto mcml = scatterlab::cli::add_mcml_command(app, command_line, *world);
   scatterlab::cli::check_numeric_values(app);
   hide_empty_list_defaults(app);
 
@@ -192,6 +193,7 @@ int run(int argc, char** argv) {
     if (app.got_subcommand("report")) return report();
     if (app.got_subcommand("render")) return render();
     if (app.got_subcommand("invert")) return invert();
+    if (app.got_subcommand("mcml")) return mcml();
   } catch (const scatterlab::InputError& e) {
     // Bad input is found alike on every rank, before any of them waits on another.
     if (world->is_root()) print_error("scatterlab: error: {}\n", e.what());

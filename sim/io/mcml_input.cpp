@@ -300,4 +300,20 @@ std::vector<McmlRun> read_mcml_input(const fs::path& path) {
   return McmlReader(path, text).read_all();
 }
 
+LayeredSlabSpec layered_slab_spec(const McmlRun& run) {
+  LayeredSlabSpec spec;
+  spec.length_unit = "cm";
+  spec.layers.clear();
+  for (const McmlLayer& l : run.layers) {
+    spec.layers.push_back({l.mu_a, l.mu_s, l.g, l.n, l.thickness, std::nullopt});
+  }
+  spec.n_above = run.n_above;
+  spec.n_below = run.n_below;
+  spec.r = UniformAxis{0.0, run.dr * run.nr, run.nr};
+  spec.z = UniformAxis{0.0, run.dz * run.nz, run.nz};
+  spec.theta_o = UniformAxis{0.0, std::numbers::pi / 2.0, run.na};
+  spec.run.photons = run.photons;
+  return spec;
+}
+
 }  // namespace scatterlab

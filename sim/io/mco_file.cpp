@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <numbers>
 #include <ostream>
 #include <stdexcept>
 #include <string>
@@ -181,6 +182,34 @@ void write_mco(const std::filesystem::path& path, const McmlRun& run, const McoR
                double seconds) {
   check_input(run, results, seconds);
   write_text_file(path, [&](std::ostream& out) { write_body(out, run, results, seconds); });
+}
+
+McoResults mco_results(const std::vector<TallyResult>& tallies, const McmlRun& run) {
+  const auto values = [&tallies](const char* name, double factor = 1.0) {
+    const TallyResult* t = find_tally(tallies, name);
+    if (t == nullptr) throw std::invalid_argument(fmt::format("mco_results: no tally {}", name));
+    std::vector<double> v = t->mean;
+    for (double& x : v) x *= factor;
+    return v;
+  };
+  const double d_alpha = 0.5 * std::numbers::pi / run.na;
+  const double per_solid_angle = 2.0 * std::sin(0.5 * d_alpha) / d_alpha;
+  const double per_projected = std::cos(0.5 * d_alpha);
+  McoResults r;
+  r.specular_reflectance = values("specular_reflectance").at(0);
+  r.diffuse_reflectance = values("diffuse_reflectance").at(0);
+  r.absorbed = values("absorbed").at(0);
+  r.total_transmittance = values("total_transmittance").at(0);
+  r.absorbed_by_layer = values("absorbed_by_layer");
+  r.absorbed_by_depth = values("absorbed_by_depth");
+  r.absorbed_density = values("absorbed_by_radius_depth");
+  r.reflectance_by_radius = values("diffuse_reflectance_by_radius");
+  r.reflectance_by_angle = values("diffuse_reflectance_by_angle", per_solid_angle);
+  r.reflectance_by_radius_angle = values("diffuse_reflectance_by_radius_angle", per_projected);
+  r.transmittance_by_radius = values("total_transmittance_by_radius");
+  r.transmittance_by_angle = values("total_transmittance_by_angle", per_solid_angle);
+  r.transmittance_by_radius_angle = values("total_transmittance_by_radius_angle", per_projected);
+  return r;
 }
 
 }  // namespace scatterlab

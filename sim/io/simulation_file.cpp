@@ -183,6 +183,34 @@ void write_axis(hdf5::Group& grid, const char* name, const UniformAxis& axis,
   grid.write_dataset(name, edges).write_string_attribute("units", units);
 }
 
+// The slab's stack as datasets of /parameters/layers, one value per layer, top down, in the
+// spec's length unit.
+void write_layered_slab_parameters(hdf5::Group& root, const LayeredSlabSpec& spec) {
+  hdf5::Group parameters = root.create_group("parameters");
+  parameters.write_string_attribute("geometry", "slab");
+  parameters.write_string_attribute("source", "pencil beam at normal incidence");
+  parameters.write_string_attribute("length_unit", spec.length_unit);
+  parameters.write_double_attribute("n_above", spec.n_above);
+  parameters.write_double_attribute("n_below", spec.n_below);
+  hdf5::Group layers = parameters.create_group("layers");
+  const std::string inverse = spec.length_unit + "^-1";
+  const auto column = [&](const char* name, double SlabLayerSpec::*field,
+                          const std::string& units) {
+    std::vector<double> values;
+    for (const SlabLayerSpec& l : spec.layers) values.push_back(l.*field);
+    layers.write_dataset(name, values).write_string_attribute("units", units);
+  };
+  column("mu_a", &SlabLayerSpec::mu_a, inverse);
+  column("mu_s", &SlabLayerSpec::mu_s, inverse);
+  column("g", &SlabLayerSpec::g, "1");
+  column("n", &SlabLayerSpec::n, "1");
+  column("thickness", &SlabLayerSpec::thickness, spec.length_unit);
+  write_run(parameters, spec.run);
+  parameters.write_string_attribute("weighting", to_string(spec.weighting));
+  parameters.write_bool_attribute("split_by_order", spec.split_by_order);
+  parameters.write_int64_attribute("threads", spec.run.threads);
+}
+
 // Grid lengths are in the medium's length unit, mean free paths by default (docs/architecture.md,
 // "Units"): the spec holds them in that unit, and the tallies come back from transport in it.
 void write_grid(hdf5::Group& root, const SimulationSpec& spec) {
@@ -515,6 +543,31 @@ void write_lit_sphere_file(const std::filesystem::path& path, const LitSphereSpe
     hdf5::Group grid = file.root().create_group("grid");
     write_axis(grid, "psi", spec.psi, "rad");
     write_axis(grid, "azimuth", spec.azimuth, "rad");
+    write_tallies(file.root(), tallies);
+    write_figures_of_merit(file.root(), tallies, provenance.wall_seconds);
+    file.close();
+  }
+  output.commit();
+}
+
+void write_layered_slab_file(const std::filesystem::path& path, const LayeredSlabSpec& spec,
+                             const std::vector<TallyResult>& tallies,
+                             const Provenance& provenance) {
+  AtomicOutput output(path);
+  check_tallies(tallies);
+  {
+    hdf5::File file = hdf5::File::create(output.temporary_path());
+    write_provenance(file.root(), provenance, spec.run.batches, fingerprint(spec));
+    write_layered_slab_parameters(file.root(), spec);
+    hdf5::Group grid = file.root().create_group("grid");
+    write_axis(grid, "r", spec.r, spec.length_unit);
+    write_axis(grid, "z", spec.z, spec.length_unit);
+    write_axis(grid, "theta_o", spec.theta_o, "rad");
+    // The layer axis's edges are the interfaces' depths (the last infinite when semi-infinite).
+    std::vector<double> interfaces{0.0};
+    for (const SlabLayerSpec& l : spec.layers)
+      interfaces.push_back(interfaces.back() + l.thickness);
+    grid.write_dataset("layer", interfaces).write_string_attribute("units", spec.length_unit);
     write_tallies(file.root(), tallies);
     write_figures_of_merit(file.root(), tallies, provenance.wall_seconds);
     file.close();

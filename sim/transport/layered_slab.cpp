@@ -124,13 +124,14 @@ std::vector<TallyDeclaration> declare_tallies(const LayeredSlabSpec& spec) {
                                    "outward normal (outside), bin average",
                                    side.what),
                        true});
-    tallies.push_back(
-        {name + "_by_radius_angle",
-         side.by_radius_angle,
-         {r, angle},
-         fmt::format("W {} sr^-1 per W incident", per_length(u, 2)),
-         fmt::format("power {} per unit area and steradian, by r and theta_o", side.what),
-         true});
+    tallies.push_back({name + "_by_radius_angle",
+                       side.by_radius_angle,
+                       {r, exit_angle_filter(spec.theta_o)},
+                       fmt::format("W {} sr^-1 per W incident", per_length(u, 2)),
+                       fmt::format("radiance {}: power per unit area and projected solid angle "
+                                   "(cos theta_o d omega), by r and theta_o, bin average",
+                                   side.what),
+                       true});
   }
   tallies.push_back(
       {"absorbed", Score::absorbed, {}, "W per W incident", "power absorbed in the slab", true});

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <numbers>
 #include <numeric>
@@ -13,6 +14,8 @@
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/fresnel.hpp"
+#include "scatterlab/io/mcml_input.hpp"
+#include "scatterlab/io/mco_file.hpp"
 #include "scatterlab/models/chandrasekhar_h.hpp"
 #include "scatterlab/transport/layered_slab.hpp"
 #include "scatterlab/transport/searchlight.hpp"
@@ -88,6 +91,42 @@ TEST(LayeredSlabTest, SemiInfiniteMismatchedAgainstHalfSpace) {
   expect_within(scalar(slab, "diffuse_reflectance"), scalar_error(slab, "diffuse_reflectance"),
                 scalar(reference, "diffuse_reflectance"),
                 scalar_error(reference, "diffuse_reflectance"), 4.0);
+}
+
+// MCML's own sample input (data/mcml/sample.mci: three layers of n 1.37 in air) against the
+// output MCML 1.2.2 wrote for it from 1e6 photons (its distribution's mcR5unix/Sample/example.mco):
+// R_sp 0.0243729, R_d 0.237544, A 0.641594, T_t 0.0964896, A per layer 0.2612, 0.1488, 0.2316,
+// R_d(alpha) over one bin 3.4038e-2 sr^-1. MCML reports no error; its estimate from 1e6 photons
+// with implicit capture is taken to have our implicit run's standard error, so the tolerance is
+// k sqrt(2) sigma.
+TEST(LayeredSlabTest, MatchesMcmlOnItsSample) {
+  const std::vector<McmlRun> runs =
+      read_mcml_input(std::filesystem::path(SCATTERLAB_SOURCE_DIR) / "data/mcml/sample.mci");
+  ASSERT_EQ(runs.size(), 1u);
+  LayeredSlabSpec spec = layered_slab_spec(runs[0]);
+  spec.weighting = Weighting::implicit_capture;
+  spec.run.threads = 2;
+  const TransportOutput out = run_layered_slab(spec);
+  EXPECT_NEAR(scalar(out, "specular_reflectance"), 0.0243729, 5e-8);
+  const auto near_mcml = [&out](const char* name, double mcml) {
+    SCOPED_TRACE(name);
+    const double sigma = scalar_error(out, name);
+    expect_within(scalar(out, name), sigma, mcml, sigma, 4.0, 5e-7);
+  };
+  near_mcml("diffuse_reflectance", 0.237544);
+  near_mcml("absorbed", 0.641594);
+  near_mcml("total_transmittance", 0.0964896);
+  const TallyResult& by_layer = find_tally(out, "absorbed_by_layer");
+  const double mcml_layers[] = {0.2612, 0.1488, 0.2316};
+  for (std::size_t i = 0; i < 3; ++i) {
+    expect_within(by_layer.mean[i], by_layer.stderr_of_mean[i], mcml_layers[i],
+                  by_layer.stderr_of_mean[i], 4.0, 5e-5);
+  }
+  const McoResults mco = mco_results(out.tallies, runs[0]);
+  const TallyResult& by_angle = find_tally(out, "diffuse_reflectance_by_angle");
+  const double angle_error =
+      by_angle.stderr_of_mean[0] * mco.reflectance_by_angle[0] / by_angle.mean[0];
+  expect_within(mco.reflectance_by_angle[0], angle_error, 3.4038e-2, angle_error, 4.0, 5e-7);
 }
 
 // Unscattered light through one layer of optical depth tau between equal outer media: after

@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "scatterlab/transport/layered_slab.hpp"
+
 namespace scatterlab {
 
 struct McmlLayer {
@@ -41,5 +43,10 @@ inline constexpr int max_mcml_bins = 100000;
 // naming "<path>:<line> <field>" (field as MCML names it: "photons", "dz", "Nr", "layer 2 mua",
 // ...) and what is accepted, for a missing, malformed or out-of-range value.
 std::vector<McmlRun> read_mcml_input(const std::filesystem::path& path);
+
+// The run as the layered slab's spec (transport/layered_slab.hpp): its layers in cm, its grid
+// (r and z from 0 in Nr x dr and Nz x dz, alpha over [0, pi/2] in Na bins), its photons, and
+// the spec's defaults for the rest (analog absorption, 64 batches).
+LayeredSlabSpec layered_slab_spec(const McmlRun& run);
 
 }  // namespace scatterlab

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "scatterlab/io/mcml_input.hpp"
+#include "scatterlab/tally/tally_result.hpp"
 
 namespace scatterlab {
 
@@ -34,5 +35,14 @@ struct McoResults {
 // not match run's grid.
 void write_mco(const std::filesystem::path& path, const McmlRun& run, const McoResults& results,
                double seconds);
+
+// A layered slab's tallies (transport/layered_slab.hpp, on `run`'s grid) as MCML reports them.
+// Our files divide each bin by its exact measure; MCML's ScaleRdTt divides R_d(alpha) and
+// T_t(alpha) by the midpoint solid angle 2 pi sin(alpha_m) d_alpha, and R_d(r, alpha), T_t(r,
+// alpha) by the ring's area times 4 pi sin(alpha_m) sin(d_alpha / 2) cos(alpha_m), so those are
+// rescaled here: by 2 sin(d_alpha / 2) / d_alpha from our per-steradian profile, and by
+// cos(d_alpha / 2) from our radiance (whose exact projected solid angle is
+// pi sin(2 alpha_m) sin(d_alpha)). The rest (rings, depths, totals) are MCML's measures already.
+McoResults mco_results(const std::vector<TallyResult>& tallies, const McmlRun& run);
 
 }  // namespace scatterlab

@@ -35,6 +35,7 @@
 
 #include "scatterlab/tally/tally_result.hpp"
 #include "scatterlab/transport/engine.hpp"
+#include "scatterlab/transport/layered_slab.hpp"
 #include "scatterlab/transport/lit_sphere.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/transport/simulation.hpp"
@@ -110,6 +111,13 @@ void write_searchlight_file(const std::filesystem::path& path, const Searchlight
 // sim/transport/lit_sphere.cpp.
 void write_lit_sphere_file(const std::filesystem::path& path, const LitSphereSpec& spec,
                            const std::vector<TallyResult>& tallies, const Provenance& provenance);
+
+// The same file for the layered slab (transport/layered_slab.hpp): /parameters adds geometry =
+// "slab", the indices above and below and the stack in /parameters/layers (mu_a, mu_s, g, n,
+// thickness, top down); /grid holds r, z, theta_o and layer (the interfaces' depths); the
+// tallies are those declared in sim/transport/layered_slab.cpp.
+void write_layered_slab_file(const std::filesystem::path& path, const LayeredSlabSpec& spec,
+                             const std::vector<TallyResult>& tallies, const Provenance& provenance);
 
 // What `scatterlab info FILE` reports, read back from a file.
 struct AxisSummary {

@@ -7,10 +7,11 @@
 // Tallies, per unit incident power, as MCML scores them (the MCML manual, Wang & Jacques 1992,
 // "Scored physical quantities"): the specular reflectance R_sp (exact), the diffuse reflectance
 // R_d and total transmittance T_t (unscattered light included) in total, by r, by exit angle
-// theta_o (MCML's alpha, per steradian) and by both, the absorbed power in total, by layer, by
-// depth A(z) and by (r, z); reflectance, transmittance and the absorbed total also by scattering
-// order. Analog, every photon ends in exactly one of them, so R_sp + R_d + T_t + A = 1 photon by
-// photon.
+// theta_o (MCML's alpha, per steradian) and by both (a radiance: per projected steradian, as
+// MCML's R_d(r, alpha) is), the absorbed power in total, by layer, by depth A(z) and by (r, z);
+// reflectance, transmittance and the absorbed total also by scattering order. Every bin is
+// divided by its exact measure (io/mco_file.hpp rescales to MCML's midpoint measures). Analog,
+// every photon ends in exactly one of them, so R_sp + R_d + T_t + A = 1 photon by photon.
 //
 // Lengths are in length_unit ("um", "mm", "cm", "m", or "mfp", where every turbid layer has
 // mu_a + mu_s = 1), mu_a and mu_s in its inverse. Unlike the other scenes, the slab is

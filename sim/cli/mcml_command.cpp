@@ -1,0 +1,134 @@
+// scatterlab mcml FILE.mci: every run of an MCML input file (io/mcml_input.hpp) on the layered
+// slab (transport/layered_slab.hpp), each written as our HDF5 file named after the run's output
+// file (sample.mco -> sample.h5) in the current directory and, with --mco, as MCML's own .mco
+// (io/mco_file.hpp) beside it. Every run is read, checked and planned before the first starts.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "log_interval_option.hpp"
+#include "memory_limit_option.hpp"
+#include "prepare_outputs.hpp"
+#include "progress_reporter.hpp"
+#include "run_figures.hpp"
+#include "run_options.hpp"
+#include "scatterlab/io/mcml_input.hpp"
+#include "scatterlab/io/mco_file.hpp"
+#include "scatterlab/io/output_plan.hpp"
+#include "scatterlab/io/simulation_file.hpp"
+#include "scatterlab/tally/scalar_estimate.hpp"
+#include "scatterlab/transport/layered_slab.hpp"
+
+namespace scatterlab::cli {
+namespace {
+
+struct McmlFlags {
+  std::string input;
+  bool mco = false;
+  std::string weighting = "analog";
+  RunOptions run;
+};
+
+// The run of an .mci as our spec, the command's flags laid over its run settings.
+LayeredSlabSpec slab_spec(const McmlRun& run, const CLI::App& command, const McmlFlags& flags) {
+  LayeredSlabSpec spec = layered_slab_spec(run);
+  spec.weighting = flags.weighting == "implicit" ? Weighting::implicit_capture : Weighting::analog;
+  apply_run_options(command, flags.run, spec.run);
+  spec.validate();
+  return spec;
+}
+
+void print_summary(std::size_t index, std::size_t runs, const LayeredSlabSpec& spec,
+                   const TransportOutput& out) {
+  fmt::print("scatterlab mcml: run {} of {}: {} layers, {} weighting\n", index + 1, runs,
+             spec.layers.size(), to_string(spec.weighting));
+  print_run_time(out);
+  // Analog, each photon ends in exactly one of these: with R_sp they sum to 1 photon by photon.
+  std::string energy = "  energy per W incident: specular_reflectance";
+  energy += fmt::format(" {:.6f},", scalar_estimate(out.tallies, "specular_reflectance").mean);
+  double total = scalar_estimate(out.tallies, "specular_reflectance").mean;
+  for (const char* name : {"diffuse_reflectance", "total_transmittance", "absorbed"}) {
+    const ScalarEstimate value = scalar_estimate(out.tallies, name);
+    energy += fmt::format(" {} {},", name, estimate_text(value));
+    total += value.mean;
+  }
+  fmt::print("{} total {:.6f}\n", energy, total);
+}
+
+int run_mcml(const CLI::App& command, const McmlFlags& flags, double log_interval,
+             const std::string& command_line, World& world) {
+  const std::vector<McmlRun> runs = read_mcml_input(flags.input);
+  std::vector<LayeredSlabSpec> specs;
+  OutputPlan plan;
+  plan.input("FILE", flags.input);
+  std::vector<std::filesystem::path> h5_paths, mco_paths;
+  for (const McmlRun& run : runs) {
+    specs.push_back(slab_spec(run, command, flags));
+    check_transport_memory(transport_problem(specs.back()), world.size(), false);
+    // In the current directory, whatever directory the .mci names its output in.
+    const std::filesystem::path name = std::filesystem::path(run.output_file).filename();
+    const std::string field = fmt::format("{}:{} output file", flags.input, run.line);
+    h5_paths.push_back(std::filesystem::path(name).replace_extension(".h5"));
+    plan.output_file(field, h5_paths.back());
+    if (flags.mco) {
+      mco_paths.push_back(name);
+      plan.output_file(field, mco_paths.back());
+    }
+  }
+  prepare_outputs(plan, world.is_root());
+
+  const bool root = world.is_root();
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    LayeredSlabSpec& spec = specs[i];
+    ProgressReporter reporter("mcml", "batches", log_interval);
+    ProgressCallback progress;
+    if (root) progress = [&reporter](const BatchProgress& done) { reporter.update(done); };
+    RunControl control;
+    control.communicator = &world.communicator();
+    const TransportOutput out = run_layered_slab(spec, progress, control);
+    reporter.finish();
+    if (!root) continue;
+    spec.run.threads = out.threads;  // record what ran, not "all cores"
+    write_layered_slab_file(h5_paths[i], spec, out.tallies, run_provenance(out, command_line));
+    print_summary(i, runs.size(), spec, out);
+    fmt::print("  wrote {}\n", h5_paths[i].string());
+    if (flags.mco) {
+      write_mco(mco_paths[i], runs[i], mco_results(out.tallies, runs[i]), out.run_wall_seconds());
+      fmt::print("  wrote {} (MCML 1.2.2 layout)\n", mco_paths[i].string());
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+Action add_mcml_command(CLI::App& app, const std::string& command_line, World& world) {
+  auto* command = app.add_subcommand(
+      "mcml",
+      "Run every run of an MCML input file (.mci) on the layered slab: one HDF5 file per run, "
+      "named after the run's output file (sample.mco -> sample.h5), in the current directory");
+  auto flags = std::make_shared<McmlFlags>();
+  command->add_option("FILE", flags->input, "MCML 1.2.2 input file (.mci)")->required();
+  command->add_flag("--mco", flags->mco,
+                    "Also write MCML's .mco text output, under the run's output file name, in "
+                    "the current directory");
+  command
+      ->add_option("--weighting", flags->weighting,
+                   "analog: each photon is absorbed whole (energy balances photon by photon); "
+                   "implicit: MCML's implicit capture with roulette")
+      ->check(CLI::IsMember({"analog", "implicit"}));
+  flags->run = run_options_of(LayeredSlabSpec{}.run);
+  add_run_options(*command, flags->run);
+  command->get_option("--photons")->default_str("the run's photon count");
+  const auto log_interval = add_log_interval_option(*command);
+  add_memory_limit_option(*command);
+  return [command, flags, log_interval, command_line, &world] {
+    return run_mcml(*command, *flags, *log_interval, command_line, world);
+  };
+}
+
+}  // namespace scatterlab::cli
