@@ -97,7 +97,9 @@ int run_mcml(const CLI::App& command, const McmlFlags& flags, double log_interva
     print_summary(i, runs.size(), spec, out);
     fmt::print("  wrote {}\n", h5_paths[i].string());
     if (flags.mco) {
-      write_mco(mco_paths[i], runs[i], mco_results(out.tallies, runs[i]), out.run_wall_seconds());
+      McmlRun ran = runs[i];
+      ran.photons = out.photons;  // as run: --photons may have changed the file's count
+      write_mco(mco_paths[i], ran, mco_results(out.tallies, ran), out.run_wall_seconds());
       fmt::print("  wrote {} (MCML 1.2.2 layout)\n", mco_paths[i].string());
     }
   }

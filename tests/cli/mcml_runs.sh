@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# Usage: mcml_runs.sh SCATTERLAB SOURCE_DIR
+# scatterlab mcml from the command line: MCML's sample input runs, prints the energy balance and
+# writes sample.h5 (the slab, its grid and MCML's tallies) in the current directory, and with
+# --mco MCML's own .mco, whose sections a CONV-like reader finds in MCML's order; a file of two
+# runs writes two files; a bad .mci, a bad flag or two runs with one output name are refused with
+# one line naming the line and field, exit status 2, and nothing written.
+set -u
+exe=$1
+source_dir=$2
+source "$source_dir/tests/cli/harness.sh"
+
+sample=$source_dir/data/mcml/sample.mci
+small=(--photons 20000 --batches 8 --threads 2)
+
+if "$exe" mcml "$sample" --mco "${small[@]}" >"$work/stdout" 2>"$work/stderr"; then
+  pass
+  if grep -Eq "energy per W incident: specular_reflectance 0\.024373, diffuse_reflectance .*, total_transmittance .*, absorbed .* total 1\.000000" \
+    "$work/stdout"; then pass; else fail "energy line: $(cat "$work/stdout")"; fi
+  expect_info sample "$work/sample.h5" "geometry +slab" "length_unit +cm" "n_above +1$" \
+    "weighting +analog" "r +50 bins in \[0, 0\.5\] cm" "z +40 bins in \[0, 0\.4\] cm" \
+    "layer +3 bins in \[0, 0\.4\] cm" "specular_reflectance +scalar" \
+    "diffuse_reflectance_by_radius +\[50\] \(r\), W cm\^-2 per W incident" \
+    "total_transmittance_by_radius_angle +\[50 x 1\] \(r,theta_o\), W cm\^-2 sr\^-1" \
+    "absorbed_by_radius_depth +\[50 x 40\] \(r,z\), W cm\^-3" "absorbed_by_layer +\[3\]" \
+    "diffuse_reflectance_multiple"
+  # MCML's sections, in MCML's order, each once.
+  sections=$(grep -E "^(InParm|RAT|A_l|A_z|Rd_r|Rd_a|Tt_r|Tt_a|A_rz|Rd_ra|Tt_ra)\b" "$work/sample.mco" |
+    awk '{print $1}' | tr '\n' ' ')
+  if [ "$sections" = "InParm RAT A_l A_z Rd_r Rd_a Tt_r Tt_a A_rz Rd_ra Tt_ra " ]; then pass; else
+    fail "sections of sample.mco: $sections"; fi
+  if grep -q "^20000 " "$work/sample.mco"; then pass; else fail "sample.mco: photons not 20000"; fi
+else
+  fail "sample.mci: $(cat "$work/stderr")"
+fi
+
+# Two runs, two files; implicit capture is recorded.
+cat >"$work/two.mci" <<'MCI'
+1.0
+2
+one.mco A
+1000
+0.01 0.01
+4 4 2
+1
+1
+1.4 1 50 0.8 0.1
+1
+two.mco A
+1000
+0.01 0.01
+4 4 2
+2
+1
+1.4 1 50 0.8 0.05
+1.4 0 0 0 0.05
+1.33
+MCI
+if "$exe" mcml "$work/two.mci" --weighting implicit --batches 4 >"$work/stdout" 2>"$work/stderr"
+then
+  expect_info one "$work/one.h5" "weighting +implicit" "layer +1 bins"
+  expect_info two "$work/two.h5" "n_below +1\.33" "layer +2 bins in \[0, 0\.1\] cm"
+  if [ -e "$work/one.mco" ]; then fail "one.mco written without --mco"; else pass; fi
+else
+  fail "two.mci: $(cat "$work/stderr")"
+fi
+rm -f "$work"/*.h5 "$work"/*.mco
+
+# Refusals: one line naming the place, status 2, nothing written.
+bad_mci() {
+  local name=$1 field=$2 text=$3
+  printf '%s\n' "$text" >"$scratch/$name.mci"
+  expect_refused "$name" "$field" mcml "$scratch/$name.mci" --batches 4
+}
+bad_mci photons "4 photons" $'1.0\n1\nx.mco A\n1e6\n0.01 0.01\n4 4 2\n1\n1\n1.4 1 50 0.8 0.1\n1'
+bad_mci g "layer 1 g" $'1.0\n1\nx.mco A\n1000\n0.01 0.01\n4 4 2\n1\n1\n1.4 1 50 1.0 0.1\n1'
+bad_mci same_name "output file" $'1.0\n2\nx.mco A\n1000\n0.01 0.01\n4 4 2\n1\n1\n1.4 1 50 0.8 0.1\n1\nx.mco A\n1000\n0.01 0.01\n4 4 2\n1\n1\n1.4 1 50 0.8 0.1\n1'
+expect_refused weighting --weighting mcml "$sample" --weighting russian
+expect_refused missing "mcml input" mcml "$scratch/none.mci"
+expect_refused batches run.batches mcml "$sample" --photons 10 --batches 64
+
+report mcml_runs
