@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "layered_slab_scene.hpp"
 #include "lit_sphere_scene.hpp"
 #include "log_interval_option.hpp"
 #include "long_run.hpp"
@@ -274,10 +275,17 @@ int run_one(PlannedRun run, const LongRunOptions& options, double log_interval,
 int run_simulate(CLI::App& command, const SimulateOptions& o, const LongRunOptions& long_run,
                  double log_interval, const std::string& command_line, World& world) {
   // A sphere scene runs the lit sphere (lit_sphere_scene.hpp) with the flags that apply to it.
-  if (command.get_option("--scene")->count() > 0 && scene_geometry(o.scene) == "sphere") {
+  const std::string geometry =
+      command.get_option("--scene")->count() > 0 ? scene_geometry(o.scene) : "infinite";
+  if (geometry == "sphere") {
     const SphereFlags flags{o.scene,   o.out,    o.albedo, o.g,
                             o.sigma_t, o.medium, o.run,    o.split_orders};
     return run_lit_sphere_scene(command, flags, long_run, log_interval, command_line, world);
+  }
+  // A slab scene runs the layered slab (layered_slab_scene.hpp).
+  if (geometry == "slab") {
+    const SlabFlags flags{o.scene, o.out, o.run, o.split_orders};
+    return run_layered_slab_scene(command, flags, long_run, log_interval, command_line, world);
   }
   const RunPlan run_plan = plan_runs(command, o, long_run);
   const std::vector<PlannedRun>& runs = run_plan.runs;
@@ -338,7 +346,8 @@ Action add_simulate_command(CLI::App& app, const std::string& command_line, Worl
       "L(r,z,theta,phi), fluence and vector irradiance with standard errors, to HDF5. Without "
       "flags: the paper's case, g = 0.9, albedo 0.5 (Vavassori §4.1). A scene whose "
       "geometry.type is \"sphere\" runs the lit sphere instead (data/scenes/lit-sphere.toml): "
-      "exitance against the angle from the lit pole, per scattering order.");
+      "exitance against the angle from the lit pole, per scattering order; one whose "
+      "geometry.type is \"slab\" runs a layered slab as MCML does (data/scenes/skin-slab.toml).");
   auto o = std::make_shared<SimulateOptions>(default_options());
   // As in most Unix tools, a repeated flag takes its last value (scripts append overrides).
   command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);

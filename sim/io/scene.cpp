@@ -34,8 +34,8 @@ class SceneReader : public TomlReader {
     if (const auto* geometry = subtable(root, "geometry", "")) {
       check_keys(*geometry, "geometry", {"type"});
       read_geometry_type(*geometry, "infinite",
-                         "\"infinite\" or \"sphere\" (a half-space scene runs with scatterlab "
-                         "searchlight)");
+                         "\"infinite\", \"sphere\" or \"slab\" (a half-space scene runs with "
+                         "scatterlab searchlight)");
     }
     if (const auto* medium = subtable(root, "medium", "")) {
       scene.material = read_medium(*medium, spec.medium, spec.material, nullptr);
@@ -173,7 +173,117 @@ class SceneReader : public TomlReader {
     return scene;
   }
 
+  // The layered slab's scene (scene.hpp): [geometry] with the ambient indices and the length
+  // unit, an array [[layers]] top down, the grid, the tallies and the run with its weighting.
+  LayeredSlabScene read_layered_slab(const toml::table& root) {
+    check_keys(root, "", {"geometry", "layers", "grid", "tallies", "run", "output"});
+    LayeredSlabScene scene;
+    LayeredSlabSpec& spec = scene.spec;
+    if (const toml::table* geometry = subtable(root, "geometry", "")) {
+      check_keys(*geometry, "geometry", {"type", "length_unit", "n_above", "n_below"});
+      read_geometry_type(*geometry, "slab", "\"slab\"");
+      if (const auto unit = string(*geometry, "length_unit", "geometry",
+                                   "one of \"mfp\", \"um\", \"mm\", \"cm\", \"m\"")) {
+        spec.length_unit = *unit;
+      }
+      const std::string_view index = "a refractive index in [0.1, 10]";
+      if (const auto n = number(*geometry, "n_above", "geometry", index)) spec.n_above = *n;
+      if (const auto n = number(*geometry, "n_below", "geometry", index)) spec.n_below = *n;
+    }
+    const toml::node* layers = root.get("layers");
+    const toml::array* list = layers != nullptr ? layers->as_array() : nullptr;
+    const std::string_view layers_accepted =
+        "an array of tables [[layers]], top down, each with mu_a, mu_s, g, n and thickness (or "
+        "material and channel, and thickness)";
+    if (layers == nullptr) throw InputError("layers", "missing", std::string(layers_accepted));
+    if (list == nullptr || list->empty()) wrong_type(*layers, "layers", layers_accepted);
+    spec.layers.clear();
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const toml::table* table = (*list)[i].as_table();
+      if (table == nullptr) wrong_type((*list)[i], "layers", layers_accepted);
+      spec.layers.push_back(read_layer(*table, fmt::format("layers[{}]", i + 1), spec));
+    }
+    if (const auto* grid = subtable(root, "grid", "")) {
+      check_keys(*grid, "grid", {"r", "z", "theta_o"});
+      read_axis(*grid, "r", {"max", "bins"}, spec.r);
+      read_axis(*grid, "z", {"max", "bins"}, spec.z);
+      read_axis(*grid, "theta_o", {"bins"}, spec.theta_o);
+    }
+    if (const auto* tallies = subtable(root, "tallies", "")) {
+      check_keys(*tallies, "tallies", {"split_by_order"});
+      if (const auto on = boolean(*tallies, "split_by_order", "tallies")) spec.split_by_order = *on;
+    }
+    if (const auto* run = subtable(root, "run", "")) read_run(*run, spec.run, &spec.weighting);
+    scene.output_path = read_output(root);
+    if (validation_ == Validation::on_read) spec.validate();
+    return scene;
+  }
+
  private:
+  // One layer of the slab: its coefficients in the slab's length unit, or a measured material
+  // (io/material_presets.hpp) converted to it, whose table's index is the layer's n unless given.
+  SlabLayerSpec read_layer(const toml::table& table, const std::string& path,
+                           const LayeredSlabSpec& spec) const {
+    check_keys(table, path, {"mu_a", "mu_s", "g", "n", "thickness", "material", "channel"});
+    SlabLayerSpec layer;
+    const auto coefficient = [&](const char* key) {
+      return number(table, key, path, "a finite number >= 0, in 1/geometry.length_unit");
+    };
+    const auto mu_a = coefficient("mu_a"), mu_s = coefficient("mu_s");
+    const auto g = number(table, "g", path, "a number with |g| < 1");
+    const auto n = number(table, "n", path, "a refractive index in [0.1, 10]");
+    const auto thickness =
+        number(table, "thickness", path, "a number > 0 (in geometry.length_unit), or inf");
+    const auto material =
+        string(table, "material", path, "a material name from data/materials, e.g. \"skin1\"");
+    const auto channel =
+        string(table, "channel", path, "a channel of the material's table, e.g. \"red\"");
+    const auto require = [&](const auto& value, const char* key, const char* accepted) {
+      if (!value) {
+        throw InputError(dotted(path, key), "missing" + at(table.source()), accepted);
+      }
+    };
+    require(thickness, "thickness", "a number > 0 (in geometry.length_unit), or inf");
+    layer.thickness = *thickness;
+    if (material) {
+      for (const char* key : {"mu_a", "mu_s"}) {
+        if (const toml::node* node = table.get(key)) {
+          throw InputError(dotted(path, key), "given together with a material" + at(*node),
+                           "either material (with channel, and optionally g and n) or the "
+                           "layer's mu_a and mu_s");
+        }
+      }
+      if (spec.length_unit == "mfp") {
+        throw InputError(dotted(path, "material"), "given in a slab of length_unit \"mfp\"",
+                         "a material in a slab of physical length_unit (\"mm\", \"cm\", ...)");
+      }
+      const ResolvedMaterial resolved =
+          resolve_material({*material, channel, spec.length_unit, g},
+                           {dotted(path, "material"), dotted(path, "channel"),
+                            "geometry.length_unit", dotted(path, "g")});
+      layer.mu_a = resolved.medium.sigma_a();
+      layer.mu_s = resolved.medium.sigma_s();
+      layer.g = resolved.medium.g;
+      layer.n = n.value_or(resolved.eta);
+      layer.material = resolved.origin;
+      return layer;
+    }
+    if (channel) {
+      throw InputError(dotted(path, "channel"),
+                       "given without a material" + at(*table.get("channel")),
+                       "channel only with a material");
+    }
+    require(mu_a, "mu_a", "a finite number >= 0, in 1/geometry.length_unit");
+    require(mu_s, "mu_s", "a finite number >= 0, in 1/geometry.length_unit");
+    require(g, "g", "a number with |g| < 1");
+    require(n, "n", "a refractive index in [0.1, 10]");
+    layer.mu_a = *mu_a;
+    layer.mu_s = *mu_s;
+    layer.g = *g;
+    layer.n = *n;
+    return layer;
+  }
+
   // [geometry] type: each command runs one geometry; a scene for the other is named as such.
   void read_geometry_type(const toml::table& geometry, std::string_view expected,
                           std::string_view accepted) const {
@@ -328,9 +438,25 @@ class SceneReader : public TomlReader {
     }
   }
 
-  void read_run(const toml::table& table, RunSettings& run) const {
+  // `weighting`: where the scene's run may choose it (a slab), else null and refused.
+  void read_run(const toml::table& table, RunSettings& run, Weighting* weighting = nullptr) const {
     const std::string path = "run";
-    check_keys(table, path, {"photons", "batches", "seed", "threads", "escape_radius"});
+    if (weighting != nullptr) {
+      check_keys(table, path,
+                 {"photons", "batches", "seed", "threads", "escape_radius", "weighting"});
+      const std::string_view accepted = "\"analog\" or \"implicit\"";
+      if (const auto w = string(table, "weighting", path, accepted)) {
+        if (*w == "analog") {
+          *weighting = Weighting::analog;
+        } else if (*w == "implicit") {
+          *weighting = Weighting::implicit_capture;
+        } else {
+          wrong_type(*table.get("weighting"), "run.weighting", accepted);
+        }
+      }
+    } else {
+      check_keys(table, path, {"photons", "batches", "seed", "threads", "escape_radius"});
+    }
     if (const auto photons =
             integer_as<std::uint64_t>(table, "photons", path, 0, "an integer >= 1")) {
       run.photons = *photons;
@@ -499,6 +625,15 @@ LitSphereScene parse_lit_sphere_scene(std::string_view toml_text, const std::str
 
 LitSphereScene load_lit_sphere_scene(const std::filesystem::path& path, Validation validation) {
   return parse_lit_sphere_scene(read_text(path), path.string(), validation);
+}
+
+LayeredSlabScene parse_layered_slab_scene(std::string_view toml_text, const std::string& origin,
+                                          Validation validation) {
+  return SceneReader(origin, validation).read_layered_slab(parse_toml(toml_text, origin));
+}
+
+LayeredSlabScene load_layered_slab_scene(const std::filesystem::path& path, Validation validation) {
+  return parse_layered_slab_scene(read_text(path), path.string(), validation);
 }
 
 std::string scene_geometry(const std::filesystem::path& path) {

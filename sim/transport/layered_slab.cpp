@@ -169,7 +169,7 @@ std::string to_string(Weighting weighting) {
 
 void LayeredSlabSpec::validate() const {
   if (length_unit != "mfp" && !is_physical_length_unit(length_unit)) {
-    throw InputError("length_unit", fmt::format("got \"{}\"", length_unit),
+    throw InputError("geometry.length_unit", fmt::format("got \"{}\"", length_unit),
                      "\"um\", \"mm\", \"cm\", \"m\" or \"mfp\"");
   }
   if (layers.empty() || layers.size() > max_layers) {
@@ -183,8 +183,8 @@ void LayeredSlabSpec::validate() const {
     throw InputError("layers[1].mu_a, mu_s", "are 0 in the only layer",
                      "at least one turbid layer (mu_a + mu_s > 0)");
   }
-  check_index(n_above, "n_above");
-  check_index(n_below, "n_below");
+  check_index(n_above, "geometry.n_above");
+  check_index(n_below, "geometry.n_below");
   check_from_zero(r, "r", length_unit);
   check_from_zero(z, "z", length_unit);
   if (theta_o.min != 0.0 || std::abs(theta_o.max - 0.5 * std::numbers::pi) > 1e-12) {

@@ -272,13 +272,13 @@ TEST(LayeredSlabTest, RefusesWhatNoRunCanDo) {
   EXPECT_EQ(field_of(spec), "layers[1].mu_a, mu_s");
   spec = LayeredSlabSpec{};
   spec.length_unit = "inch";
-  EXPECT_EQ(field_of(spec), "length_unit");
+  EXPECT_EQ(field_of(spec), "geometry.length_unit");
   spec = LayeredSlabSpec{};
   spec.length_unit = "mfp";
   EXPECT_EQ(field_of(spec), "layers[1].mu_a, mu_s");
   spec = LayeredSlabSpec{};
   spec.n_below = 0.0;
-  EXPECT_EQ(field_of(spec), "n_below");
+  EXPECT_EQ(field_of(spec), "geometry.n_below");
   spec = LayeredSlabSpec{};
   spec.theta_o.max = 3.0;
   EXPECT_EQ(field_of(spec), "grid.theta_o");

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "scatterlab/io/material_presets.hpp"
+#include "scatterlab/transport/layered_slab.hpp"
 #include "scatterlab/transport/lit_sphere.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/transport/simulation.hpp"
@@ -127,6 +128,25 @@ LitSphereScene parse_lit_sphere_scene(std::string_view toml_text, const std::str
                                       Validation validation = Validation::on_read);
 LitSphereScene load_lit_sphere_scene(const std::filesystem::path& path,
                                      Validation validation = Validation::on_read);
+
+// The layered slab's scene (scatterlab simulate on a scene whose geometry.type is "slab";
+// data/scenes/skin-slab.toml), as strict as the above:
+//   [geometry]  type = "slab", length_unit (cm by default), n_above, n_below
+//   [[layers]]  top down: mu_a, mu_s (1/length_unit), g, n, thickness (inf for a semi-infinite
+//               last layer); or material, channel (g, n) and thickness
+//   [grid]      r = { max, bins }, z = { max, bins }, theta_o = { bins }
+//   [tallies]   split_by_order = bool
+//   [run]       photons, batches, seed, threads, escape_radius, weighting = "analog" |
+//               "implicit";  [output] path
+struct LayeredSlabScene {
+  LayeredSlabSpec spec;                    // validated unless read with Validation::by_caller
+  std::optional<std::string> output_path;  // [output] path, as written
+};
+
+LayeredSlabScene parse_layered_slab_scene(std::string_view toml_text, const std::string& origin,
+                                          Validation validation = Validation::on_read);
+LayeredSlabScene load_layered_slab_scene(const std::filesystem::path& path,
+                                         Validation validation = Validation::on_read);
 
 // The scene's geometry.type ("infinite" when it gives none), for a command that runs more than
 // one; the file's other errors are left to its reader.

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Usage: mcml_runs.sh SCATTERLAB SOURCE_DIR
-# scatterlab mcml from the command line: MCML's sample input runs, prints the energy balance and
+# Usage: layered_slab_runs.sh SCATTERLAB SOURCE_DIR
+# The layered slab from the command line. simulate runs data/scenes/skin-slab.toml (and a layer
+# of a measured material), and refuses the infinite medium's flags and bad slab scenes naming the
+# key. scatterlab mcml: MCML's sample input runs, prints the energy balance and
 # writes sample.h5 (the slab, its grid and MCML's tallies) in the current directory, and with
 # --mco MCML's own .mco, whose sections a CONV-like reader finds in MCML's order; a file of two
 # runs writes two files; a bad .mci, a bad flag or two runs with one output name are refused with
@@ -79,4 +81,59 @@ expect_refused weighting --weighting mcml "$sample" --weighting russian
 expect_refused missing "mcml input" mcml "$scratch/none.mci"
 expect_refused batches run.batches mcml "$sample" --photons 10 --batches 64
 
-report mcml_runs
+# The shipped slab scene, and a layer of a measured material in mm behind a clear layer.
+if "$exe" simulate --scene "$source_dir/data/scenes/skin-slab.toml" "${small[@]}" \
+  --out "$work/skin.h5" >"$work/stdout" 2>"$work/stderr"; then
+  if grep -Eq "energy per W incident: specular_reflectance 0\.027778, .* total 1\.000000" \
+    "$work/stdout"; then pass; else fail "skin energy line: $(cat "$work/stdout")"; fi
+  expect_info skin "$work/skin.h5" "geometry +slab" "layer +3 bins in \[0, 0\.71\] cm" \
+    "r +200 bins in \[0, 2\] cm" "weighting +analog"
+else
+  fail "skin-slab.toml: $(cat "$work/stderr")"
+fi
+cat >"$work/marble.toml" <<'TOML'
+[geometry]
+type = "slab"
+length_unit = "mm"
+[[layers]]
+mu_a = 0
+mu_s = 0
+g = 0
+n = 1.5
+thickness = 1
+[[layers]]
+material = "marble"
+channel = "red"
+thickness = inf
+[run]
+weighting = "implicit"
+TOML
+if "$exe" simulate "$work/marble.toml" "${small[@]}" --out "$work/marble.h5" >"$work/stdout" \
+  2>"$work/stderr"; then
+  expect_info marble "$work/marble.h5" "length_unit +mm" "weighting +implicit" \
+    "layer +2 bins in \[0, inf\] mm" "absorbed_by_radius_depth .*W mm\^-3"
+else
+  fail "marble: $(cat "$work/stderr")"
+fi
+
+# The infinite medium's flags are not the slab's; bad scenes name their key.
+small=(--photons 1000 --batches 4)
+scene=$source_dir/data/scenes/skin-slab.toml
+expect_command_error simulate albedo --albedo "$scene" --albedo 0.5
+expect_command_error simulate r_bins --r-bins "$scene" --r-bins 10
+bad() {
+  local name=$1 field=$2 text=$3
+  printf '%s\n' "$text" >"$work/$name.toml"
+  expect_command_error simulate "$name" "$field" "$work/$name.toml"
+}
+layer=$'[[layers]]\nmu_a = 1\nmu_s = 10\ng = 0.8\nn = 1.4\nthickness = 0.1'
+bad no_layers layers $'[geometry]\ntype = "slab"'
+bad no_g 'layers\[1\].g' $'[geometry]\ntype = "slab"\n[[layers]]\nmu_a = 1\nmu_s = 10\nn = 1.4\nthickness = 0.1'
+bad typo 'layers\[2\].mu_ss' $'[geometry]\ntype = "slab"\n'"$layer"$'\n[[layers]]\nmu_ss = 1'
+bad middle_inf 'layers\[1\].thickness' $'[geometry]\ntype = "slab"\n[[layers]]\nmu_a = 1\nmu_s = 10\ng = 0.8\nn = 1.4\nthickness = inf\n'"$layer"
+bad mixed 'layers\[1\].mu_a' $'[geometry]\ntype = "slab"\n[[layers]]\nmaterial = "marble"\nchannel = "red"\nmu_a = 1\nthickness = 1'
+bad n_above geometry.n_above $'[geometry]\ntype = "slab"\nn_above = 0\n'"$layer"
+bad weighting run.weighting $'[geometry]\ntype = "slab"\n'"$layer"$'\n[run]\nweighting = "russian"'
+bad unit geometry.length_unit $'[geometry]\ntype = "slab"\nlength_unit = "inch"\n'"$layer"
+
+report layered_slab_runs

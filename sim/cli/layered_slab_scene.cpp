@@ -1,0 +1,122 @@
+#include "layered_slab_scene.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <optional>
+#include <string_view>
+
+#include "prepare_outputs.hpp"
+#include "progress_reporter.hpp"
+#include "run_figures.hpp"
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/io/output_plan.hpp"
+#include "scatterlab/io/scene.hpp"
+#include "scatterlab/io/simulation_file.hpp"
+#include "scatterlab/tally/scalar_estimate.hpp"
+
+namespace scatterlab::cli {
+namespace {
+
+// simulate's flags that mean something for a slab; any other given is refused.
+constexpr std::array<std::string_view, 14> kSlabFlags = {"SCENE",
+                                                         "--scene",
+                                                         "--out",
+                                                         "--photons",
+                                                         "--batches",
+                                                         "--seed",
+                                                         "--threads",
+                                                         "--escape-radius",
+                                                         "--split-orders",
+                                                         "--checkpoint",
+                                                         "--checkpoint-interval",
+                                                         "--resume",
+                                                         "--log-interval",
+                                                         "--memory-limit"};
+
+void refuse_other_flags(const CLI::App& command, const std::string& scene) {
+  for (const CLI::Option* option : command.get_options()) {
+    if (option->count() == 0) continue;
+    const std::string name = option->get_name();
+    if (name == "--help") continue;
+    if (std::find(kSlabFlags.begin(), kSlabFlags.end(), name) != kSlabFlags.end()) continue;
+    throw InputError(name,
+                     fmt::format("is not for a slab scene ({} has geometry.type = \"slab\"; set "
+                                 "the layers in the file)",
+                                 scene),
+                     "--photons, --batches, --seed, --threads, --escape-radius, "
+                     "--split-orders, --out, the checkpoint flags and --log-interval");
+  }
+}
+
+void print_summary(const LayeredSlabSpec& spec, const TransportOutput& out,
+                   const std::string& path) {
+  fmt::print("scatterlab simulate: slab of {} layers ({}), n above {}, below {}, {} weighting\n",
+             spec.layers.size(), spec.length_unit, spec.n_above, spec.n_below,
+             to_string(spec.weighting));
+  print_run_time(out);
+  // Analog, each photon ends in exactly one of these: with R_sp they sum to 1 photon by photon.
+  const double specular = scalar_estimate(out.tallies, "specular_reflectance").mean;
+  std::string energy =
+      fmt::format("  energy per W incident: specular_reflectance {:.6f},", specular);
+  double total = specular;
+  for (const char* name : {"diffuse_reflectance", "total_transmittance", "absorbed"}) {
+    const ScalarEstimate value = scalar_estimate(out.tallies, name);
+    energy += fmt::format(" {} {},", name, estimate_text(value));
+    total += value.mean;
+  }
+  fmt::print("{} total {:.6f}\n", energy, total);
+  print_figures_of_merit(out, {"diffuse_reflectance", "total_transmittance", "absorbed"});
+  fmt::print("  wrote {}: R_d and T_t by r and angle, A by layer, depth and (r, z)\n", path);
+}
+
+}  // namespace
+
+int run_layered_slab_scene(CLI::App& command, const SlabFlags& flags,
+                           const LongRunOptions& long_run_options, double log_interval,
+                           const std::string& command_line, World& world) {
+  refuse_other_flags(command, flags.scene);
+  const LayeredSlabScene scene = load_layered_slab_scene(flags.scene, Validation::by_caller);
+  LayeredSlabSpec spec = scene.spec;
+  if (command.get_option("--split-orders")->count() > 0) spec.split_by_order = flags.split_orders;
+  apply_run_options(command, flags.run, spec.run);
+  spec.validate();
+  const bool out_given = command.get_option("--out")->count() > 0;
+  const std::filesystem::path output =
+      out_given ? flags.out : scene.output_path.value_or("slab.h5");
+  const std::string output_field = out_given || !scene.output_path ? "--out" : "output.path";
+  check_transport_memory(transport_problem(spec), world.size(), long_run_options.resume);
+
+  OutputPlan plan;
+  plan.input("--scene", flags.scene);
+  plan.output_file(output_field, output);
+  plan.output_file("--checkpoint", checkpoint_path(long_run_options, output));
+  prepare_outputs(plan, world.is_root());
+
+  const bool root = world.is_root();
+  LongRun long_run(long_run_options, output, fingerprint(spec), world.communicator());
+  if (root && long_run.resumed_batches() > 0) {
+    fmt::print("scatterlab simulate: resuming after batch {} of {} from {}\n",
+               long_run.resumed_batches(), spec.run.batches, long_run.checkpoint_path().string());
+  }
+  ProgressReporter reporter("simulate", "batches", log_interval);
+  ProgressCallback progress;
+  if (root) progress = [&reporter](const BatchProgress& done) { reporter.update(done); };
+  const TransportOutput out = run_layered_slab(spec, progress, long_run.control());
+  reporter.finish();
+
+  std::optional<std::filesystem::path> written;
+  if (root) {
+    const Provenance provenance = run_provenance(out, command_line);
+    spec.run.threads = out.threads;  // record what ran, not "all cores"
+    written = long_run.result_path(out.batches_done, spec.run.batches, output);
+    if (written) {
+      write_layered_slab_file(*written, spec, out.tallies, provenance);
+      print_summary(spec, out, written->string());
+    }
+  }
+  return long_run.finish(out.batches_done, spec.run.batches, output, written);
+}
+
+}  // namespace scatterlab::cli
