@@ -273,6 +273,33 @@ void check_grid(const Input& first, const Input& other) {
   }
 }
 
+// The groups inside /parameters (a slab's layers: one dataset per property) hold physics the
+// runs must share, value for value.
+void check_parameter_groups(const Input& first, const Input& other) {
+  const hdf5::Group a = first.file.root().open_group("parameters");
+  const hdf5::Group b = other.file.root().open_group("parameters");
+  if (a.member_names() != b.member_names()) {
+    mismatch("parameters", first.path, fmt::format("groups {}", fmt::join(a.member_names(), ",")),
+             other.path, fmt::format("groups {}", fmt::join(b.member_names(), ",")));
+  }
+  for (const std::string& group : a.member_names()) {
+    const hdf5::Group ga = a.open_group(group), gb = b.open_group(group);
+    if (ga.member_names() != gb.member_names()) {
+      mismatch(fmt::format("parameters.{}", group), first.path,
+               fmt::format("{}", fmt::join(ga.member_names(), ",")), other.path,
+               fmt::format("{}", fmt::join(gb.member_names(), ",")));
+    }
+    for (const std::string& name : ga.member_names()) {
+      const hdf5::Array x = ga.read_dataset(name), y = gb.read_dataset(name);
+      if (x.values != y.values) {
+        mismatch(fmt::format("parameters.{}.{}", group, name), first.path,
+                 fmt::format("{}", fmt::join(x.values, ", ")), other.path,
+                 fmt::format("{}", fmt::join(y.values, ", ")));
+      }
+    }
+  }
+}
+
 // Before the merged file is begun: the largest tally is held at once as the first input's mean,
 // one input's mean and stderr, the pooled batch sets and the pooled error (below).
 void check_merge_memory(const hdf5::Group& tallies) {
@@ -331,6 +358,7 @@ MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs
     summary.unequal_batches = summary.unequal_batches || std::abs(ratio - 1.0) > 0.01;
     if (&other == &first) continue;
     check_parameters(first.summary, other.summary);
+    check_parameter_groups(first, other);
     check_grid(first, other);
     const hdf5::Group tallies = other.file.root().open_group("tallies");
     if (tallies.member_names() != first_tallies.member_names()) {
@@ -388,6 +416,13 @@ MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs
         parameters.write_string_attribute("seeds", seed_list);
       } else if (name != "threads") {
         copy_attribute(first_parameters, parameters, name);
+      }
+    }
+    for (const std::string& name : first_parameters.member_names()) {
+      const hdf5::Group from = first_parameters.open_group(name);
+      hdf5::Group to = parameters.create_group(name);
+      for (const std::string& dataset : from.member_names()) {
+        copy_dataset(from.open_dataset(dataset), to, dataset);
       }
     }
 

@@ -116,6 +116,21 @@ else
   fail "marble: $(cat "$work/stderr")"
 fi
 
+# Two seeds of a slab merge, with its layers; a slab of other layers is refused, naming them.
+sed 's/mu_s = 187.0/mu_s = 188.0/' "$source_dir/data/scenes/skin-slab.toml" >"$work/other.toml"
+if "$exe" simulate --scene "$source_dir/data/scenes/skin-slab.toml" "${small[@]}" --seed 2 \
+  --out "$work/skin2.h5" >/dev/null 2>"$work/stderr" &&
+  "$exe" simulate --scene "$work/other.toml" "${small[@]}" --seed 3 --out "$work/other.h5" \
+    >/dev/null 2>>"$work/stderr" &&
+  "$exe" merge "$work/skin.h5" "$work/skin2.h5" --out "$work/merged.h5" >/dev/null \
+    2>>"$work/stderr"; then
+  expect_info merged "$work/merged.h5" "geometry +slab" "merged from"
+  expect_refused other_layers parameters.layers.mu_s merge "$work/skin.h5" "$work/other.h5" \
+    --out "$work/mixed.h5"
+else
+  fail "slab runs to merge: $(cat "$work/stderr")"
+fi
+
 # The infinite medium's flags are not the slab's; bad scenes name their key.
 small=(--photons 1000 --batches 4)
 scene=$source_dir/data/scenes/skin-slab.toml

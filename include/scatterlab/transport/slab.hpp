@@ -23,6 +23,7 @@
 // Lengths are in the spec's one length unit and sigma_t in its inverse: the slab needs no mean
 // free path of its own.
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -51,7 +52,10 @@ class Slab {
   Slab(const std::vector<SlabLayer>& layers, double n_above, double n_below) {
     double top = 0.0;
     for (const SlabLayer& l : layers) {
-      layers_.push_back({top, top + l.thickness, l.sigma_t, l.albedo, HenyeyGreenstein{l.g}, l.n});
+      const double mean_free_path =
+          l.sigma_t > 0.0 ? 1.0 / l.sigma_t : std::numeric_limits<double>::infinity();
+      layers_.push_back(
+          {top, top + l.thickness, l.sigma_t, mean_free_path, l.albedo, HenyeyGreenstein{l.g}, l.n});
       top += l.thickness;
     }
     n_above_ = n_above;
@@ -83,16 +87,18 @@ class Slab {
     for (;;) {
       const Layer& l = at(layer);
       const double w = direction.z();
-      const bool down = w > 0.0;
-      // Distance to the interface ahead; a flight parallel to the layers meets none.
-      const double to_interface = down    ? (l.bottom - position.z()) / w
-                                  : w < 0 ? (l.top - position.z()) / w
-                                          : std::numeric_limits<double>::infinity();
-      if (optical < to_interface * l.sigma_t) {  // collides in this layer (never in a clear one)
-        position += (optical / l.sigma_t) * direction;
+      // Where the whole flight would end in depth: inside the layer (its interfaces included)
+      // it collides there, with no division (a clear layer's infinite flight never does).
+      const double flight = optical * l.mean_free_path;
+      const double z_end = position.z() + flight * w;
+      if (z_end >= l.top && z_end <= l.bottom) {
+        position += flight * direction;
         return false;
       }
-      optical -= to_interface * l.sigma_t;
+      const bool down = w > 0.0;
+      const double to_interface = ((down ? l.bottom : l.top) - position.z()) / w;
+      // Never below 0 by rounding: what is left is spent from the interface on.
+      optical = std::max(0.0, optical - to_interface * l.sigma_t);
       position.x() += to_interface * direction.x();
       position.y() += to_interface * direction.y();
       position.z() = down ? l.bottom : l.top;  // exactly on the interface
@@ -128,7 +134,7 @@ class Slab {
  private:
   struct Layer {
     double top, bottom;
-    double sigma_t, albedo;
+    double sigma_t, mean_free_path, albedo;
     HenyeyGreenstein phase;
     double n;
   };
