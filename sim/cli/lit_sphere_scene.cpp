@@ -7,8 +7,8 @@
 #include <optional>
 #include <string_view>
 
+#include "checkpointed_run.hpp"
 #include "prepare_outputs.hpp"
-#include "progress_reporter.hpp"
 #include "run_figures.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/output_plan.hpp"
@@ -100,29 +100,18 @@ int run_lit_sphere_scene(CLI::App& command, const SphereFlags& flags,
   plan.output_file("--checkpoint", checkpoint_path(long_run_options, output));
   prepare_outputs(plan, world.is_root());
 
-  const bool root = world.is_root();
-  LongRun long_run(long_run_options, output, fingerprint(spec), world.communicator());
-  if (root && long_run.resumed_batches() > 0) {
-    fmt::print("scatterlab simulate: resuming after batch {} of {} from {}\n",
-               long_run.resumed_batches(), spec.run.batches, long_run.checkpoint_path().string());
-  }
-  ProgressReporter reporter("simulate", "batches", log_interval);
-  ProgressCallback progress;
-  if (root) progress = [&reporter](const BatchProgress& done) { reporter.update(done); };
-  const TransportOutput out = run_lit_sphere(spec, progress, long_run.control());
-  reporter.finish();
-
-  std::optional<std::filesystem::path> written;
-  if (root) {
-    const Provenance provenance = run_provenance(out, command_line);
-    spec.run.threads = out.threads;  // record what ran, not "all cores"
-    written = long_run.result_path(out.batches_done, spec.run.batches, output);
-    if (written) {
-      write_lit_sphere_file(*written, spec, out.tallies, provenance);
-      print_summary(spec, out, written->string());
-    }
-  }
-  return long_run.finish(out.batches_done, spec.run.batches, output, written);
+  const LitSphereSpec ran = spec;
+  return run_with_checkpoints(
+      "simulate", long_run_options, output, fingerprint(spec), spec.run.batches, log_interval,
+      world,
+      [&ran](const ProgressCallback& progress, const RunControl& control) {
+        return run_lit_sphere(ran, progress, control);
+      },
+      [&](const std::filesystem::path& path, const TransportOutput& out) {
+        spec.run.threads = out.threads;  // record what ran, not "all cores"
+        write_lit_sphere_file(path, spec, out.tallies, run_provenance(out, command_line));
+        print_summary(spec, out, path.string());
+      });
 }
 
 }  // namespace scatterlab::cli

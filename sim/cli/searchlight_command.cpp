@@ -7,13 +7,13 @@
 #include <numbers>
 #include <optional>
 
+#include "checkpointed_run.hpp"
 #include "commands.hpp"
 #include "log_interval_option.hpp"
 #include "long_run.hpp"
 #include "medium_options.hpp"
 #include "memory_limit_option.hpp"
 #include "prepare_outputs.hpp"
-#include "progress_reporter.hpp"
 #include "run_figures.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
@@ -162,31 +162,21 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
   prepare_outputs(plan, world.is_root());
 
   // Ranks, checkpoints, --resume and interruption, as for simulate (long_run.hpp).
-  const bool root = world.is_root();
-  LongRun long_run(long_run_options, path, fingerprint(spec), world.communicator());
-  if (root && long_run.resumed_batches() > 0) {
-    fmt::print("scatterlab searchlight: resuming after batch {} of {} from {}\n",
-               long_run.resumed_batches(), spec.run.batches, long_run.checkpoint_path().string());
-  }
-  ProgressReporter reporter("searchlight", "batches", log_interval);
-  ProgressCallback progress;
-  if (root) progress = [&reporter](const BatchProgress& done) { reporter.update(done); };
-  const SearchlightOutput out = run_searchlight(spec, progress, long_run.control());
-  reporter.finish();
-
-  std::optional<std::filesystem::path> written;
-  if (root) {
-    const Provenance provenance = run_provenance(out, command_line);
-    spec.run.threads = out.threads;  // record what ran, not "all cores"
-    const std::vector<ModelResult> models = searchlight_model_curves(
-        spec, scalar_estimate(out.tallies, "specular_reflectance").mean, o.model_fluence);
-    written = long_run.result_path(out.batches_done, spec.run.batches, path);
-    if (written) {
-      write_searchlight_file(*written, spec, out.tallies, provenance, models);
-      print_summary(spec, out, models, written->string());
-    }
-  }
-  return long_run.finish(out.batches_done, spec.run.batches, path, written);
+  const SearchlightSpec ran = spec;
+  return run_with_checkpoints(
+      "searchlight", long_run_options, path, fingerprint(spec), spec.run.batches, log_interval,
+      world,
+      [&ran](const ProgressCallback& progress, const RunControl& control) {
+        return run_searchlight(ran, progress, control);
+      },
+      [&](const std::filesystem::path& written, const TransportOutput& out) {
+        spec.run.threads = out.threads;  // record what ran, not "all cores"
+        const std::vector<ModelResult> models = searchlight_model_curves(
+            spec, scalar_estimate(out.tallies, "specular_reflectance").mean, o.model_fluence);
+        write_searchlight_file(written, spec, out.tallies, run_provenance(out, command_line),
+                               models);
+        print_summary(spec, out, models, written.string());
+      });
 }
 
 }  // namespace

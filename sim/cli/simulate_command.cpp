@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 
+#include "checkpointed_run.hpp"
 #include "commands.hpp"
 #include "layered_slab_scene.hpp"
 #include "lit_sphere_scene.hpp"
@@ -18,7 +19,6 @@
 #include "medium_options.hpp"
 #include "memory_limit_option.hpp"
 #include "prepare_outputs.hpp"
-#include "progress_reporter.hpp"
 #include "run_figures.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
@@ -244,32 +244,18 @@ bool already_done(const PlannedRun& run) {
 
 int run_one(PlannedRun run, const LongRunOptions& options, double log_interval,
             const std::string& command_line, World& world) {
-  const bool root = world.is_root();
-  const SimulationSpec& spec = run.spec;
-  LongRun long_run(options, run.output, fingerprint(spec), world.communicator());
-
-  if (root && long_run.resumed_batches() > 0) {
-    fmt::print("scatterlab simulate: resuming after batch {} of {} from {}\n",
-               long_run.resumed_batches(), spec.run.batches, long_run.checkpoint_path().string());
-  }
-  ProgressReporter reporter("simulate", "batches", log_interval);
-  ProgressCallback progress;
-  if (root) progress = [&reporter](const BatchProgress& done) { reporter.update(done); };
-  const SimulationOutput out = simulate(spec, progress, long_run.control());
-  reporter.finish();
-
-  std::optional<std::filesystem::path> written;
-  if (root) {
-    const Provenance provenance = run_provenance(out, command_line);
-    run.spec.run.threads = out.threads;  // record what ran, not "all cores"
-    written = long_run.result_path(out.batches_done, spec.run.batches, run.output);
-    if (written) {
-      write_simulation_file(*written, run.spec, out.tallies, provenance,
-                            point_source_model_curves(run.spec, out.tallies));
-      print_summary(run.spec, out, written->string());
-    }
-  }
-  return long_run.finish(out.batches_done, spec.run.batches, run.output, written);
+  const SimulationSpec spec = run.spec;
+  return run_with_checkpoints(
+      "simulate", options, run.output, fingerprint(spec), spec.run.batches, log_interval, world,
+      [&spec](const ProgressCallback& progress, const RunControl& control) {
+        return simulate(spec, progress, control);
+      },
+      [&](const std::filesystem::path& path, const TransportOutput& out) {
+        run.spec.run.threads = out.threads;  // record what ran, not "all cores"
+        write_simulation_file(path, run.spec, out.tallies, run_provenance(out, command_line),
+                              point_source_model_curves(run.spec, out.tallies));
+        print_summary(run.spec, out, path.string());
+      });
 }
 
 int run_simulate(CLI::App& command, const SimulateOptions& o, const LongRunOptions& long_run,
