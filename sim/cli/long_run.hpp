@@ -1,13 +1,8 @@
 #pragma once
 // Checkpoints, --resume and interruption for any command that runs batches (simulate,
-// searchlight, ...). A command registers the options with add_long_run_options, then for each
-// run makes a LongRun, passes long_run.control() to the transport, and calls finish():
-//
-//   LongRun long_run(*options, output_path, fingerprint(spec), world);
-//   const auto out = simulate(spec, progress, long_run.control());
-//   const auto written = long_run.result_path(out.batches_done, spec.run.batches, output_path);
-//   if (written) ... write the file there ...
-//   return long_run.finish(out.batches_done, spec.run.batches, output_path, written);
+// searchlight, ...). A command registers the options with add_long_run_options, then runs each
+// run through run_with_checkpoints (checkpointed_run.hpp), which makes the LongRun, passes
+// long_run.control() to the transport, writes the file at result_path and calls finish().
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
