@@ -122,6 +122,17 @@ CheckpointPolicy parse_checkpoint_interval(const std::string& text) {
   return policy;
 }
 
+bool complete_file_of(const std::filesystem::path& output, const std::string& fingerprint) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(output, error)) return false;
+  try {
+    const FileSummary summary = read_file_header(output);
+    return !summary.partial && summary.spec_fingerprint == fingerprint;
+  } catch (const std::exception&) {
+    return false;  // not a scatterlab file: replaced by the run
+  }
+}
+
 LongRun::LongRun(const LongRunOptions& options, const std::filesystem::path& output,
                  std::string fingerprint, Communicator& world)
     : world_(world),

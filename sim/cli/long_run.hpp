@@ -33,6 +33,10 @@ std::filesystem::path checkpoint_path(const LongRunOptions& options,
 // --checkpoint-interval.
 CheckpointPolicy parse_checkpoint_interval(const std::string& text);
 
+// Whether `output` is a complete scatterlab file of the run with this fingerprint: a run of a
+// sweep or of an MCML file that is done already (a file that is not ours is not).
+bool complete_file_of(const std::filesystem::path& output, const std::string& fingerprint);
+
 // "run.partial.h5" for "run.h5": where a run stopped early writes its partial result when a
 // complete file holds the output's name.
 std::filesystem::path partial_sibling(const std::filesystem::path& output);

@@ -9,13 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "checkpointed_run.hpp"
 #include "commands.hpp"
 #include "log_interval_option.hpp"
 #include "memory_limit_option.hpp"
 #include "prepare_outputs.hpp"
-#include "progress_reporter.hpp"
 #include "run_figures.hpp"
 #include "run_options.hpp"
+#include "scatterlab/core/error.hpp"
 #include "scatterlab/io/mcml_input.hpp"
 #include "scatterlab/io/mco_file.hpp"
 #include "scatterlab/io/output_plan.hpp"
@@ -59,21 +60,28 @@ void print_summary(std::size_t index, std::size_t runs, const LayeredSlabSpec& s
   fmt::print("{} total {:.6f}\n", energy, total);
 }
 
-int run_mcml(const CLI::App& command, const McmlFlags& flags, double log_interval,
-             const std::string& command_line, World& world) {
+int run_mcml(const CLI::App& command, const McmlFlags& flags, const LongRunOptions& long_run,
+             double log_interval, const std::string& command_line, World& world) {
   const std::vector<McmlRun> runs = read_mcml_input(flags.input);
+  if (runs.size() > 1 && !long_run.checkpoint.empty()) {
+    throw InputError(
+        "--checkpoint",
+        fmt::format("given for {} runs: every run checkpoints beside its file", runs.size()),
+        "--checkpoint only for a file of one run");
+  }
   std::vector<LayeredSlabSpec> specs;
   OutputPlan plan;
   plan.input("FILE", flags.input);
   std::vector<std::filesystem::path> h5_paths, mco_paths;
   for (const McmlRun& run : runs) {
     specs.push_back(slab_spec(run, command, flags));
-    check_transport_memory(transport_problem(specs.back()), world.size(), false);
+    check_transport_memory(transport_problem(specs.back()), world.size(), long_run.resume);
     // In the current directory, whatever directory the .mci names its output in.
     const std::filesystem::path name = std::filesystem::path(run.output_file).filename();
     const std::string field = fmt::format("{}:{} output file", flags.input, run.line);
     h5_paths.push_back(std::filesystem::path(name).replace_extension(".h5"));
     plan.output_file(field, h5_paths.back());
+    plan.output_file("--checkpoint", checkpoint_path(long_run, h5_paths.back()));
     if (flags.mco) {
       mco_paths.push_back(name);
       plan.output_file(field, mco_paths.back());
@@ -81,27 +89,36 @@ int run_mcml(const CLI::App& command, const McmlFlags& flags, double log_interva
   }
   prepare_outputs(plan, world.is_root());
 
-  const bool root = world.is_root();
+  // Checkpoints, --resume and interruption as for every run (checkpointed_run.hpp): a run stopped
+  // early keeps what it did in a partial file and its checkpoint, no .mco is written for it, and
+  // the later runs wait; with --resume the runs whose files are complete are skipped.
   for (std::size_t i = 0; i < runs.size(); ++i) {
     LayeredSlabSpec& spec = specs[i];
-    ProgressReporter reporter("mcml", "batches", log_interval);
-    ProgressCallback progress;
-    if (root) progress = [&reporter](const BatchProgress& done) { reporter.update(done); };
-    RunControl control;
-    control.communicator = &world.communicator();
-    const TransportOutput out = run_layered_slab(spec, progress, control);
-    reporter.finish();
-    if (!root) continue;
-    spec.run.threads = out.threads;  // record what ran, not "all cores"
-    write_layered_slab_file(h5_paths[i], spec, out.tallies, run_provenance(out, command_line));
-    print_summary(i, runs.size(), spec, out);
-    fmt::print("  wrote {}\n", h5_paths[i].string());
-    if (flags.mco) {
-      McmlRun ran = runs[i];
-      ran.photons = out.photons;  // as run: --photons may have changed the file's count
-      write_mco(mco_paths[i], ran, mco_results(out.tallies, ran), out.run_wall_seconds());
-      fmt::print("  wrote {} (MCML 1.2.2 layout)\n", mco_paths[i].string());
+    const bool done =
+        long_run.resume && world.communicator().broadcast_from_root(
+                               complete_file_of(h5_paths[i], fingerprint(spec)) ? 1 : 0) != 0;
+    if (done) {
+      if (world.is_root()) fmt::print("skip {}: done already\n", h5_paths[i].string());
+      continue;
     }
+    const LayeredSlabSpec ran = spec;
+    const int status = run_with_checkpoints(
+        "mcml", long_run, h5_paths[i], fingerprint(spec), spec.run.batches, log_interval, world,
+        [&ran](const ProgressCallback& progress, const RunControl& control) {
+          return run_layered_slab(ran, progress, control);
+        },
+        [&](const std::filesystem::path& path, const TransportOutput& out) {
+          spec.run.threads = out.threads;  // record what ran, not "all cores"
+          write_layered_slab_file(path, spec, out.tallies, run_provenance(out, command_line));
+          print_summary(i, runs.size(), spec, out);
+          fmt::print("  wrote {}\n", path.string());
+          if (!flags.mco || !out.complete(spec)) return;
+          McmlRun as_run = runs[i];
+          as_run.photons = out.photons;  // --photons may have changed the file's count
+          write_mco(mco_paths[i], as_run, mco_results(out.tallies, as_run), out.run_wall_seconds());
+          fmt::print("  wrote {} (MCML 1.2.2 layout)\n", mco_paths[i].string());
+        });
+    if (status != 0) return status;
   }
   return 0;
 }
@@ -126,10 +143,11 @@ Action add_mcml_command(CLI::App& app, const std::string& command_line, World& w
   flags->run = run_options_of(LayeredSlabSpec{}.run);
   add_run_options(*command, flags->run);
   command->get_option("--photons")->default_str("the run's photon count");
+  const auto long_run = add_long_run_options(*command);
   const auto log_interval = add_log_interval_option(*command);
   add_memory_limit_option(*command);
-  return [command, flags, log_interval, command_line, &world] {
-    return run_mcml(*command, *flags, *log_interval, command_line, world);
+  return [command, flags, long_run, log_interval, command_line, &world] {
+    return run_mcml(*command, *flags, *long_run, *log_interval, command_line, world);
   };
 }
 

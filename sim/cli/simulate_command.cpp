@@ -230,18 +230,6 @@ RunPlan plan_runs(CLI::App& command, const SimulateOptions& o, const LongRunOpti
   return plan;
 }
 
-// A complete file of the same run (same fingerprint) is already there.
-bool already_done(const PlannedRun& run) {
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(run.output, error)) return false;
-  try {
-    const FileSummary summary = read_file_header(run.output);
-    return !summary.partial && summary.spec_fingerprint == fingerprint(run.spec);
-  } catch (const std::exception&) {
-    return false;  // not a scatterlab file: replaced by the run
-  }
-}
-
 int run_one(PlannedRun run, const LongRunOptions& options, double log_interval,
             const std::string& command_line, World& world) {
   const SimulationSpec spec = run.spec;
@@ -302,8 +290,9 @@ int run_simulate(CLI::App& command, const SimulateOptions& o, const LongRunOptio
   for (const PlannedRun& run : runs) {
     // Runs into a directory (sweeps) skip what is done; the root decides, so that every rank
     // runs the same.
-    const bool skip = !directory.empty() &&
-                      world.communicator().broadcast_from_root(already_done(run) ? 1 : 0) != 0;
+    const bool skip =
+        !directory.empty() && world.communicator().broadcast_from_root(
+                                  complete_file_of(run.output, fingerprint(run.spec)) ? 1 : 0) != 0;
     if (skip) {
       if (world.is_root())
         fmt::print("skip {}: done already, same parameters\n", run.output.string());

@@ -63,6 +63,14 @@ then
   expect_info one "$work/one.h5" "weighting +implicit" "layer +1 bins"
   expect_info two "$work/two.h5" "n_below +1\.33" "layer +2 bins in \[0, 0\.1\] cm"
   if [ -e "$work/one.mco" ]; then fail "one.mco written without --mco"; else pass; fi
+  # With --resume, runs whose files are complete are not run again.
+  if "$exe" mcml "$work/two.mci" --weighting implicit --batches 4 --resume >"$work/stdout" \
+    2>"$work/stderr" && [ "$(grep -c "^skip .*: done already" "$work/stdout")" -eq 2 ]; then
+    pass
+  else
+    fail "--resume of a finished file: $(cat "$work/stdout" "$work/stderr")"
+  fi
+  expect_refused two_checkpoints --checkpoint mcml "$work/two.mci" --checkpoint "$work/c.ckpt"
 else
   fail "two.mci: $(cat "$work/stderr")"
 fi
