@@ -10,6 +10,7 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/tally/filter.hpp"
+#include "scatterlab/transport/grid_checks.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 
 namespace scatterlab {
@@ -17,7 +18,6 @@ namespace scatterlab {
 namespace {
 
 constexpr std::size_t max_layers = 1000;
-constexpr int max_bins = 100'000;
 
 std::string got(double value) {
   return fmt::format("got {}", value);
@@ -69,18 +69,6 @@ void check_layer(const SlabLayerSpec& layer, std::size_t i, std::size_t count,
   if (!layer.clear() && !(layer.mu_t() >= 1e-9 && layer.mu_t() <= 1e12)) {
     throw InputError(layer_field(i, "mu_a, mu_s"), fmt::format("sum to {}", layer.mu_t()),
                      fmt::format("mu_a + mu_s in [1e-9, 1e12] per {}, or 0 (clear)", unit));
-  }
-}
-
-void check_from_zero(const UniformAxis& axis, const std::string& name, const std::string& unit) {
-  if (axis.min != 0.0) throw InputError("grid." + name + ".min", got(axis.min), "0");
-  if (!(axis.max > 0.0) || !std::isfinite(axis.max)) {
-    throw InputError("grid." + name + ".max", got(axis.max),
-                     fmt::format("a finite number > 0 (in {})", unit));
-  }
-  if (axis.bins < 1 || axis.bins > max_bins) {
-    throw InputError("grid." + name + ".bins", fmt::format("got {}", axis.bins),
-                     "an integer in [1, 100000]");
   }
 }
 
@@ -185,16 +173,13 @@ void LayeredSlabSpec::validate() const {
   }
   check_index(n_above, "geometry.n_above");
   check_index(n_below, "geometry.n_below");
-  check_from_zero(r, "r", length_unit);
-  check_from_zero(z, "z", length_unit);
+  check_from_zero(r, "r", "the distance from the beam", "geometry.length_unit");
+  check_from_zero(z, "z", "the lit surface", "geometry.length_unit");
   if (theta_o.min != 0.0 || std::abs(theta_o.max - 0.5 * std::numbers::pi) > 1e-12) {
     throw InputError("grid.theta_o", fmt::format("spans [{}, {}]", theta_o.min, theta_o.max),
                      "[0, pi/2]: exit angles from the outward normal");
   }
-  if (theta_o.bins < 1 || theta_o.bins > max_bins) {
-    throw InputError("grid.theta_o.bins", fmt::format("got {}", theta_o.bins),
-                     "an integer in [1, 100000]");
-  }
+  check_bins(theta_o, "theta_o");
   check_run_settings(run);
   // A walk ends by absorption, or by leaving the slab. With albedo 1 in a semi-infinite layer the
   // number of events before a photon leaves has infinite mean (a recurrent 1-D walk in depth),

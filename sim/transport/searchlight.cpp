@@ -7,39 +7,19 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/tally/filter.hpp"
+#include "scatterlab/transport/grid_checks.hpp"
 #include "scatterlab/transport/length_units.hpp"
 
 namespace scatterlab {
 namespace {
 
-constexpr int max_bins = 100'000;
-
 std::string got(double value) {
   return fmt::format("got {}", value);
 }
 
-void check_bins(const UniformAxis& axis, const std::string& name) {
-  if (axis.bins < 1 || axis.bins > max_bins) {
-    throw InputError("grid." + name + ".bins", fmt::format("got {}", axis.bins),
-                     "an integer in [1, 100000]");
-  }
-}
-
-// r and z both start at the entry point: r = 0 on the beam, z = 0 on the surface.
-void check_from_zero(const UniformAxis& axis, const std::string& name, const char* what) {
-  if (axis.min != 0.0) {
-    throw InputError("grid." + name + ".min", got(axis.min), std::string("0 (") + what + ")");
-  }
-  if (!(axis.max > 0.0) || !std::isfinite(axis.max)) {
-    throw InputError("grid." + name + ".max", got(axis.max),
-                     "a finite number > 0 (in medium.length_unit)");
-  }
-  check_bins(axis, name);
-}
-
 void check_grid(const SearchlightGrid& grid, const Medium& medium) {
-  check_from_zero(grid.r, "r", "the distance from the entry point");
-  check_from_zero(grid.z, "z", "the surface");
+  check_from_zero(grid.r, "r", "the distance from the entry point", "medium.length_unit");
+  check_from_zero(grid.z, "z", "the surface", "medium.length_unit");
   check_length_axis_span(grid.r, "r", medium);
   check_length_axis_span(grid.z, "z", medium);
   if (grid.theta_o.min != 0.0 || std::abs(grid.theta_o.max - 0.5 * std::numbers::pi) > 1e-12) {

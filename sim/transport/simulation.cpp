@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/transport/grid_checks.hpp"
 #include "scatterlab/transport/length_units.hpp"
 
 namespace scatterlab {
@@ -17,7 +18,6 @@ namespace {
 // Field names below are those the user writes: the TOML keys of the scene file, which the CLI
 // options mirror (docs/architecture.md, "Errors").
 
-constexpr int max_bins = 100'000;
 // 2^28 doubles are 2 GiB for the mean alone; batch accumulators and per-order siblings multiply
 // that, so a larger radiance array is a mistake rather than a wish.
 constexpr std::uint64_t max_radiance_cells = std::uint64_t{1} << 28;
@@ -38,24 +38,10 @@ void check_medium(const Medium& medium) {
   check_length_unit(medium);
 }
 
-void check_bins(const UniformAxis& axis, const std::string& name) {
-  if (axis.bins < 1 || axis.bins > max_bins) {
-    throw InputError("grid." + name + ".bins", fmt::format("got {}", axis.bins),
-                     "an integer in [1, 100000]");
-  }
-}
-
 // Axes that start at 0 by construction: r (distance from the beam axis) and rho (distance from
 // the point source).
 void check_radial_axis(const UniformAxis& axis, const std::string& name) {
-  if (axis.min != 0.0) {
-    throw InputError("grid." + name + ".min", got(axis.min), "0 (a distance from the source)");
-  }
-  if (!(axis.max > 0.0) || !std::isfinite(axis.max)) {
-    throw InputError("grid." + name + ".max", got(axis.max),
-                     "a finite number > 0 (in medium.length_unit)");
-  }
-  check_bins(axis, name);
+  check_from_zero(axis, name, "a distance from the source", "medium.length_unit");
 }
 
 void check_angle_axis(const UniformAxis& axis, const std::string& name, double max,
@@ -91,7 +77,8 @@ void check_grid(const Grid& grid, bool radiance_requested, const Medium& medium)
     check_angle_axis(grid.phi, "phi", two_pi, "2 pi when grid.fold_phi = false");
     // The bins of phi and 2 pi - phi mirror each other only for an even count (scorer.hpp).
     if (grid.phi.bins % 2 != 0) {
-      throw InputError("grid.phi.bins", fmt::format("got {} with grid.fold_phi = false", grid.phi.bins),
+      throw InputError("grid.phi.bins",
+                       fmt::format("got {} with grid.fold_phi = false", grid.phi.bins),
                        "an even number of bins over [0, 2 pi], or grid.fold_phi = true");
     }
   }
@@ -159,12 +146,15 @@ void SimulationSpec::validate() const {
 
 std::string fingerprint(const SimulationSpec& spec) {
   // Doubles in hexadecimal ({:a}) so that the text, and so the hash, is exact.
-  auto axis = [](const UniformAxis& a) { return fmt::format("{:a},{:a},{};", a.min, a.max, a.bins); };
+  auto axis = [](const UniformAxis& a) {
+    return fmt::format("{:a},{:a},{};", a.min, a.max, a.bins);
+  };
   const Medium& m = spec.medium;
   const TallyRequest& t = spec.tallies;
   const RunSettings& run = spec.run;
   const std::string canonical = fmt::format(
-      "medium {:a} {:a} {:a} {}|source {}|grid {}{}{}{}{}{}|tallies {}{}{}{}{} {}|run {} {} {} {:a}",
+      "medium {:a} {:a} {:a} {}|source {}|grid {}{}{}{}{}{}|tallies {}{}{}{}{} {}|run {} {} {} "
+      "{:a}",
       m.albedo, m.g, m.sigma_t, m.length_unit, to_string(spec.source), axis(spec.grid.r),
       axis(spec.grid.z), axis(spec.grid.theta), axis(spec.grid.phi), axis(spec.grid.rho),
       spec.grid.fold_phi, t.radiance, t.fluence, t.flux, t.fluence_spherical, t.split_by_order,
