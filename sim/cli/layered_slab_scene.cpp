@@ -10,7 +10,6 @@
 #include "prepare_outputs.hpp"
 #include "run_figures.hpp"
 #include "scatterlab/core/error.hpp"
-#include "scatterlab/io/output_plan.hpp"
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/tally/scalar_estimate.hpp"
@@ -81,17 +80,10 @@ int run_layered_slab_scene(CLI::App& command, const SlabFlags& flags,
   if (command.get_option("--split-orders")->count() > 0) spec.split_by_order = flags.split_orders;
   apply_run_options(command, flags.run, spec.run);
   spec.validate();
-  const bool out_given = command.get_option("--out")->count() > 0;
-  const std::filesystem::path output =
-      out_given ? flags.out : scene.output_path.value_or("slab.h5");
-  const std::string output_field = out_given || !scene.output_path ? "--out" : "output.path";
   check_transport_memory(transport_problem(spec), world.size(), long_run_options.resume);
-
-  OutputPlan plan;
-  plan.input("--scene", flags.scene);
-  plan.output_file(output_field, output);
-  plan.output_file("--checkpoint", checkpoint_path(long_run_options, output));
-  prepare_outputs(plan, world.is_root());
+  const std::filesystem::path output =
+      prepare_scene_outputs(command, flags.scene, flags.out, scene.output_path, "slab.h5",
+                            long_run_options, world.is_root());
 
   const LayeredSlabSpec ran = spec;
   return run_with_checkpoints(

@@ -17,7 +17,6 @@
 #include "run_figures.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
-#include "scatterlab/io/output_plan.hpp"
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/models/chandrasekhar_h.hpp"
@@ -154,12 +153,9 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
   }
   check_transport_memory(transport_problem(spec), world.size(), long_run_options.resume);
 
-  const std::string path = given("--out") ? o.out : scene.output_path.value_or("searchlight.h5");
-  OutputPlan plan;
-  if (given("--scene")) plan.input("--scene", o.scene);
-  plan.output_file(given("--out") || !scene.output_path ? "--out" : "output.path", path);
-  plan.output_file("--checkpoint", checkpoint_path(long_run_options, path));
-  prepare_outputs(plan, world.is_root());
+  const std::filesystem::path path =
+      prepare_scene_outputs(command, given("--scene") ? o.scene : "", o.out, scene.output_path,
+                            "searchlight.h5", long_run_options, world.is_root());
 
   // Ranks, checkpoints, --resume and interruption, as for simulate (long_run.hpp).
   const SearchlightSpec ran = spec;

@@ -19,6 +19,7 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/mcml_input.hpp"
 #include "scatterlab/io/mco_file.hpp"
+#include "scratch_directory.hpp"
 
 namespace scatterlab {
 namespace {
@@ -26,21 +27,9 @@ namespace {
 namespace fs = std::filesystem;
 using test_support::field_of;
 
-// A fresh directory per test, removed afterwards.
-class McmlFilesTest : public ::testing::Test {
+// A fresh directory per test (scratch_directory.hpp).
+class McmlFilesTest : public test_support::ScratchDirectoryTest {
  protected:
-  void SetUp() override {
-    static std::atomic<int> counter{0};
-    directory_ = fs::temp_directory_path() / ("scatterlab-mcml-" + std::to_string(::getpid()) +
-                                              "-" + std::to_string(counter++));
-    fs::remove_all(directory_);
-    fs::create_directories(directory_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(directory_, ignored);
-  }
-
   fs::path write(const std::string& name, const std::string& text) const {
     const fs::path path = directory_ / name;
     std::ofstream(path, std::ios::binary) << text;
@@ -53,8 +42,6 @@ class McmlFilesTest : public ::testing::Test {
     text << in.rdbuf();
     return text.str();
   }
-
-  fs::path directory_;
 };
 
 // Two runs, with the comments, blank lines, tabs and trailing comments MCML's template has. The

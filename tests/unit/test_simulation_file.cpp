@@ -19,27 +19,16 @@
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
 #include "scatterlab/io/simulation_file.hpp"
+#include "scratch_directory.hpp"
 
 namespace scatterlab {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh directory per test, removed afterwards.
-class SimulationFileTest : public ::testing::Test {
+// A fresh directory per test (scratch_directory.hpp).
+class SimulationFileTest : public test_support::ScratchDirectoryTest {
  protected:
-  void SetUp() override {
-    static std::atomic<int> counter{0};
-    directory_ = fs::temp_directory_path() / ("scatterlab-test-" + std::to_string(::getpid()) +
-                                              "-" + std::to_string(counter++));
-    fs::remove_all(directory_);
-    fs::create_directories(directory_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(directory_, ignored);
-  }
-
   std::vector<std::string> directory_entries() const {
     std::vector<std::string> names;
     for (const auto& entry : fs::directory_iterator(directory_)) {
@@ -47,8 +36,6 @@ class SimulationFileTest : public ::testing::Test {
     }
     return names;
   }
-
-  fs::path directory_;
 };
 
 SimulationSpec small_spec() {
