@@ -12,7 +12,6 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/simulation_file.hpp"
-#include "scatterlab/tally/scalar_estimate.hpp"
 
 namespace scatterlab::cli {
 namespace {
@@ -54,17 +53,7 @@ void print_summary(const LayeredSlabSpec& spec, const TransportOutput& out,
              spec.layers.size(), spec.length_unit, spec.n_above, spec.n_below,
              to_string(spec.weighting));
   print_run_time(out);
-  // Analog, each photon ends in exactly one of these: with R_sp they sum to 1 photon by photon.
-  const double specular = scalar_estimate(out.tallies, "specular_reflectance").mean;
-  std::string energy =
-      fmt::format("  energy per W incident: specular_reflectance {:.6f},", specular);
-  double total = specular;
-  for (const char* name : {"diffuse_reflectance", "total_transmittance", "absorbed"}) {
-    const ScalarEstimate value = scalar_estimate(out.tallies, name);
-    energy += fmt::format(" {} {},", name, estimate_text(value));
-    total += value.mean;
-  }
-  fmt::print("{} total {:.6f}\n", energy, total);
+  print_energy_balance(out, slab_energy_tallies);
   print_figures_of_merit(out, {"diffuse_reflectance", "total_transmittance", "absorbed"});
   fmt::print("  wrote {}: R_d and T_t by r and angle, A by layer, depth and (r, z)\n", path);
 }

@@ -7,12 +7,18 @@
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "long_run.hpp"
 #include "run_options.hpp"
 #include "scatterlab/parallel/world.hpp"
 
 namespace scatterlab::cli {
+
+// The slab's totals, as its summaries print them (simulate, mcml): with analog absorption every
+// photon ends in exactly one of them.
+inline const std::vector<std::string> slab_energy_tallies = {
+    "specular_reflectance", "diffuse_reflectance", "total_transmittance", "absorbed"};
 
 // The flags simulate shares with a slab scene.
 struct SlabFlags {

@@ -13,7 +13,6 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/simulation_file.hpp"
-#include "scatterlab/tally/scalar_estimate.hpp"
 
 namespace scatterlab::cli {
 namespace {
@@ -66,14 +65,7 @@ void print_summary(const LitSphereSpec& spec, const TransportOutput& out, const 
   }
   print_run_time(out);
   // Each photon ends in exactly one of these: they sum to 1 photon by photon.
-  std::string energy = "  energy per W incident:";
-  double total = 0.0;
-  for (const char* name : {"reflected_at_entry", "exited", "absorbed"}) {
-    const ScalarEstimate value = scalar_estimate(out.tallies, name);
-    energy += fmt::format(" {} {},", name, estimate_text(value));
-    total += value.mean;
-  }
-  fmt::print("{} total {:.6f}\n", energy, total);
+  print_energy_balance(out, {"reflected_at_entry", "exited", "absorbed"});
   print_figures_of_merit(out, {"exited", "absorbed", "exitance"});
   fmt::print("  wrote {}: exitance [{}] against the angle from the lit pole\n", path,
              spec.psi.bins);

@@ -11,6 +11,7 @@
 
 #include "checkpointed_run.hpp"
 #include "commands.hpp"
+#include "layered_slab_scene.hpp"
 #include "log_interval_option.hpp"
 #include "memory_limit_option.hpp"
 #include "prepare_outputs.hpp"
@@ -21,7 +22,6 @@
 #include "scatterlab/io/mco_file.hpp"
 #include "scatterlab/io/output_plan.hpp"
 #include "scatterlab/io/simulation_file.hpp"
-#include "scatterlab/tally/scalar_estimate.hpp"
 #include "scatterlab/transport/layered_slab.hpp"
 
 namespace scatterlab::cli {
@@ -48,16 +48,7 @@ void print_summary(std::size_t index, std::size_t runs, const LayeredSlabSpec& s
   fmt::print("scatterlab mcml: run {} of {}: {} layers, {} weighting\n", index + 1, runs,
              spec.layers.size(), to_string(spec.weighting));
   print_run_time(out);
-  // Analog, each photon ends in exactly one of these: with R_sp they sum to 1 photon by photon.
-  std::string energy = "  energy per W incident: specular_reflectance";
-  energy += fmt::format(" {:.6f},", scalar_estimate(out.tallies, "specular_reflectance").mean);
-  double total = scalar_estimate(out.tallies, "specular_reflectance").mean;
-  for (const char* name : {"diffuse_reflectance", "total_transmittance", "absorbed"}) {
-    const ScalarEstimate value = scalar_estimate(out.tallies, name);
-    energy += fmt::format(" {} {},", name, estimate_text(value));
-    total += value.mean;
-  }
-  fmt::print("{} total {:.6f}\n", energy, total);
+  print_energy_balance(out, slab_energy_tallies);
 }
 
 int run_mcml(const CLI::App& command, const McmlFlags& flags, const LongRunOptions& long_run,

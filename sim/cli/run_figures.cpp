@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "scatterlab/tally/figure_of_merit.hpp"
+#include "scatterlab/tally/scalar_estimate.hpp"
 
 namespace scatterlab::cli {
 
@@ -26,6 +27,18 @@ void print_run_time(const TransportOutput& out) {
       out.session_photons(), out.wall_seconds,
       static_cast<double>(out.session_photons()) / out.wall_seconds, out.photons_resumed,
       out.resumed_wall_seconds);
+}
+
+void print_energy_balance(const TransportOutput& out, const std::vector<std::string>& names) {
+  std::string energy = "  energy per W incident:";
+  double total = 0.0;
+  for (const std::string& name : names) {
+    if (find_tally(out.tallies, name) == nullptr) continue;
+    const ScalarEstimate value = scalar_estimate(out.tallies, name);
+    energy += fmt::format(" {} {},", name, estimate_text(value));
+    total += value.mean;
+  }
+  fmt::print("{} total {:.6f}\n", energy, total);
 }
 
 void print_figures_of_merit(const TransportOutput& out, const std::vector<std::string>& names) {

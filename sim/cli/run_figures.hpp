@@ -16,6 +16,11 @@ namespace scatterlab::cli {
 // --resume also "  this session: ..." with this process's own figures.
 void print_run_time(const TransportOutput& out);
 
+// "  energy per W incident: absorbed 0.5 ± 0.001, escaped 0.5 ± 0.001, total 1.000000": the
+// scalar totals among `names` that the run has, each as estimate_text prints it, and their sum,
+// which is 1 where every photon ends in exactly one of them.
+void print_energy_balance(const TransportOutput& out, const std::vector<std::string>& names);
+
 // "  figure of merit 1/(R^2 T), 1/s: absorbed 3.1e+05, fluence 1.2e+03 (median bin), ..." for
 // those of `names` the run has and whose figure is defined, T the whole run's wall time.
 void print_figures_of_merit(const TransportOutput& out, const std::vector<std::string>& names);

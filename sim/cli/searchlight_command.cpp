@@ -85,15 +85,8 @@ void print_summary(const SearchlightSpec& spec, const SearchlightOutput& out,
                spec.medium.sigma_t, spec.medium.length_unit, spec.medium.length_unit);
   }
   print_run_time(out);
-  std::string energy = "  energy per W incident:";
-  double total = 0.0;
-  for (const char* name : {"specular_reflectance", "diffuse_reflectance", "absorbed", "escaped"}) {
-    const ScalarEstimate value = scalar_estimate(out.tallies, name);
-    if (std::string(name) == "escaped" && !std::isfinite(spec.run.escape_radius)) continue;
-    energy += fmt::format(" {} {},", name, estimate_text(value));
-    total += value.mean;
-  }
-  fmt::print("{} total {:.6f}\n", energy, total);
+  // The escaped power is a tally only with a finite escape radius.
+  print_energy_balance(out, {"specular_reflectance", "diffuse_reflectance", "absorbed", "escaped"});
   print_figures_of_merit(out, {"diffuse_reflectance", "absorbed", "reflectance", "fluence"});
   fmt::print("  once-scattered part of the diffuse reflectance: {}\n",
              estimate_text(scalar_estimate(out.tallies, "diffuse_reflectance_single")));

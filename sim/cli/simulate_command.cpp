@@ -26,7 +26,6 @@
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/parallel/world.hpp"
-#include "scatterlab/tally/scalar_estimate.hpp"
 #include "scatterlab/transport/simulate.hpp"
 #include "scatterlab/validate/point_source_models.hpp"
 #include "scene_option.hpp"
@@ -107,16 +106,7 @@ void print_summary(const SimulationSpec& spec, const SimulationOutput& out,
                spec.medium.sigma_t, spec.medium.length_unit, spec.medium.length_unit);
   }
   print_run_time(out);
-  std::string energy = "  energy per W incident:";
-  double total = 0.0;
-  for (const char* name : {"absorbed", "absorbed_outside_grid", "escaped"}) {
-    if (find_tally(out.tallies, name) != nullptr) {
-      const ScalarEstimate value = scalar_estimate(out.tallies, name);
-      energy += fmt::format(" {} {},", name, estimate_text(value));
-      total += value.mean;
-    }
-  }
-  fmt::print("{} total {:.6f}\n", energy, total);
+  print_energy_balance(out, {"absorbed", "absorbed_outside_grid", "escaped"});
   // The energy totals, and the volume tallies whose figures differ between the estimators.
   print_figures_of_merit(out, {"absorbed", "escaped", "fluence", "radiance", "fluence_spherical"});
   std::string written;

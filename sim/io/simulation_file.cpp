@@ -496,83 +496,75 @@ std::string iso8601_now() {
   return text;
 }
 
-void write_simulation_file(const std::filesystem::path& path, const SimulationSpec& spec,
-                           const std::vector<TallyResult>& tallies, const Provenance& provenance,
-                           const std::vector<ModelResult>& models) {
+namespace {
+
+// Every run's file, one way: written whole to a temporary beside `path` and renamed into place
+// (atomic_output.hpp), with the provenance, then what `describe` writes (the spec's parameters
+// and grid), then the tallies, their figures of merit and any model curves.
+template <class Spec, class Describe>
+void write_run_file(const std::filesystem::path& path, const Spec& spec,
+                    const std::vector<TallyResult>& tallies, const Provenance& provenance,
+                    const std::vector<ModelResult>& models, Describe&& describe) {
   AtomicOutput output(path);
   check_tallies(tallies);
   {
     hdf5::File file = hdf5::File::create(output.temporary_path());
     write_provenance(file.root(), provenance, spec.run.batches, fingerprint(spec));
-    write_parameters(file.root(), spec);
-    write_grid(file.root(), spec);
+    describe(file.root());
     write_tallies(file.root(), tallies);
     write_figures_of_merit(file.root(), tallies, provenance.wall_seconds);
     write_models(file.root(), models);
     file.close();
   }
   output.commit();
+}
+
+}  // namespace
+
+void write_simulation_file(const std::filesystem::path& path, const SimulationSpec& spec,
+                           const std::vector<TallyResult>& tallies, const Provenance& provenance,
+                           const std::vector<ModelResult>& models) {
+  write_run_file(path, spec, tallies, provenance, models, [&spec](hdf5::Group& root) {
+    write_parameters(root, spec);
+    write_grid(root, spec);
+  });
 }
 
 void write_searchlight_file(const std::filesystem::path& path, const SearchlightSpec& spec,
                             const std::vector<TallyResult>& tallies, const Provenance& provenance,
                             const std::vector<ModelResult>& models) {
-  AtomicOutput output(path);
-  check_tallies(tallies);
-  {
-    hdf5::File file = hdf5::File::create(output.temporary_path());
-    write_provenance(file.root(), provenance, spec.run.batches, fingerprint(spec));
-    write_searchlight_parameters(file.root(), spec);
-    write_searchlight_grid(file.root(), spec);
-    write_tallies(file.root(), tallies);
-    write_figures_of_merit(file.root(), tallies, provenance.wall_seconds);
-    write_models(file.root(), models);
-    file.close();
-  }
-  output.commit();
+  write_run_file(path, spec, tallies, provenance, models, [&spec](hdf5::Group& root) {
+    write_searchlight_parameters(root, spec);
+    write_searchlight_grid(root, spec);
+  });
 }
 
 void write_lit_sphere_file(const std::filesystem::path& path, const LitSphereSpec& spec,
                            const std::vector<TallyResult>& tallies, const Provenance& provenance) {
-  AtomicOutput output(path);
-  check_tallies(tallies);
-  {
-    hdf5::File file = hdf5::File::create(output.temporary_path());
-    write_provenance(file.root(), provenance, spec.run.batches, fingerprint(spec));
-    write_lit_sphere_parameters(file.root(), spec);
-    hdf5::Group grid = file.root().create_group("grid");
+  write_run_file(path, spec, tallies, provenance, {}, [&spec](hdf5::Group& root) {
+    write_lit_sphere_parameters(root, spec);
+    hdf5::Group grid = root.create_group("grid");
     write_axis(grid, "psi", spec.psi, "rad");
     write_axis(grid, "azimuth", spec.azimuth, "rad");
-    write_tallies(file.root(), tallies);
-    write_figures_of_merit(file.root(), tallies, provenance.wall_seconds);
-    file.close();
-  }
-  output.commit();
+  });
 }
 
 void write_layered_slab_file(const std::filesystem::path& path, const LayeredSlabSpec& spec,
                              const std::vector<TallyResult>& tallies,
                              const Provenance& provenance) {
-  AtomicOutput output(path);
-  check_tallies(tallies);
-  {
-    hdf5::File file = hdf5::File::create(output.temporary_path());
-    write_provenance(file.root(), provenance, spec.run.batches, fingerprint(spec));
-    write_layered_slab_parameters(file.root(), spec);
-    hdf5::Group grid = file.root().create_group("grid");
+  write_run_file(path, spec, tallies, provenance, {}, [&spec](hdf5::Group& root) {
+    write_layered_slab_parameters(root, spec);
+    hdf5::Group grid = root.create_group("grid");
     write_axis(grid, "r", spec.r, spec.length_unit);
     write_axis(grid, "z", spec.z, spec.length_unit);
     write_axis(grid, "theta_o", spec.theta_o, "rad");
     // The layer axis's edges are the interfaces' depths (the last infinite when semi-infinite).
     std::vector<double> interfaces{0.0};
-    for (const SlabLayerSpec& l : spec.layers)
+    for (const SlabLayerSpec& l : spec.layers) {
       interfaces.push_back(interfaces.back() + l.thickness);
+    }
     grid.write_dataset("layer", interfaces).write_string_attribute("units", spec.length_unit);
-    write_tallies(file.root(), tallies);
-    write_figures_of_merit(file.root(), tallies, provenance.wall_seconds);
-    file.close();
-  }
-  output.commit();
+  });
 }
 
 namespace {
