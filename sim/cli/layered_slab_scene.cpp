@@ -74,12 +74,11 @@ int run_layered_slab_scene(CLI::App& command, const SlabFlags& flags,
       prepare_scene_outputs(command, flags.scene, flags.out, scene.output_path, "slab.h5",
                             long_run_options, world.is_root());
 
-  const LayeredSlabSpec ran = spec;
   return run_with_checkpoints(
       "simulate", long_run_options, output, fingerprint(spec), spec.run.batches, log_interval,
       world,
-      [&ran](const ProgressCallback& progress, const RunControl& control) {
-        return run_layered_slab(ran, progress, control);
+      [&spec](const ProgressCallback& progress, const RunControl& control) {
+        return run_layered_slab(spec, progress, control);
       },
       [&](const std::filesystem::path& path, const TransportOutput& out) {
         spec.run.threads = out.threads;  // record what ran, not "all cores"

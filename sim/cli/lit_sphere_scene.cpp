@@ -84,12 +84,11 @@ int run_lit_sphere_scene(CLI::App& command, const SphereFlags& flags,
       prepare_scene_outputs(command, flags.scene, flags.out, scene.output_path, "lit-sphere.h5",
                             long_run_options, world.is_root());
 
-  const LitSphereSpec ran = spec;
   return run_with_checkpoints(
       "simulate", long_run_options, output, fingerprint(spec), spec.run.batches, log_interval,
       world,
-      [&ran](const ProgressCallback& progress, const RunControl& control) {
-        return run_lit_sphere(ran, progress, control);
+      [&spec](const ProgressCallback& progress, const RunControl& control) {
+        return run_lit_sphere(spec, progress, control);
       },
       [&](const std::filesystem::path& path, const TransportOutput& out) {
         spec.run.threads = out.threads;  // record what ran, not "all cores"

@@ -92,11 +92,10 @@ int run_mcml(const CLI::App& command, const McmlFlags& flags, const LongRunOptio
       if (world.is_root()) fmt::print("skip {}: done already\n", h5_paths[i].string());
       continue;
     }
-    const LayeredSlabSpec ran = spec;
     const int status = run_with_checkpoints(
         "mcml", long_run, h5_paths[i], fingerprint(spec), spec.run.batches, log_interval, world,
-        [&ran](const ProgressCallback& progress, const RunControl& control) {
-          return run_layered_slab(ran, progress, control);
+        [&spec](const ProgressCallback& progress, const RunControl& control) {
+          return run_layered_slab(spec, progress, control);
         },
         [&](const std::filesystem::path& path, const TransportOutput& out) {
           spec.run.threads = out.threads;  // record what ran, not "all cores"

@@ -151,12 +151,11 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
                             "searchlight.h5", long_run_options, world.is_root());
 
   // Ranks, checkpoints, --resume and interruption, as for simulate (long_run.hpp).
-  const SearchlightSpec ran = spec;
   return run_with_checkpoints(
       "searchlight", long_run_options, path, fingerprint(spec), spec.run.batches, log_interval,
       world,
-      [&ran](const ProgressCallback& progress, const RunControl& control) {
-        return run_searchlight(ran, progress, control);
+      [&spec](const ProgressCallback& progress, const RunControl& control) {
+        return run_searchlight(spec, progress, control);
       },
       [&](const std::filesystem::path& written, const TransportOutput& out) {
         spec.run.threads = out.threads;  // record what ran, not "all cores"

@@ -222,17 +222,17 @@ RunPlan plan_runs(CLI::App& command, const SimulateOptions& o, const LongRunOpti
 
 int run_one(PlannedRun run, const LongRunOptions& options, double log_interval,
             const std::string& command_line, World& world) {
-  const SimulationSpec spec = run.spec;
+  SimulationSpec& spec = run.spec;
   return run_with_checkpoints(
       "simulate", options, run.output, fingerprint(spec), spec.run.batches, log_interval, world,
       [&spec](const ProgressCallback& progress, const RunControl& control) {
         return simulate(spec, progress, control);
       },
       [&](const std::filesystem::path& path, const TransportOutput& out) {
-        run.spec.run.threads = out.threads;  // record what ran, not "all cores"
-        write_simulation_file(path, run.spec, out.tallies, run_provenance(out, command_line),
-                              point_source_model_curves(run.spec, out.tallies));
-        print_summary(run.spec, out, path.string());
+        spec.run.threads = out.threads;  // record what ran, not "all cores"
+        write_simulation_file(path, spec, out.tallies, run_provenance(out, command_line),
+                              point_source_model_curves(spec, out.tallies));
+        print_summary(spec, out, path.string());
       });
 }
 
