@@ -158,5 +158,8 @@ bad mixed 'layers\[1\].mu_a' $'[geometry]\ntype = "slab"\n[[layers]]\nmaterial =
 bad n_above geometry.n_above $'[geometry]\ntype = "slab"\nn_above = 0\n'"$layer"
 bad weighting run.weighting $'[geometry]\ntype = "slab"\n'"$layer"$'\n[run]\nweighting = "russian"'
 bad unit geometry.length_unit $'[geometry]\ntype = "slab"\nlength_unit = "inch"\n'"$layer"
+# A scene must be valid on its own, before the flags: a flag does not mend a broken file.
+printf '%s\n' '[geometry]' 'type = "slab"' "$layer" '[run]' 'photons = 10' >"$work/few.toml"
+expect_command_error simulate few run.batches "$work/few.toml" --batches 4
 
 report layered_slab_runs
