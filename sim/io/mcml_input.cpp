@@ -15,6 +15,7 @@
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/text_file.hpp"
+#include "scatterlab/transport/grid_checks.hpp"
 
 // The format and its limits follow MCML 1.2.2's reader (mcmlio.c: FindDataLine, ReadNumRuns,
 // ReadParm, CheckParm) and section 9.1 of the MCML manual (Wang & Jacques 1992), "File of input
@@ -47,7 +48,7 @@ const std::string kNonNegative = "a finite number >= 0 (1/cm)";
 const std::string kLength = "a finite number > 0 (cm)";
 const std::string kAnisotropy =
     "a finite number with |g| < 1 (the Henyey-Greenstein phase function exists only there)";
-const std::string kBins = fmt::format("a whole number from 1 to {}, in digits", max_mcml_bins);
+const std::string kBins = fmt::format("a whole number from 1 to {}, in digits", max_axis_bins);
 
 // '#' starts a comment anywhere on a line; what is left is split at spaces and tabs (a '\r' of a
 // Windows line end counts as a space). MCML skips a line whose first non-blank character is '#'
@@ -245,9 +246,9 @@ class McmlReader {
     // runs are written faithfully, but MCML's own programs cannot read them back.
     const Field nz{"Nz", kBins}, nr{"Nr", kBins}, na{"Na", kBins};
     const DataLine bins = take({nz, nr, na});
-    run.nz = static_cast<int>(whole(bins, 0, nz, 1, max_mcml_bins));
-    run.nr = static_cast<int>(whole(bins, 1, nr, 1, max_mcml_bins));
-    run.na = static_cast<int>(whole(bins, 2, na, 1, max_mcml_bins));
+    run.nz = static_cast<int>(whole(bins, 0, nz, 1, max_axis_bins));
+    run.nr = static_cast<int>(whole(bins, 1, nr, 1, max_axis_bins));
+    run.na = static_cast<int>(whole(bins, 2, na, 1, max_axis_bins));
 
     const Field layer_count{"number of layers", kWholeFromOne};
     const DataLine layers_line = take({layer_count});

@@ -36,9 +36,6 @@ struct McmlRun {
   int line = 0;  // line of the .mci where this run starts (for messages)
 };
 
-// The most bins of each grid axis (Nz, Nr, Na) a run may ask for.
-inline constexpr int max_mcml_bins = 100000;
-
 // Every run of an MCML input file, in order. Throws InputError (include/scatterlab/core/error.hpp)
 // naming "<path>:<line> <field>" (field as MCML names it: "photons", "dz", "Nr", "layer 2 mua",
 // ...) and what is accepted, for a missing, malformed or out-of-range value.
