@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <hdf5.h>
+#include <hdf5_hl.h>
 
 #include <algorithm>
 #include <functional>
@@ -418,6 +419,25 @@ Array Dataset::read() const {
         "read the dataset", location());
   }
   return array;
+}
+
+void Dataset::make_dimension_scale(std::string_view name) {
+  silence_error_printing();
+  check_status(H5DSset_scale(id(), std::string(name).c_str()), "make a dimension scale",
+               location());
+}
+
+void Dataset::attach_dimension_scale(Dataset& data, unsigned dim, std::string_view name) const {
+  silence_error_printing();
+  check_status(H5DSattach_scale(data.id(), id(), dim), "attach the dimension scale " + location(),
+               data.location());
+  check_status(H5DSset_label(data.id(), dim, std::string(name).c_str()), "label a dimension",
+               data.location());
+}
+
+bool Dataset::is_dimension_scale() const {
+  silence_error_printing();
+  return check_tri(H5DSis_scale(id()), "tell a dimension scale", location());
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -14,6 +14,7 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/memory_budget.hpp"
 #include "scatterlab/io/atomic_output.hpp"
+#include "scatterlab/io/dimension_scales.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/tally/pooled_statistics.hpp"
@@ -43,6 +44,13 @@ void copy_attribute(const hdf5::Object& from, hdf5::Object& to, const std::strin
       break;
   }
   throw std::runtime_error(from.location() + ": attribute '" + name + "' has an unknown type");
+}
+
+// Every attribute but those of dimension scales, which write_dimension_scales makes anew.
+void copy_attributes(const hdf5::Object& from, hdf5::Object& to) {
+  for (const std::string& name : from.attribute_names()) {
+    if (!is_dimension_scale_attribute(name)) copy_attribute(from, to, name);
+  }
 }
 
 [[noreturn]] void mismatch(const std::string& field, const fs::path& a, const std::string& in_a,
@@ -170,9 +178,7 @@ void check_input_tally(const fs::path& path, const std::string& name, const hdf5
 void copy_dataset(const hdf5::Dataset& from, hdf5::Group& to, const std::string& name) {
   const hdf5::Array array = from.read();
   hdf5::Dataset copy = to.write_dataset(name, array.values, array.shape);
-  for (const std::string& attribute : from.attribute_names()) {
-    copy_attribute(from, copy, attribute);
-  }
+  copy_attributes(from, copy);
 }
 
 // An attribute as text, to compare two files' models.
@@ -195,12 +201,13 @@ std::map<std::string, std::string> model_texts(const hdf5::File& file) {
     for (const std::string& name : group.attribute_names()) {
       text += fmt::format("@{}={}\n", name, attribute_text(group, name));
     }
-    for (const std::string& curve : group.member_names()) {
+    for (const std::string& curve : curve_names(group)) {
       const hdf5::Dataset dataset = group.open_dataset(curve);
       const hdf5::Array array = dataset.read();
       text += fmt::format("{} [{}] {}\n", curve, fmt::join(array.shape, ","),
                           fmt::join(array.values, ","));
       for (const std::string& name : dataset.attribute_names()) {
+        if (is_dimension_scale_attribute(name)) continue;
         text += fmt::format("{}@{}={}\n", curve, name, attribute_text(dataset, name));
       }
     }
@@ -245,7 +252,7 @@ void copy_models(const hdf5::File& from, hdf5::Group& root) {
     const hdf5::Group group = models.open_group(model);
     hdf5::Group node = target.create_group(model);
     for (const std::string& name : group.attribute_names()) copy_attribute(group, node, name);
-    for (const std::string& curve : group.member_names()) {
+    for (const std::string& curve : curve_names(group)) {
       copy_dataset(group.open_dataset(curve), node, curve);
     }
   }
@@ -466,13 +473,12 @@ MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs
         const hdf5::Dataset source = from.open_dataset(dataset);
         hdf5::Dataset target = node.write_dataset(
             dataset, std::string(dataset) == "mean" ? mean.values : error, mean.shape);
-        for (const std::string& attribute : source.attribute_names()) {
-          copy_attribute(source, target, attribute);
-        }
+        copy_attributes(source, target);
       }
     }
   }
   if (keep_models) copy_models(first.file, root);
+  write_dimension_scales(root);
   file.close();
   out.commit();
   return summary;

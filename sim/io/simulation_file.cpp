@@ -19,6 +19,7 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/memory_budget.hpp"
 #include "scatterlab/io/atomic_output.hpp"
+#include "scatterlab/io/dimension_scales.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
 #include "scatterlab/tally/figure_of_merit.hpp"
 #include "scatterlab/tally/scalar_estimate.hpp"
@@ -414,7 +415,7 @@ FileSummary summarize(const hdf5::File& file, bool read_tallies) {
     for (const std::string& name : models.member_names()) {
       const hdf5::Group model = models.open_group(name);
       // A model left out of the run has no curves, only its "note" saying why.
-      std::vector<std::string> curves = model.member_names();
+      std::vector<std::string> curves = curve_names(model);
       if (curves.empty() && model.has_attribute("note")) {
         curves.push_back(model.read_string_attribute("note"));
       }
@@ -514,6 +515,7 @@ void write_run_file(const std::filesystem::path& path, const Spec& spec,
     write_tallies(file.root(), tallies);
     write_figures_of_merit(file.root(), tallies, provenance.wall_seconds);
     write_models(file.root(), models);
+    write_dimension_scales(file.root());
     file.close();
   }
   output.commit();

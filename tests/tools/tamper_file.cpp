@@ -1,8 +1,9 @@
 // Usage: tamper_file FILE.h5 attribute GROUP NAME int|double|string VALUE
 //        tamper_file FILE.h5 element GROUP DATASET INDEX VALUE
 // Changes one attribute, or one element of a double dataset (keeping its shape and attributes),
-// of an HDF5 file in place. Tests use it to make damaged inputs from real outputs: a NaN tally, a
-// count that disagrees with another, an unknown format version. GROUP is "/" for the root.
+// of an HDF5 file in place (a rewritten dataset loses its dimension scales). Tests use it to make
+// damaged inputs from real outputs: a NaN tally, a count that disagrees with another, an unknown
+// format version. GROUP is "/" for the root.
 #include <fmt/format.h>
 
 #include <cstdint>
@@ -11,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "scatterlab/io/dimension_scales.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
 
 namespace {
@@ -41,6 +43,7 @@ void set_element(Group& group, const std::string& name, std::size_t index, doubl
   };
   std::vector<Saved> saved;
   for (const std::string& attribute : old.attribute_names()) {
+    if (scatterlab::is_dimension_scale_attribute(attribute)) continue;  // references: not kept
     const AttributeType type = old.attribute_type(attribute);
     saved.push_back({attribute, type,
                      type == AttributeType::string ? old.read_string_attribute(attribute) : "",

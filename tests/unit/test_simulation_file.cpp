@@ -17,6 +17,7 @@
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
+#include "scatterlab/io/dimension_scales.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
 #include "scatterlab/io/simulation_file.hpp"
 #include "scratch_directory.hpp"
@@ -186,6 +187,38 @@ TEST_F(SimulationFileTest, RoundTripKeepsLayoutValuesAndAttributes) {
   EXPECT_TRUE(group.open_dataset("absorbed/mean").shape().empty());  // rank-0 scalar
 }
 
+// Every tally's dimensions have HDF5 dimension scales beside its data (dimension_scales.hpp):
+// the grid's bin centres in its units, or the bin index where the grid has no such axis. The
+// attachments themselves are read back by xarray in tests/python.
+TEST_F(SimulationFileTest, TallyDimensionsHaveScalesOfBinCentres) {
+  const fs::path path = directory_ / "run.h5";
+  const SimulationSpec spec = small_spec();
+  std::vector<TallyResult> tallies = small_tallies();
+  tallies.push_back(array_tally("flux", {"r", "z", "component"}, {3, 4, 2}));
+  write_simulation_file(path, spec, tallies, small_provenance());
+
+  const hdf5::File file = hdf5::File::open_read_only(path);
+  const hdf5::Group fluence = file.root().open_group("tallies/fluence");
+  EXPECT_EQ(fluence.member_names(), (std::vector<std::string>{"mean", "stderr", "r", "z"}));
+  EXPECT_FALSE(fluence.open_dataset("mean").is_dimension_scale());
+  const hdf5::Dataset r = fluence.open_dataset("r");
+  EXPECT_TRUE(r.is_dimension_scale());
+  EXPECT_EQ(r.read_string_attribute("units"), "mm");
+  const std::vector<double> edges = spec.grid.r.edges();  // {0, 0.5, 1, 1.5}
+  const hdf5::Array centres = r.read();
+  ASSERT_EQ(centres.values.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_DOUBLE_EQ(centres.values[i], 0.5 * (edges[i] + edges[i + 1]));
+  }
+  const hdf5::Dataset component = file.root().open_dataset("tallies/flux/component");
+  EXPECT_TRUE(component.is_dimension_scale());
+  EXPECT_EQ(component.read().values, (std::vector<double>{0, 1}));
+  EXPECT_EQ(component.read_string_attribute("units"), "1");
+  // A scalar has no dimension, so no scale.
+  EXPECT_EQ(file.root().open_group("tallies/absorbed").member_names(),
+            (std::vector<std::string>{"mean", "stderr"}));
+}
+
 TEST_F(SimulationFileTest, DefaultsOmitInfiniteEscapeRadiusAndName) {
   const fs::path path = directory_ / "defaults.h5";
   SimulationSpec spec;
@@ -342,6 +375,9 @@ TEST_F(SimulationFileTest, ModelCurvesAndTheirErrorsSayWhatTheyHold) {
   }
   EXPECT_EQ(file.root().open_group("models/dipole").read_string_attribute("note"),
             "not evaluated: because");
+  // The model's group holds the scales of its curves' dimensions too, which are not curves.
+  EXPECT_EQ(exact.member_names(), (std::vector<std::string>{"fluence", "fluence_error", "r", "z"}));
+  EXPECT_EQ(curve_names(exact), (std::vector<std::string>{"fluence", "fluence_error"}));
 }
 
 void expect_not_a_simulation_file(const fs::path& path) {

@@ -102,6 +102,13 @@ class Dataset : public Object {
   std::vector<std::size_t> shape() const;
   Array read() const;
 
+  // HDF5 dimension scales (the HDF5 High Level library's H5DS, which netCDF-4, h5netcdf, xarray
+  // and HDFView read): this 1-D dataset becomes the scale named `name`, and is attached to
+  // dimension `dim` of `data`, which is labelled `name` too.
+  void make_dimension_scale(std::string_view name);
+  void attach_dimension_scale(Dataset& data, unsigned dim, std::string_view name) const;
+  bool is_dimension_scale() const;
+
  private:
   friend class Group;
   using Object::Object;
