@@ -26,6 +26,12 @@ Action add_render_command(CLI::App& app);
 Action add_invert_command(CLI::App& app);
 Action add_mcml_command(CLI::App& app, const std::string& command_line, World& world);
 
+// Stands in for a command whose optional component was not built: it takes any arguments and,
+// run, stops with bad-input status 2 and one line saying what the build needs, e.g. "Ceres
+// (Debian: libceres-dev)".
+Action add_unavailable_command(CLI::App& app, const std::string& name,
+                               const std::string& description, const std::string& needs);
+
 // --photons as a double, so that 1e8 reads as it does in scene files; throws InputError
 // ("run.photons") unless it is a whole number that fits.
 std::uint64_t photon_count(double photons);

@@ -160,11 +160,25 @@ int run(int argc, char** argv) {
   const auto simulate = scatterlab::cli::add_simulate_command(app, command_line, *world);
   const auto searchlight = scatterlab::cli::add_searchlight_command(app, command_line, *world);
   const auto info = scatterlab::cli::add_info_command(app);
-  const auto fit = scatterlab::cli::add_fit_command(app);
   const auto validate = scatterlab::cli::add_validate_command(app);
   const auto merge = scatterlab::cli::add_merge_command(app, command_line);
+#ifdef SCATTERLAB_WITH_FIT
+  const auto fit = scatterlab::cli::add_fit_command(app);
   const auto report = scatterlab::cli::add_report_command(app, command_line);
+#else
+  const char* ceres = "Ceres (Debian: libceres-dev)";
+  const auto fit = scatterlab::cli::add_unavailable_command(app, "fit", "Lobe fits", ceres);
+  const auto report =
+      scatterlab::cli::add_unavailable_command(app, "report", "The accuracy report", ceres);
+#endif
+#ifdef SCATTERLAB_WITH_RENDER
   const auto render = scatterlab::cli::add_render_command(app);
+#else
+  const auto render = scatterlab::cli::add_unavailable_command(
+      app, "render", "Images of objects",
+      "Embree, tinyobjloader, OpenEXR and libpng (Debian: libembree-dev, libtinyobjloader-dev, "
+      "libopenexr-dev, libpng-dev)");
+#endif
   const auto invert = scatterlab::cli::add_invert_command(app);
   const auto mcml = scatterlab::cli::add_mcml_command(app, command_line, *world);
   scatterlab::cli::check_numeric_values(app);

@@ -18,7 +18,7 @@
 
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
-#include "scatterlab/io/image_file.hpp"
+#include "scatterlab/render/image_file.hpp"
 
 namespace scatterlab {
 namespace {

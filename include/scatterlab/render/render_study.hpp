@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "scatterlab/io/image_file.hpp"
+#include "scatterlab/render/image_file.hpp"
 #include "scatterlab/render/render_scene.hpp"
 #include "scatterlab/render/single_scatter_renderer.hpp"
 

@@ -39,7 +39,7 @@
 
 #include "scatterlab/core/memory_budget.hpp"
 #include "scatterlab/core/work_pace.hpp"
-#include "scatterlab/io/image_file.hpp"
+#include "scatterlab/render/image_file.hpp"
 #include "scatterlab/render/render_scene.hpp"
 
 namespace scatterlab {

@@ -1,4 +1,4 @@
-#include "scatterlab/io/image_file.hpp"
+#include "scatterlab/render/image_file.hpp"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>

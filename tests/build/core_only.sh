@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# The core builds without any optional component: configured as on a machine that has none of
+# Ceres, Embree, tinyobjloader, OpenEXR, libpng or MPI (CMake is told not to find them), it
+# builds scatterlab, which runs simulate and searchlight, links none of those libraries, and
+# answers fit, report and render with one line saying what the build needs, exit status 2.
+# Usage: core_only.sh SOURCE_DIR
+set -uo pipefail
+source_dir=$1
+source "$(dirname "$0")/../cli/harness.sh"
+build=$work/build
+missing=(Ceres embree tinyobjloader OpenEXR PNG MPI)
+disable=()
+for package in "${missing[@]}"; do disable+=("-DCMAKE_DISABLE_FIND_PACKAGE_$package=TRUE"); done
+
+if cmake -S "$source_dir" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release "${disable[@]}" \
+     >"$work/configure.log" 2>&1 &&
+   cmake --build "$build" --target scatterlab -j "$(nproc)" >"$work/build.log" 2>&1; then
+  pass
+else
+  fail "core-only build: $(grep -m3 -iE "error|not found" "$work/configure.log" "$work/build.log")"
+  report "core-only build"
+  exit 1
+fi
+if grep -q "components: fit OFF, render OFF, MPI OFF" "$work/configure.log"; then pass; else
+  fail "the configure summary does not say every component is off"
+fi
+exe=$build/sim/scatterlab
+linked=$(readelf -d "$exe" | grep NEEDED)  # the libraries it links itself
+# Ceres is a static library on Debian: its code, or glog, which it brings, would show.
+for library in libglog libembree libtinyobjloader libOpenEXR libpng libmpi; do
+  if grep -q "$library" <<<"$linked"; then fail "links $library"; else pass; fi
+done
+if nm -C "$exe" | grep -q "ceres::"; then fail "holds Ceres code"; else pass; fi
+if "$exe" simulate --photons 2000 --batches 4 --out beam.h5 >/dev/null 2>&1 &&
+   "$exe" searchlight --photons 2000 --batches 4 --out half.h5 >/dev/null 2>&1 &&
+   "$exe" info half.h5 >/dev/null; then
+  pass
+else
+  fail "simulate, searchlight or info failed in the core build"
+fi
+for command in fit report render; do
+  status=0
+  "$exe" "$command" beam.h5 --out anything >"$work/stdout" 2>"$work/stderr" || status=$?
+  if [ "$status" -ne 2 ]; then
+    fail "$command: exit status $status, not 2"
+  elif [ "$(grep -c . "$work/stderr")" -ne 1 ] ||
+       ! grep -q "no '$command' command.*Debian" "$work/stderr"; then
+    fail "$command: not one line saying what the build needs: $(cat "$work/stderr")"
+  elif [ -e anything ]; then
+    fail "$command: wrote a file"
+  else
+    pass
+  fi
+done
+if "$exe" --help | grep -q "not in this build: it needs Ceres"; then pass; else
+  fail "--help does not say fit is not in this build"
+fi
+report "core-only build"
