@@ -12,6 +12,7 @@ packages=(
   libembree-dev libtinyobjloader-dev libopenexr-dev libpng-dev
   clang-format
   python3-h5py python3-matplotlib python3-nbconvert python3-nbclient python3-ipykernel
+  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-xarray python3-pytest
 )
 
 missing=()
