@@ -21,11 +21,11 @@ from pathlib import Path
 from typing import Any, Callable
 
 from . import _scatterlab, models
-from ._result import Axis, Result, Tally, read
+from ._result import Axis, Fit, Result, Tally, read
 from ._scene import KEY_TABLES, scene_dict, to_toml
 
-__all__ = ["simulate", "searchlight", "open", "models", "scene_text", "Result", "Tally",
-           "Axis", "InputError", "KEY_TABLES", "__version__"]
+__all__ = ["simulate", "searchlight", "open", "fit", "models", "scene_text", "Result", "Tally",
+           "Axis", "Fit", "InputError", "KEY_TABLES", "__version__"]
 __version__ = _scatterlab.version
 InputError = _scatterlab.InputError
 
@@ -37,22 +37,40 @@ def scene_text(scene: str | Path | None = None, geometry: str | None = None,
     return to_toml(scene_dict(geometry, scene, keys)[1])
 
 
-def _progress_printer(done: int, batches: int) -> None:
-    print(f"\rscatterlab: batch {done} of {batches}", end="\n" if done == batches else "",
-          file=sys.stderr, flush=True)
+class _ProgressLine:
+    """progress=True: one line on stderr, rewritten as work is done, ended when the call ends."""
+
+    def __init__(self, what: str):
+        self.what = what
+        self.shown = False
+
+    def __call__(self, done: int, total: int) -> None:
+        print(f"\rscatterlab: {self.what} {done} of {total}", end="", file=sys.stderr,
+              flush=True)
+        self.shown = True
+
+    def end(self) -> None:
+        if self.shown:
+            print(file=sys.stderr, flush=True)
+
+
+def _progress_of(progress, what: str):
+    """The callable the compiled module calls, from the ``progress`` argument."""
+    if progress is True:
+        return _ProgressLine(what)
+    if progress is False or progress is None:
+        return None
+    if not callable(progress):
+        raise ValueError(f"progress: got {progress!r}; accepted: True, False, None or a "
+                         f"callable ({what}_done, {what})")
+    return progress
 
 
 def _run(geometry: str | None, scene, out, progress, model_fluence: bool, keys: dict,
          call: str) -> Result:
     geometry, doc, origin = scene_dict(geometry, scene, keys)
     text = to_toml(doc)
-    if progress is True:
-        progress = _progress_printer
-    elif progress is False:
-        progress = None
-    elif progress is not None and not callable(progress):
-        raise ValueError(f"progress: got {progress!r}; accepted: True, False, None or a "
-                         f"callable (batches_done, batches)")
+    progress = _progress_of(progress, "batches")
     # The file goes to out=, else to the scene's output.path, else to a temporary file that is
     # read back whole and removed.
     if out is None:
@@ -69,6 +87,8 @@ def _run(geometry: str | None, scene, out, progress, model_fluence: bool, keys: 
                               progress)
         result = read(out)
     finally:
+        if isinstance(progress, _ProgressLine):
+            progress.end()
         if temporary and os.path.exists(out):
             os.remove(out)
     if temporary:
@@ -106,6 +126,35 @@ def searchlight(scene: str | Path | None = None, *, out: str | Path | None = Non
     Result.models. ``model_fluence`` also computes each diffusion model's phi(r, z) (slow:
     about 1 ms per cell and model). Other arguments as for ``simulate``."""
     return _run("half_space", scene, out, progress, model_fluence, keys, "searchlight")
+
+
+def fit(file: str | Path | Result, *,
+        models: str = "sg,sg_free,dexp_paper,dexp,adexp,asg,adexp_ridge",
+        csv: str | Path | None = None, quadrature: int = 3, threads: int = 0,
+        progress: bool | Callable[[int, int], None] | None = None) -> Result:
+    """Fits lobe models to every spatial bin of a file's radiance (Vavassori 2013, §4.2), as
+    ``scatterlab fit FILE`` does: /fits/<model> is added to the file and a summary CSV written
+    (default: FILE-fits.csv). Returns the file read again; its ``fits`` hold the parameters.
+
+    file:       a path, or a Result that has one (simulate(..., out=...)), with a radiance tally.
+    models:     comma-separated: sg, sg_free, dexp_paper, dexp, adexp, asg, adexp_ridge.
+    quadrature: Gauss-Legendre points per angular bin and axis, in [1, 8].
+    progress:   True prints the bins done; a callable gets (bins_done, bins). The fits cannot be
+                stopped part way: Ctrl-C is raised when they end.
+    """
+    if isinstance(file, Result):
+        if file.path is None:
+            raise ValueError("file: a Result read from a temporary file, which is gone; "
+                             "accepted: a path, or a Result of simulate(..., out=PATH)")
+        file = file.path
+    progress = _progress_of(progress, "bins")
+    try:
+        _scatterlab.fit_file(os.fspath(file), "" if csv is None else os.fspath(csv), models,
+                             quadrature, threads, progress)
+    finally:
+        if isinstance(progress, _ProgressLine):
+            progress.end()
+    return read(file)
 
 
 def open(path: str | Path) -> Result:  # noqa: A001 (scatterlab.open, as the issue names it)

@@ -78,11 +78,32 @@ class Tally:
 
 
 @dataclass
+class Fit:
+    """One lobe model fitted to every spatial bin (/fits/<model>, fit/lobe_fits_file.hpp):
+    ``params[r, z, k]`` named by ``names``, the relative L1 ``error`` and ``error_plane``
+    (-1 where not fitted), ``noise``, ``chi2_dof``, ``status`` (its ``legend`` in attrs)."""
+
+    model: str
+    names: list[str]
+    params: np.ndarray
+    error: np.ndarray
+    error_plane: np.ndarray
+    noise: np.ndarray
+    chi2_dof: np.ndarray
+    status: np.ndarray
+    attrs: dict
+
+    def param(self, name: str) -> np.ndarray:
+        """The parameter ``name`` over (r, z)."""
+        return self.params[..., self.names.index(name)]
+
+
+@dataclass
 class Result:
     """A scatterlab file read whole: ``tallies``, ``grid`` (axes with their edges),
     ``parameters`` (the run's, as /parameters holds them), ``figures_of_merit``, ``models``
-    (``models[model][name]``, a Tally without stderr) and ``attrs`` (provenance: version,
-    command, created, wall_seconds, ...)."""
+    (``models[model][name]``, a Tally without stderr), ``fits`` (``scatterlab.fit``'s lobe fits,
+    by model) and ``attrs`` (provenance: version, command, created, wall_seconds, ...)."""
 
     path: Path | None
     attrs: dict
@@ -92,6 +113,7 @@ class Result:
     figures_of_merit: dict[str, float]
     models: dict[str, dict[str, Tally]]
     model_notes: dict[str, str]
+    fits: dict[str, Fit] = field(default_factory=dict)
 
     def to_xarray(self):
         """Every tally as an ``xarray.Dataset``: variables ``NAME`` and ``NAME_stderr``, with
@@ -170,4 +192,12 @@ def read(path: str | Path) -> Result:
                 notes[model] = str(_text(g.attrs["note"]))
             models[model] = {name: _tally(name, d, grid, stderr=False)
                              for name, d in g.items()}
-    return Result(path, attrs, parameters, grid, tallies, foms, models, notes)
+        fits = {}
+        for model, g in f.get("fits", {}).items():
+            fits[model] = Fit(model, str(_text(g["params"].attrs["names"])).split(","),
+                              *(np.asarray(g[name][()]) for name in (
+                                  "params", "error", "error_plane", "noise", "chi2_dof",
+                                  "status")),
+                              {k: _text(v) for k, v in g.attrs.items()}
+                              | {"legend": _text(g["status"].attrs.get("legend", ""))})
+    return Result(path, attrs, parameters, grid, tallies, foms, models, notes, fits)

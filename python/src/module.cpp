@@ -16,6 +16,8 @@
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/medium.hpp"
+#include "scatterlab/fit/lobe_fits_file.hpp"
+#include "scatterlab/fit/lobe_model.hpp"
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/models/chandrasekhar_h.hpp"
 #include "scatterlab/models/dipole.hpp"
@@ -107,6 +109,33 @@ void run_scene(const std::string& toml, const std::string& origin, const std::st
   }
 }
 
+// Fits a file's lobes and writes the fits back (fit::fit_file, as `scatterlab fit FILE`), without
+// the GIL; `progress(bins_done, bins)` is called as bins finish. The fits cannot be stopped part
+// way: an exception from `progress` (or Ctrl-C) is raised once they end, and the file is then
+// already written.
+void fit_file(const std::string& path, const std::string& csv, const std::string& models,
+              int quadrature, int threads, const py::object& progress) {
+  const std::vector<fit::LobeModel> lobe_models = fit::parse_lobe_models(models);
+  std::optional<py::error_already_set> failure;
+  const WorkProgress callback = [&](std::uint64_t done, std::uint64_t bins) {
+    py::gil_scoped_acquire gil;
+    if (failure) return;
+    try {
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      if (!progress.is_none()) progress(done, bins);
+    } catch (py::error_already_set& e) {
+      failure.emplace(std::move(e));
+    }
+  };
+  {
+    py::gil_scoped_release released;
+    const std::filesystem::path file(path);
+    fit::fit_file(file, csv.empty() ? fit::default_fits_csv(file) : std::filesystem::path(csv),
+                  lobe_models, fit::FitOptions{}, quadrature, threads, callback);
+  }
+  if (failure) throw std::move(*failure);
+}
+
 // The half-space models' medium: albedo with sigma_t = 1 (lengths in mfp).
 HalfSpaceMedium half_space(double albedo, double g, double eta) {
   HalfSpaceMedium medium = HalfSpaceMedium::from_albedo(albedo, g, eta);
@@ -166,5 +195,7 @@ PYBIND11_MODULE(_scatterlab, m) {
   py::register_exception<scatterlab::InputError>(m, "InputError", PyExc_ValueError);
   m.def("run_scene", &sp::run_scene, py::arg("toml"), py::arg("origin"), py::arg("geometry"),
         py::arg("path"), py::arg("command"), py::arg("model_fluence"), py::arg("progress"));
+  m.def("fit_file", &sp::fit_file, py::arg("path"), py::arg("csv"), py::arg("models"),
+        py::arg("quadrature"), py::arg("threads"), py::arg("progress"));
   sp::bind_models(m);
 }

@@ -165,3 +165,49 @@ def test_xarray_has_named_dimensions_and_bin_centres():
     assert np.array_equal(whole["radiance"].values, r.tallies["radiance"].mean)
     assert whole["radiance"].dims == ("r", "z", "theta", "phi")
     assert whole.attrs["parameters.albedo"] == r.parameters["albedo"]
+
+
+def test_the_run_releases_the_gil():
+    """Another Python thread runs while the simulator does: it could not with the GIL held."""
+    import threading
+
+    ticks = 0
+    done = threading.Event()
+
+    def count():
+        nonlocal ticks
+        while not done.is_set():
+            ticks += 1
+
+    # The ticks counted at each round's end (threads=1: a round is one batch). Between two
+    # rounds the run holds the GIL only if it never released it.
+    at_round = []
+    counter = threading.Thread(target=count)
+    counter.start()
+    try:
+        scatterlab.simulate(photons=400000, batches=4, threads=1, radiance=False, seed=1,
+                            progress=lambda done, batches: at_round.append(ticks))
+    finally:
+        done.set()
+        counter.join()
+    assert len(at_round) == 4
+    assert at_round[-1] - at_round[0] > 10000
+
+
+def test_ctrl_c_stops_the_run(tmp_path):
+    import os
+    import signal
+    import threading
+    import time
+
+    timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            scatterlab.simulate(photons=1e9, batches=10000, radiance=False,
+                                out=tmp_path / "x.h5")
+    finally:
+        timer.cancel()
+    assert time.monotonic() - start < 30.0
+    assert not (tmp_path / "x.h5").exists()
