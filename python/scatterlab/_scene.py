@@ -23,6 +23,7 @@ from __future__ import annotations
 import json
 import math
 import numbers
+import re
 import tomllib
 from pathlib import Path
 from typing import Any
@@ -126,6 +127,12 @@ def scene_dict(geometry: str | None, scene: str | Path | None,
     return geometry, doc, origin
 
 
+def _key(key: str) -> str:
+    """A TOML key: bare when it can be, else quoted (so that a misspelt key reaches the reader
+    as written, and is named in its error)."""
+    return key if re.fullmatch(r"[A-Za-z0-9_-]+", key) else json.dumps(key)
+
+
 def _value(value: Any, key: str) -> str:
     """One TOML value: bool, integer, float (inf, nan), string, array or inline table."""
     if isinstance(value, bool) or type(value).__name__ == "bool_":
@@ -142,7 +149,7 @@ def _value(value: Any, key: str) -> str:
     if isinstance(value, (str, Path)):
         return json.dumps(str(value))  # JSON's escapes are TOML's
     if isinstance(value, dict):
-        return "{" + ", ".join(f"{k} = {_value(v, f'{key}.{k}')}"
+        return "{" + ", ".join(f"{_key(k)} = {_value(v, f'{key}.{k}')}"
                                for k, v in value.items()) + "}"
     if hasattr(value, "tolist"):  # numpy arrays and scalars
         return _value(value.tolist(), key)
@@ -160,11 +167,11 @@ def to_toml(doc: dict) -> str:
     for table, body in items:
         if isinstance(body, list) and all(isinstance(item, dict) for item in body) and body:
             for item in body:
-                lines.append(f"[[{table}]]")
-                lines += [f"{k} = {_value(v, f'{table}.{k}')}" for k, v in item.items()]
+                lines.append(f"[[{_key(table)}]]")
+                lines += [f"{_key(k)} = {_value(v, f'{table}.{k}')}" for k, v in item.items()]
         elif isinstance(body, dict):
-            lines.append(f"[{table}]")
-            lines += [f"{k} = {_value(v, f'{table}.{k}')}" for k, v in body.items()]
+            lines.append(f"[{_key(table)}]")
+            lines += [f"{_key(k)} = {_value(v, f'{table}.{k}')}" for k, v in body.items()]
         else:
-            lines.append(f"{table} = {_value(body, table)}")
+            lines.append(f"{_key(table)} = {_value(body, table)}")
     return "\n".join(lines) + "\n"

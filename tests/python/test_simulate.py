@@ -211,3 +211,20 @@ def test_ctrl_c_stops_the_run(tmp_path):
         timer.cancel()
     assert time.monotonic() - start < 30.0
     assert not (tmp_path / "x.h5").exists()
+
+
+def test_keywords_override_a_scene_file(scenes, tmp_path):
+    import tomllib
+
+    text = scatterlab.scene_text(scenes / "point-source.toml", albedo=0.7,
+                                 rho={"bins": 50}, photons=2000, batches=2)
+    doc = tomllib.loads(text)
+    assert doc["medium"] == {"albedo": 0.7, "g": 0.0}
+    assert doc["grid"]["rho"] == {"max": 10.0, "bins": 50}  # merged into the file's table
+    assert doc["source"]["type"] == "point" and doc["geometry"]["type"] == "infinite"
+    r = scatterlab.simulate(scenes / "point-source.toml", albedo=0.7, rho={"bins": 50},
+                            photons=2000, batches=2, out=tmp_path / "p.h5")
+    assert r.parameters["albedo"] == 0.7 and r.parameters["source"] == "point"
+    assert r.tallies["fluence_spherical"].mean.shape == (50,)
+    # Without out=, the file goes where the scene's output.path says, as the program's does.
+    assert doc["output"]["path"] == "point-source.h5"
