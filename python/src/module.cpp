@@ -36,7 +36,7 @@ namespace py = pybind11;
 namespace scatterlab::python {
 namespace {
 
-// Runs `work(progress, control)` (parse, transport, write) without the GIL. After every round of
+// Runs `work(progress, control, stopped)` (transport, write) without the GIL. After every round of
 // batches the progress callback takes the GIL back to call `progress(batches_done, batches)`
 // (when given) and to let Python see a signal: Ctrl-C stops the run within a round and raises
 // KeyboardInterrupt, and no file is written.
@@ -69,9 +69,9 @@ void without_gil(const py::object& progress, Work&& work) {
 void run_scene(const std::string& toml, const std::string& origin, const std::string& geometry,
                const std::string& path, const std::string& command, bool model_fluence,
                const py::object& progress) {
-  // Runs the spec, and writes its file unless the run was stopped.
+  // Runs the spec (the engine checks its memory first, engine.hpp), and writes its file unless
+  // the run was stopped.
   auto run_and_write = [&](auto& spec, auto&& run, auto&& write) {
-    check_transport_memory(transport_problem(spec), 1, false);
     without_gil(progress, [&](const ProgressCallback& callback, const RunControl& control,
                               const std::atomic<bool>& stopped) {
       const TransportOutput out = run(spec, callback, control);
