@@ -78,7 +78,9 @@ def _merge(into: dict, update: dict) -> None:
 
 def scene_dict(geometry: str | None, scene: str | Path | None,
                keys: dict[str, Any]) -> tuple[str, dict, str]:
-    """The scene as a dict, its geometry and its origin (the file, or "keywords").
+    """The scene as a dict, its geometry and its origin, which names the text in the reader's
+    messages: "keywords", or "FILE with keywords" (the positions in a message are then those
+    of scene_text's text, not of the file).
 
     ``geometry``: the geometry the caller runs (searchlight: "half_space"), or None to take it
     from the keywords or the scene file as the command line does ("infinite" without one).
@@ -86,14 +88,17 @@ def scene_dict(geometry: str | None, scene: str | Path | None,
     doc: dict = {}
     origin = "keywords"
     if scene is not None:
-        origin = str(scene)
+        origin = f"{scene} with keywords" if keys else str(scene)
         try:
             doc = tomllib.loads(Path(scene).read_text())
         except OSError as e:
             raise ValueError(f"scene: cannot read {scene} ({e.strerror}); accepted: a readable "
                              f"TOML scene file") from None
         except tomllib.TOMLDecodeError as e:
-            raise ValueError(f"scene: {scene}: {e}; accepted: a TOML scene file") from None
+            if not keys:  # read as written: the scene reader reports it, as for the program
+                doc = {}
+            else:
+                raise ValueError(f"scene: {scene}: {e}; accepted: a TOML scene file") from None
     given = keys.get("geometry")
     if isinstance(given, str):
         given = {"type": given}

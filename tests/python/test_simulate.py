@@ -91,7 +91,13 @@ def test_bad_input_is_a_value_error_naming_the_field(tmp_path, run_program):
     assert program.returncode != 0
     with pytest.raises(scatterlab.InputError) as raised:
         scatterlab.simulate(scene)
-    assert str(raised.value).split(":", 1)[1] in program.stderr
+    assert str(raised.value) in program.stderr
+    # A file's syntax error too, with its position in the file.
+    scene.write_text("[medium]\nalbedo = = 0.5\n")
+    program = run_program("simulate", scene, "--out", tmp_path / "x.h5", check=False)
+    with pytest.raises(ValueError, match=r"^scene: .*bad\.toml:2:") as raised:
+        scatterlab.simulate(scene)
+    assert str(raised.value) in program.stderr
     with pytest.raises(ValueError, match=r"^medium\.albdo: "):
         scatterlab.simulate(medium={"albdo": 0.9})
     with pytest.raises(ValueError, match=r"^grid\.r\.bins: "):
