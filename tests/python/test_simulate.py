@@ -234,3 +234,25 @@ def test_keywords_override_a_scene_file(scenes, tmp_path):
     assert r.tallies["fluence_spherical"].mean.shape == (50,)
     # Without out=, the file goes where the scene's output.path says, as the program's does.
     assert doc["output"]["path"] == "point-source.h5"
+
+
+def test_sphere_and_slab_without_scattering_match_beer_lambert():
+    """No scattering, no interface: what the sphere absorbs is Beer-Lambert along each chord
+    averaged over the lit disk, 1 - (2 / R^2) int_0^R u exp(-2 sigma_t u) du; a slab of
+    thickness d transmits exp(-mu_a d). Within 4 sigma (fixed seeds)."""
+    radius, a = 1.5, 2.0  # a = 2 sigma_t, sigma_t = 1 mfp^-1
+    sphere = scatterlab.simulate(geometry="sphere", radius=radius, eta=1.0, albedo=0.0,
+                                 source="directional", photons=40000, batches=8, seed=9)
+    integral = (1 - math.exp(-a * radius) * (1 + a * radius)) / a**2
+    expected = 1 - 2 / radius**2 * integral
+    absorbed = sphere.tallies["absorbed"]
+    assert float(sphere.tallies["reflected_at_entry"].mean) == 0.0
+    assert abs(float(absorbed.mean) - expected) < 4 * float(absorbed.stderr)
+
+    slab = scatterlab.simulate(geometry="slab", n_above=1.0, n_below=1.0,
+                               layers=[{"mu_a": 2.0, "mu_s": 0.0, "g": 0.0, "n": 1.0,
+                                        "thickness": 0.5}],
+                               weighting="analog", photons=40000, batches=8, seed=9)
+    t = slab.tallies["total_transmittance"]
+    assert abs(float(t.mean) - math.exp(-1.0)) < 4 * float(t.stderr)
+    assert float(slab.tallies["diffuse_reflectance"].mean) == 0.0
