@@ -458,6 +458,30 @@ std::string join_csv(const std::vector<std::string>& fields) {
   return join(fields);
 }
 
+FileFit fit_file(const std::filesystem::path& path, const std::filesystem::path& csv,
+                 const std::vector<LobeModel>& models, const FitOptions& options, int quadrature,
+                 int threads, const WorkProgress& progress) {
+  if (quadrature < 1 || quadrature > 8) {
+    throw InputError("quadrature", std::to_string(quadrature), "an integer in [1, 8]");
+  }
+  FileFit fit;
+  fit.lobes = read_radiance_lobes(path);
+  const LobeGrid grid(fit.lobes.theta_edges, fit.lobes.phi_edges, fit.lobes.phi_folded, quadrature);
+  fit.theta_bins = grid.theta_bins();
+  fit.phi_bins = grid.phi_bins();
+  fit.run = fit_lobes(fit.lobes, grid, models, options, threads, progress);
+  write_fits_csv(csv, fit.lobes, fit.run);
+  write_fits(fit.lobes, grid, fit.run, options);
+  return fit;
+}
+
+std::filesystem::path default_fits_csv(const std::filesystem::path& file) {
+  std::filesystem::path csv = file;
+  csv.replace_extension();
+  csv += "-fits.csv";
+  return csv;
+}
+
 void write_fits_csv(const std::filesystem::path& path, const RadianceLobes& lobes,
                     const LobeFitRun& run) {
   write_text_file(path, [&lobes, &run](std::ostream& csv) {

@@ -11,7 +11,8 @@ packages=(
   libplplot-dev plplot-driver-cairo
   libembree-dev libtinyobjloader-dev libopenexr-dev libpng-dev
   clang-format
-  python3-h5py python3-h5netcdf python3-xarray python3-matplotlib python3-nbconvert python3-nbclient python3-ipykernel
+  python3-h5py python3-h5netcdf python3-matplotlib python3-nbconvert python3-nbclient python3-ipykernel
+  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-xarray python3-pytest
 )
 
 missing=()

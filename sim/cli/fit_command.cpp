@@ -27,13 +27,6 @@ struct FitCommandOptions {
   int quadrature = 3;
 };
 
-std::filesystem::path default_csv(const std::filesystem::path& file) {
-  std::filesystem::path csv = file;
-  csv.replace_extension();
-  csv += "-fits.csv";
-  return csv;
-}
-
 }  // namespace
 
 Action add_fit_command(CLI::App& app) {
@@ -96,24 +89,20 @@ Action add_fit_command(CLI::App& app) {
                  field.files.size(), table.string());
       return 0;
     }
-    const std::filesystem::path csv =
-        options->csv.empty() ? default_csv(options->path) : std::filesystem::path(options->csv);
+    const std::filesystem::path csv = options->csv.empty() ? fit::default_fits_csv(options->path)
+                                                           : std::filesystem::path(options->csv);
     OutputPlan plan;
     plan.rewritten_input("FILE", options->path);  // /fits is added to it
     plan.output_file("--csv", csv);
     prepare_outputs(plan);
-    const fit::RadianceLobes lobes = fit::read_radiance_lobes(options->path);
-    const fit::LobeGrid grid(lobes.theta_edges, lobes.phi_edges, lobes.phi_folded,
-                             options->quadrature);
-    const fit::LobeFitRun run =
-        fit::fit_lobes(lobes, grid, models, fit_options, options->threads, progress);
+    const fit::FileFit fit = fit::fit_file(options->path, csv, models, fit_options,
+                                           options->quadrature, options->threads, progress);
     reporter.finish();
-    fit::write_fits_csv(csv, lobes, run);
-    fit::write_fits(lobes, grid, run, fit_options);
+    const fit::RadianceLobes& lobes = fit.lobes;
     fmt::print("scatterlab fit: {} ({} x {} spatial bins, {} x {} directions{})\n", options->path,
-               lobes.r_bins(), lobes.z_bins(), grid.theta_bins(), grid.phi_bins(),
+               lobes.r_bins(), lobes.z_bins(), fit.theta_bins, fit.phi_bins,
                lobes.phi_folded ? ", phi folded" : "");
-    fmt::print("{}", fit::describe(fit::summarize(run), run));
+    fmt::print("{}", fit::describe(fit::summarize(fit.run), fit.run));
     fmt::print("  wrote /fits/{{{}}} in {} and {}\n", options->models, options->path, csv.string());
     return 0;
   };

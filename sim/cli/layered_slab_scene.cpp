@@ -12,6 +12,7 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/simulation_file.hpp"
+#include "scatterlab/validate/run_file.hpp"
 
 namespace scatterlab::cli {
 namespace {
@@ -81,8 +82,7 @@ int run_layered_slab_scene(CLI::App& command, const SlabFlags& flags,
         return run_layered_slab(spec, progress, control);
       },
       [&](const std::filesystem::path& path, const TransportOutput& out) {
-        spec.run.threads = out.threads;  // record what ran, not "all cores"
-        write_layered_slab_file(path, spec, out.tallies, run_provenance(out, command_line));
+        write_run_result(path, spec, out, command_line);
         print_summary(spec, out, path.string());
       });
 }

@@ -13,6 +13,7 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/simulation_file.hpp"
+#include "scatterlab/validate/run_file.hpp"
 
 namespace scatterlab::cli {
 namespace {
@@ -91,8 +92,7 @@ int run_lit_sphere_scene(CLI::App& command, const SphereFlags& flags,
         return run_lit_sphere(spec, progress, control);
       },
       [&](const std::filesystem::path& path, const TransportOutput& out) {
-        spec.run.threads = out.threads;  // record what ran, not "all cores"
-        write_lit_sphere_file(path, spec, out.tallies, run_provenance(out, command_line));
+        write_run_result(path, spec, out, command_line);
         print_summary(spec, out, path.string());
       });
 }

@@ -22,7 +22,7 @@
 #include "scatterlab/models/chandrasekhar_h.hpp"
 #include "scatterlab/tally/scalar_estimate.hpp"
 #include "scatterlab/transport/searchlight.hpp"
-#include "scatterlab/validate/searchlight_models.hpp"
+#include "scatterlab/validate/run_file.hpp"
 #include "scene_option.hpp"
 
 namespace scatterlab::cli {
@@ -158,11 +158,8 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
         return run_searchlight(spec, progress, control);
       },
       [&](const std::filesystem::path& written, const TransportOutput& out) {
-        spec.run.threads = out.threads;  // record what ran, not "all cores"
-        const std::vector<ModelResult> models = searchlight_model_curves(
-            spec, scalar_estimate(out.tallies, "specular_reflectance").mean, o.model_fluence);
-        write_searchlight_file(written, spec, out.tallies, run_provenance(out, command_line),
-                               models);
+        const std::vector<ModelResult> models =
+            write_run_result(written, spec, out, command_line, o.model_fluence);
         print_summary(spec, out, models, written.string());
       });
 }

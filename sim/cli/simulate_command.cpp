@@ -27,7 +27,7 @@
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/parallel/world.hpp"
 #include "scatterlab/transport/simulate.hpp"
-#include "scatterlab/validate/point_source_models.hpp"
+#include "scatterlab/validate/run_file.hpp"
 #include "scene_option.hpp"
 
 namespace scatterlab::cli {
@@ -229,9 +229,7 @@ int run_one(PlannedRun run, const LongRunOptions& options, double log_interval,
         return simulate(spec, progress, control);
       },
       [&](const std::filesystem::path& path, const TransportOutput& out) {
-        spec.run.threads = out.threads;  // record what ran, not "all cores"
-        write_simulation_file(path, spec, out.tallies, run_provenance(out, command_line),
-                              point_source_model_curves(spec, out.tallies));
+        write_run_result(path, spec, out, command_line);
         print_summary(spec, out, path.string());
       });
 }

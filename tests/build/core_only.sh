@@ -3,6 +3,7 @@
 # Ceres, Embree, tinyobjloader, OpenEXR, libpng or MPI (CMake is told not to find them), it
 # builds scatterlab, which runs simulate and searchlight, links none of those libraries, and
 # answers fit, report and render with one line saying what the build needs, exit status 2.
+# Its Python module (pybind11 is not optional here: it is what the check runs) works the same way.
 # Usage: core_only.sh SOURCE_DIR
 set -uo pipefail
 source_dir=$1
@@ -14,7 +15,8 @@ for package in "${missing[@]}"; do disable+=("-DCMAKE_DISABLE_FIND_PACKAGE_$pack
 
 if cmake -S "$source_dir" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release "${disable[@]}" \
      >"$work/configure.log" 2>&1 &&
-   cmake --build "$build" --target scatterlab -j "$(nproc)" >"$work/build.log" 2>&1; then
+   cmake --build "$build" --target scatterlab scatterlab_python -j "$(nproc)" \
+     >"$work/build.log" 2>&1; then
   pass
 else
   fail "core-only build: $(grep -m3 -iE "error|not found" "$work/configure.log" "$work/build.log")"
@@ -54,5 +56,22 @@ for command in fit report render; do
 done
 if "$exe" --help | grep -q "not in this build: it needs Ceres"; then pass; else
   fail "--help does not say fit is not in this build"
+fi
+# The Python module of the core build runs and reads as the full one, and its fit says what the
+# build needs, as the program's does.
+if PYTHONPATH=$build/python /usr/bin/python3 -c '
+import scatterlab
+r = scatterlab.simulate(photons=2000, batches=4)
+assert r.tallies["fluence"].mean.shape == (15, 40)
+try:
+    scatterlab.fit("beam.h5")
+except ValueError as e:
+    assert "no '"'"'fit'"'"' command" in str(e) and "libceres-dev" in str(e), e
+else:
+    raise AssertionError("fit ran without Ceres")
+' >"$work/python.log" 2>&1; then
+  pass
+else
+  fail "the core build's Python module: $(tail -3 "$work/python.log")"
 fi
 report "core-only build"

@@ -23,4 +23,20 @@ if "$exe" simulate "$data/scenes/paper-beam.toml" --photons 2000 --batches 4 --o
 else
   fail "installed simulate on the installed scene: $(tail -3 "$work/run.log")"
 fi
+# The Python module (when this build has it), from the prefix alone, reads the file the installed
+# program wrote.
+module=$(find "$prefix/lib" -path "*-packages/scatterlab/__init__.py" 2>/dev/null | head -1)
+if [ ! -d "$build/python/scatterlab" ]; then
+  echo "no Python module in this build: not checked"
+elif [ -z "$module" ]; then
+  fail "the Python module is not installed under $prefix/lib"
+elif (cd "$work" && PYTHONPATH=$(dirname "$(dirname "$module")") /usr/bin/python3 -c '
+import scatterlab, sys
+assert scatterlab.__file__.startswith(sys.argv[1]), scatterlab.__file__
+assert scatterlab.open("beam.h5").tallies["fluence"].mean.shape == (15, 40)
+' "$prefix") >"$work/python.log" 2>&1; then
+  pass
+else
+  fail "the installed module: $(tail -3 "$work/python.log")"
+fi
 report "install prefix"

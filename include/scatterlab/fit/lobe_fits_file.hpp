@@ -74,6 +74,23 @@ LobeFitRun fit_lobes(const RadianceLobes& lobes, const LobeGrid& grid,
 void write_fits(const RadianceLobes& lobes, const LobeGrid& grid, const LobeFitRun& run,
                 const FitOptions& options);
 
+// One file's lobes fitted and written back, as `scatterlab fit FILE` and the Python module's
+// scatterlab.fit do: the radiance read (read_radiance_lobes), every spatial bin fitted with every
+// model (fit_lobes, on the grid of `quadrature` points per bin and axis, LobeGrid), the summary
+// CSV written to `csv` (write_fits_csv) and /fits/<model> added to the file (write_fits).
+// InputError("quadrature") for an order outside [1, 8].
+struct FileFit {
+  RadianceLobes lobes;
+  std::size_t theta_bins = 0, phi_bins = 0;  // of the lobe grid
+  LobeFitRun run;
+};
+FileFit fit_file(const std::filesystem::path& path, const std::filesystem::path& csv,
+                 const std::vector<LobeModel>& models, const FitOptions& options, int quadrature,
+                 int threads, const WorkProgress& progress = {});
+
+// The summary CSV beside a file when none is named: run.h5 -> run-fits.csv.
+std::filesystem::path default_fits_csv(const std::filesystem::path& file);
+
 // One row per spatial bin: r_index, z_index, r, z (bin centres, mfp), then per model
 // <model>_status, <model>_error, <model>_error_plane, <model>_noise, <model>_chi2_dof and
 // <model>_<parameter>. Written to a temporary name and renamed into place.

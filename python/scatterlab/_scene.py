@@ -1,0 +1,182 @@
+"""Keyword arguments to a scene's TOML text.
+
+The module runs scenes, not a second set of options: ``simulate(albedo=0.9, photons=1e5)`` is
+the scene ``[medium] albedo = 0.9``, ``[run] photons = 1e5``, parsed by the same C++ reader as
+``scatterlab simulate --scene`` (include/scatterlab/io/scene.hpp), so every key is checked and
+every error names its field the same way. A keyword is either
+
+* a table of the scene given whole as a dict: ``medium={"albedo": 0.9, "g": 0.5}``,
+  ``grid={"r": {"max": 2, "bins": 20}}``, ``layers=[{...}, ...]`` for the slab's ``[[layers]]``;
+* or a key of one table, by its own name: ``albedo=0.9`` is ``medium.albedo``; ``r={"max": 2,
+  "bins": 20}`` is ``grid.r``. Which table holds which key is KEY_TABLES below, per geometry,
+  as data/scenes/*.toml document them. Two names are shared by two tables and are resolved as
+  in the command line's flags: ``source="point"`` is ``source.type`` and ``geometry="sphere"``
+  is ``geometry.type``; a sphere's ``length_unit`` is ``medium.length_unit``, a slab's
+  ``geometry.length_unit``.
+
+Dicts merge into what a scene file (``scene="file.toml"``) gives, key by key; anything else
+replaces it.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import numbers
+import re
+import tomllib
+from pathlib import Path
+from typing import Any
+
+TABLES = ("geometry", "medium", "source", "grid", "tallies", "run", "output", "layers")
+
+_MEDIUM = ("albedo", "g", "sigma_t", "sigma_a", "sigma_s", "material", "channel", "length_unit")
+_RUN = ("photons", "batches", "seed", "threads", "escape_radius")
+
+# geometry.type -> {key: table}; the keys each scene reader accepts (io/scene.hpp).
+KEY_TABLES: dict[str, dict[str, str]] = {
+    "infinite": {
+        **dict.fromkeys(_MEDIUM, "medium"),
+        **dict.fromkeys(("r", "z", "theta", "phi", "fold_phi", "rho"), "grid"),
+        **dict.fromkeys(("radiance", "fluence", "flux", "fluence_spherical", "split_by_order",
+                         "estimator"), "tallies"),
+        **dict.fromkeys(_RUN, "run"),
+    },
+    "half_space": {
+        "eta": "geometry",
+        **dict.fromkeys(_MEDIUM, "medium"),
+        "incidence_deg": "source",
+        **dict.fromkeys(("r", "z", "theta_o"), "grid"),
+        "fluence": "tallies",
+        **dict.fromkeys(_RUN, "run"),
+    },
+    "sphere": {
+        **dict.fromkeys(("radius", "eta"), "geometry"),
+        **dict.fromkeys(_MEDIUM, "medium"),
+        **dict.fromkeys(("origin", "direction"), "source"),
+        **dict.fromkeys(("psi", "azimuth"), "grid"),
+        "split_by_order": "tallies",
+        **dict.fromkeys(("photons", "batches", "seed", "threads"), "run"),
+    },
+    "slab": {
+        **dict.fromkeys(("length_unit", "n_above", "n_below"), "geometry"),
+        **dict.fromkeys(("r", "z", "theta_o"), "grid"),
+        "split_by_order": "tallies",
+        **dict.fromkeys(_RUN + ("weighting",), "run"),
+    },
+}
+
+
+def _merge(into: dict, update: dict) -> None:
+    """Merges ``update`` into ``into``: dicts key by key, anything else replaced."""
+    for key, value in update.items():
+        if isinstance(value, dict) and isinstance(into.get(key), dict):
+            _merge(into[key], value)
+        else:
+            into[key] = value
+
+
+def scene_dict(geometry: str | None, scene: str | Path | None,
+               keys: dict[str, Any]) -> tuple[str, dict, str]:
+    """The scene as a dict, its geometry and its origin, which names the text in the reader's
+    messages: "keywords", or "FILE with keywords" (the positions in a message are then those
+    of scene_text's text, not of the file).
+
+    ``geometry``: the geometry the caller runs (searchlight: "half_space"), or None to take it
+    from the keywords or the scene file as the command line does ("infinite" without one).
+    """
+    doc: dict = {}
+    origin = "keywords"
+    if scene is not None:
+        origin = f"{scene} with keywords" if keys else str(scene)
+        try:
+            doc = tomllib.loads(Path(scene).read_text())
+        except OSError as e:
+            raise ValueError(f"scene: cannot read {scene} ({e.strerror}); accepted: a readable "
+                             f"TOML scene file") from None
+        except tomllib.TOMLDecodeError as e:
+            if not keys:  # read as written: the scene reader reports it, as for the program
+                doc = {}
+            else:
+                raise ValueError(f"scene: {scene}: {e}; accepted: a TOML scene file") from None
+    given = keys.get("geometry")
+    if isinstance(given, str):
+        given = {"type": given}
+    if geometry is None:
+        geometry = (given or {}).get("type") or doc.get("geometry", {}).get("type") or "infinite"
+    tables = KEY_TABLES.get(geometry)
+    if tables is None:
+        raise ValueError(f"geometry.type: got {geometry!r}; accepted: "
+                         f"{', '.join(KEY_TABLES)}")
+    for key, value in keys.items():
+        if key in ("geometry", "source") and isinstance(value, str):
+            _merge(doc, {key: {"type": value}})
+        elif key in TABLES:
+            if key == "layers":
+                doc[key] = value
+            elif isinstance(value, dict):
+                _merge(doc, {key: value})
+            else:
+                raise ValueError(f"{key}: got {value!r}; accepted: a dict, the scene's [{key}] "
+                                 f"table")
+        elif key in tables:
+            _merge(doc, {tables[key]: {key: value}})
+        else:
+            accepted = ", ".join(sorted(set(tables) | set(TABLES) | {"scene", "out"}))
+            raise ValueError(f"{key}: unknown keyword for a {geometry} scene; accepted: "
+                             f"{accepted}")
+    # The text names its geometry, so that it reads the same on its own (scatterlab simulate).
+    doc.setdefault("geometry", {}).setdefault("type", geometry)
+    order = {table: i for i, table in enumerate(TABLES)}
+    doc = dict(sorted(doc.items(), key=lambda item: order.get(item[0], -1)))
+    return geometry, doc, origin
+
+
+def _key(key: str) -> str:
+    """A TOML key: bare when it can be, else quoted (so that a misspelt key reaches the reader
+    as written, and is named in its error)."""
+    return key if re.fullmatch(r"[A-Za-z0-9_-]+", key) else json.dumps(key)
+
+
+def _value(value: Any, key: str) -> str:
+    """One TOML value: bool, integer, float (inf, nan), string, array or inline table."""
+    if isinstance(value, bool) or type(value).__name__ == "bool_":
+        return "true" if value else "false"
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    if isinstance(value, numbers.Real):
+        v = float(value)
+        if math.isnan(v):
+            return "nan"
+        if math.isinf(v):
+            return "inf" if v > 0 else "-inf"
+        return repr(v)
+    if isinstance(value, (str, Path)):
+        return json.dumps(str(value))  # JSON's escapes are TOML's
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{_key(k)} = {_value(v, f'{key}.{k}')}"
+                               for k, v in value.items()) + "}"
+    if hasattr(value, "tolist"):  # numpy arrays and scalars
+        return _value(value.tolist(), key)
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_value(v, key) for v in value) + "]"
+    raise ValueError(f"{key}: got {value!r} of type {type(value).__name__}; accepted: a "
+                     f"number, bool, string, list or dict")
+
+
+def to_toml(doc: dict) -> str:
+    """The scene dict as TOML text: top-level tables, ``[[layers]]`` for lists of tables."""
+    lines = []
+    # Top-level keys first: after a table's header they would belong to the table.
+    items = sorted(doc.items(), key=lambda item: isinstance(item[1], (dict, list)))
+    for table, body in items:
+        if isinstance(body, list) and all(isinstance(item, dict) for item in body) and body:
+            for item in body:
+                lines.append(f"[[{_key(table)}]]")
+                lines += [f"{_key(k)} = {_value(v, f'{table}.{k}')}" for k, v in item.items()]
+        elif isinstance(body, dict):
+            lines.append(f"[{_key(table)}]")
+            lines += [f"{_key(k)} = {_value(v, f'{table}.{k}')}" for k, v in body.items()]
+        else:
+            lines.append(f"{_key(table)} = {_value(body, table)}")
+    return "\n".join(lines) + "\n"

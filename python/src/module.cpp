@@ -1,0 +1,213 @@
+// _scatterlab: the compiled half of the Python package (python/scatterlab/). It parses a scene's
+// TOML text with the same readers as the command line (io/scene.hpp), so that every key is
+// checked and named the same way, runs it in this process with the GIL released, and writes the
+// run's file with the same writer (validate/run_file.hpp); the package reads the file back. The
+// analytic models are bound as numpy ufunc-like functions (py::vectorize).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/core/medium.hpp"
+#ifdef SCATTERLAB_WITH_FIT
+#include "scatterlab/fit/lobe_fits_file.hpp"
+#include "scatterlab/fit/lobe_model.hpp"
+#endif
+#include "scatterlab/io/scene.hpp"
+#include "scatterlab/models/chandrasekhar_h.hpp"
+#include "scatterlab/models/dipole.hpp"
+#include "scatterlab/models/half_space_medium.hpp"
+#include "scatterlab/models/point_source_exact.hpp"
+#include "scatterlab/refract/half_space_single_scatter.hpp"
+#include "scatterlab/transport/engine.hpp"
+#include "scatterlab/transport/layered_slab.hpp"
+#include "scatterlab/transport/lit_sphere.hpp"
+#include "scatterlab/transport/searchlight.hpp"
+#include "scatterlab/transport/simulate.hpp"
+#include "scatterlab/validate/run_file.hpp"
+
+namespace py = pybind11;
+
+namespace scatterlab::python {
+namespace {
+
+// Runs `work(progress, control, stopped)` (transport, write) without the GIL. After every round of
+// batches the progress callback takes the GIL back to call `progress(batches_done, batches)`
+// (when given) and to let Python see a signal: Ctrl-C stops the run within a round and raises
+// KeyboardInterrupt, and no file is written.
+template <class Work>
+void without_gil(const py::object& progress, Work&& work) {
+  std::atomic<bool> stop{false};
+  std::optional<py::error_already_set> failure;
+  RunControl control;
+  control.stop_requested = &stop;
+  const ProgressCallback callback = [&](const BatchProgress& done) {
+    py::gil_scoped_acquire gil;
+    if (failure) return;
+    try {
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      if (!progress.is_none()) progress(done.batches_done, done.batches);
+    } catch (py::error_already_set& e) {
+      failure.emplace(std::move(e));
+      stop = true;
+    }
+  };
+  {
+    py::gil_scoped_release released;
+    work(callback, control, stop);
+  }
+  if (failure) throw std::move(*failure);
+}
+
+// Parses `toml` as a scene of `geometry`, runs it and writes its file to `path`, as the command
+// line's simulate and searchlight do for one process.
+void run_scene(const std::string& toml, const std::string& origin, const std::string& geometry,
+               const std::string& path, const std::string& command, bool model_fluence,
+               const py::object& progress) {
+  // Runs the spec (the engine checks its memory first, engine.hpp), and writes its file unless
+  // the run was stopped.
+  auto run_and_write = [&](auto& spec, auto&& run, auto&& write) {
+    without_gil(progress, [&](const ProgressCallback& callback, const RunControl& control,
+                              const std::atomic<bool>& stopped) {
+      const TransportOutput out = run(spec, callback, control);
+      if (!stopped) write(spec, out);
+    });
+  };
+  const std::filesystem::path out_path(path);
+  if (geometry == "infinite") {
+    Scene scene = parse_scene(toml, origin, Validation::on_read);
+    run_and_write(
+        scene.spec, [](auto& s, auto& p, auto& c) { return simulate(s, p, c); },
+        [&](auto& s, auto& out) { write_run_result(out_path, s, out, command); });
+  } else if (geometry == "half_space") {
+    SearchlightScene scene = parse_searchlight_scene(toml, origin, Validation::on_read);
+    if (model_fluence && !scene.spec.tallies.fluence) {
+      throw InputError("model_fluence", "given with tallies.fluence = false",
+                       "model_fluence with the fluence tally on");
+    }
+    run_and_write(
+        scene.spec, [](auto& s, auto& p, auto& c) { return run_searchlight(s, p, c); },
+        [&](auto& s, auto& out) { write_run_result(out_path, s, out, command, model_fluence); });
+  } else if (geometry == "sphere") {
+    LitSphereScene scene = parse_lit_sphere_scene(toml, origin, Validation::on_read);
+    run_and_write(
+        scene.spec, [](auto& s, auto& p, auto& c) { return run_lit_sphere(s, p, c); },
+        [&](auto& s, auto& out) { write_run_result(out_path, s, out, command); });
+  } else if (geometry == "slab") {
+    LayeredSlabScene scene = parse_layered_slab_scene(toml, origin, Validation::on_read);
+    run_and_write(
+        scene.spec, [](auto& s, auto& p, auto& c) { return run_layered_slab(s, p, c); },
+        [&](auto& s, auto& out) { write_run_result(out_path, s, out, command); });
+  } else {
+    throw InputError("geometry.type", "got \"" + geometry + "\"",
+                     "infinite, half_space, sphere or slab");
+  }
+}
+
+// Fits a file's lobes and writes the fits back (fit::fit_file, as `scatterlab fit FILE`), without
+// the GIL; `progress(bins_done, bins)` is called as bins finish. The fits cannot be stopped part
+// way: an exception from `progress` (or Ctrl-C) is raised once they end, and the file is then
+// already written.
+#ifdef SCATTERLAB_WITH_FIT
+void fit_file(const std::string& path, const std::string& csv, const std::string& models,
+              int quadrature, int threads, const py::object& progress) {
+  const std::vector<fit::LobeModel> lobe_models = fit::parse_lobe_models(models);
+  std::optional<py::error_already_set> failure;
+  const WorkProgress callback = [&](std::uint64_t done, std::uint64_t bins) {
+    py::gil_scoped_acquire gil;
+    if (failure) return;
+    try {
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      if (!progress.is_none()) progress(done, bins);
+    } catch (py::error_already_set& e) {
+      failure.emplace(std::move(e));
+    }
+  };
+  {
+    py::gil_scoped_release released;
+    const std::filesystem::path file(path);
+    fit::fit_file(file, csv.empty() ? fit::default_fits_csv(file) : std::filesystem::path(csv),
+                  lobe_models, fit::FitOptions{}, quadrature, threads, callback);
+  }
+  if (failure) throw std::move(*failure);
+}
+#else
+// A build without the fit component (Ceres) answers as the program's `fit` does.
+void fit_file(const std::string&, const std::string&, const std::string&, int, int,
+              const py::object&) {
+  throw InputError("fit", "this build of scatterlab has no 'fit' command",
+                   "a build with Ceres (Debian: libceres-dev): install it, then configure and "
+                   "build again");
+}
+#endif
+
+// The half-space models' medium: albedo with sigma_t = 1 (lengths in mfp).
+HalfSpaceMedium half_space(double albedo, double g, double eta) {
+  HalfSpaceMedium medium = HalfSpaceMedium::from_albedo(albedo, g, eta);
+  medium.validate();
+  return medium;
+}
+
+void bind_models(py::module_& m) {
+  m.def("better_dipole", py::vectorize([](double r, double albedo, double g, double eta) {
+          return dipole_reflectance(better_dipole(half_space(albedo, g, eta)), r);
+        }),
+        py::arg("r"), py::arg("albedo"), py::arg("g"), py::arg("eta"));
+  m.def("classical_dipole", py::vectorize([](double r, double albedo, double g, double eta) {
+          return dipole_reflectance(classical_dipole(half_space(albedo, g, eta)), r);
+        }),
+        py::arg("r"), py::arg("albedo"), py::arg("g"), py::arg("eta"));
+  m.def("better_dipole_fluence",
+        py::vectorize([](double r, double z, double albedo, double g, double eta) {
+          return dipole_fluence(better_dipole(half_space(albedo, g, eta)), r, z);
+        }),
+        py::arg("r"), py::arg("z"), py::arg("albedo"), py::arg("g"), py::arg("eta"));
+  m.def("better_dipole_total", py::vectorize([](double albedo, double g, double eta) {
+          return dipole_total_reflectance(better_dipole(half_space(albedo, g, eta)));
+        }),
+        py::arg("albedo"), py::arg("g"), py::arg("eta"));
+  m.def("point_source_fluence", py::vectorize(&point_source_fluence), py::arg("albedo"),
+        py::arg("rho"));
+  m.def("point_source_fluence_collided", py::vectorize(&point_source_fluence_collided),
+        py::arg("albedo"), py::arg("rho"));
+  m.def("point_source_fluence_uncollided", py::vectorize(&point_source_fluence_uncollided),
+        py::arg("rho"));
+  m.def("point_source_fluence_shell_average",
+        py::vectorize([](double albedo, double rho0, double rho1) {
+          return point_source_fluence_shell_average(albedo, rho0, rho1);
+        }),
+        py::arg("albedo"), py::arg("rho0"), py::arg("rho1"));
+  m.def("discrete_eigenvalue", py::vectorize(&discrete_eigenvalue), py::arg("albedo"));
+  m.def("chandrasekhar_h", py::vectorize(&chandrasekhar_h), py::arg("albedo"), py::arg("mu"));
+  m.def("half_space_diffuse_reflectance", py::vectorize(&half_space_diffuse_reflectance),
+        py::arg("albedo"), py::arg("mu0"));
+  m.def("single_scatter_exitance",
+        py::vectorize([](double r, double albedo, double g, double eta, double sigma_t) {
+          const Medium medium = Medium::from_albedo(albedo, sigma_t, g);
+          return half_space_single_scatter_exitance(medium, eta, r).value;
+        }),
+        py::arg("r"), py::arg("albedo"), py::arg("g"), py::arg("eta"), py::arg("sigma_t"));
+}
+
+}  // namespace
+}  // namespace scatterlab::python
+
+PYBIND11_MODULE(_scatterlab, m) {
+  namespace sp = scatterlab::python;
+  m.doc() = "scatterlab's compiled core; use the scatterlab package, not this module";
+  m.attr("version") = SCATTERLAB_VERSION;
+  // Bad input: ValueError, the message naming the field as the command line's does.
+  py::register_exception<scatterlab::InputError>(m, "InputError", PyExc_ValueError);
+  m.def("run_scene", &sp::run_scene, py::arg("toml"), py::arg("origin"), py::arg("geometry"),
+        py::arg("path"), py::arg("command"), py::arg("model_fluence"), py::arg("progress"));
+  m.def("fit_file", &sp::fit_file, py::arg("path"), py::arg("csv"), py::arg("models"),
+        py::arg("quadrature"), py::arg("threads"), py::arg("progress"));
+  sp::bind_models(m);
+}
