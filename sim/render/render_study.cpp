@@ -80,17 +80,33 @@ void write_csv(const std::vector<RenderStudyRow>& rows, const std::filesystem::p
   });
 }
 
+// A method's name in a legend, with the paper it follows (render/single_scatter_renderer.hpp).
+std::string method_name(RenderMethod method) {
+  switch (method) {
+    case RenderMethod::straight:
+      return "straight shadow rays (Jensen et al. 2001)";
+    case RenderMethod::walter:
+      return "refracted paths (Walter et al. 2009)";
+    case RenderMethod::holzschuch:
+      return "support intervals (Holzschuch 2013)";
+    case RenderMethod::pathtrace:
+      return "path tracing (Monte Carlo)";
+  }
+  return to_string(method);
+}
+
 void write_error_plot(const std::string& scene, const std::vector<RenderStudyRow>& rows,
                       const std::filesystem::path& path) {
   LinePlot plot;
-  plot.title = fmt::format("{}: single scattering, error against run time", scene);
-  plot.x_label = "seconds per image";
-  plot.y_label = "relative RMS error against the reference";
+  plot.title = fmt::format("{}: single-scattered image, error against run time", scene);
+  plot.x_label = "wall-clock time per image (s)";
+  plot.y_label = "relative RMS error against the reference image";
   plot.y_scale = AxisScale::log;
   plot.log_x = true;
   for (const RenderMethod method : study_methods) {
     PlotSeries series;
-    series.name = to_string(method);
+    series.name = method_name(method);
+    series.model = to_string(method);
     for (const RenderStudyRow& row : rows) {
       if (row.scene != scene || row.method != method) continue;
       // A log axis cannot show 0 s; the clock's resolution is the floor.
