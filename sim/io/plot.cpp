@@ -6,11 +6,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <memory>
@@ -214,32 +216,19 @@ std::string read_bytes(const std::filesystem::path& path) {
   return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
 }
 
-}  // namespace
-
-std::string to_string(AxisScale scale) {
-  switch (scale) {
-    case AxisScale::linear:
-      return "linear";
-    case AxisScale::log:
-      return "log";
-    case AxisScale::sqrt:
-      return "sqrt";
-  }
-  return "linear";
-}
-
-void write_pngs(const std::vector<PlotFile>& plots) {
-  if (plots.empty()) return;
-  for (const PlotFile& p : plots) check(p.plot);
+// Draws figure k of `paths.size()` (its JSON from figure_json(k, where python writes it)) and
+// writes each to its path, atomically. The figures have been checked.
+void draw(const std::vector<std::filesystem::path>& paths,
+          const std::function<std::string(std::size_t, const std::string&)>& figure_json) {
   // The outputs' directories are checked (InputError "out") before python starts.
   std::vector<std::unique_ptr<AtomicOutput>> outputs;
-  for (const PlotFile& p : plots) outputs.push_back(std::make_unique<AtomicOutput>(p.path));
+  for (const auto& path : paths) outputs.push_back(std::make_unique<AtomicOutput>(path));
 
   const ScratchDirectory scratch;
   std::string request = "{\"figures\": [";
-  for (std::size_t k = 0; k < plots.size(); ++k) {
-    request += (k == 0 ? "" : ", ") +
-               figure_json(plots[k].plot, (scratch.path() / fmt::format("{}.png", k)).string());
+  for (std::size_t k = 0; k < paths.size(); ++k) {
+    if (k > 0) request += ", ";
+    request += figure_json(k, (scratch.path() / fmt::format("{}.png", k)).string());
   }
   request += "]}\n";
   const auto request_path = scratch.path() / "figures.json";
@@ -251,19 +240,97 @@ void write_pngs(const std::vector<PlotFile>& plots) {
     throw std::runtime_error(fmt::format("{} ({}: {})", missing_matplotlib, python, output));
   if (code != 0) {
     throw std::runtime_error(fmt::format("plot: {} failed drawing {} (exit status {}): {}", python,
-                                         plots.front().path.string(), code, output));
+                                         paths.front().string(), code, output));
   }
-  for (std::size_t k = 0; k < plots.size(); ++k) {
+  for (std::size_t k = 0; k < paths.size(); ++k) {
     const std::string png = read_bytes(scratch.path() / fmt::format("{}.png", k));
     if (png.empty())
-      throw std::runtime_error("plot: matplotlib drew nothing for " + plots[k].path.string());
+      throw std::runtime_error("plot: matplotlib drew nothing for " + paths[k].string());
     write_whole_file(outputs[k]->temporary_path(), png);
   }
   for (const auto& file : outputs) file->commit();
 }
 
+// The panels as JSON: each image's display values, (value * 2^exposure)^(1/gamma) clamped to
+// [0, 1] as write_png of an Image maps them to grey levels, rows from the top.
+std::string image_figure_json(const ImageFigure& figure, const std::string& output) {
+  std::string json = fmt::format(
+      "{{\"kind\": \"images\", \"output\": {}, \"title\": {}, \"width\": {}, \"height\": {}, "
+      "\"panels\": [",
+      json_string(output), json_string(figure.title), figure.width, figure.height);
+  const double scale = std::exp2(figure.exposure);
+  for (std::size_t p = 0; p < figure.panels.size(); ++p) {
+    const Image& image = *figure.panels[p].image;
+    json += fmt::format("{}{{\"title\": {}, \"pixels\": [", p == 0 ? "" : ", ",
+                        json_string(figure.panels[p].title));
+    for (int j = 0; j < image.height; ++j) {
+      json += j == 0 ? "[" : ", [";
+      for (int i = 0; i < image.width; ++i) {
+        const double v = std::clamp(
+            std::pow(std::max(image.at(i, j) * scale, 0.0), 1.0 / figure.gamma), 0.0, 1.0);
+        if (i > 0) json += ", ";
+        json += fmt::format("{:.4f}", std::isfinite(v) ? v : 0.0);
+      }
+      json += "]";
+    }
+    json += "]}";
+  }
+  return json + "]}";
+}
+
+}  // namespace
+
+void write_pngs(const std::vector<PlotFile>& plots) {
+  if (plots.empty()) return;
+  for (const PlotFile& p : plots) check(p.plot);
+  std::vector<std::filesystem::path> paths;
+  for (const PlotFile& p : plots) paths.push_back(p.path);
+  draw(paths, [&plots](std::size_t k, const std::string& output) {
+    return figure_json(plots[k].plot, output);
+  });
+}
+
+void write_png(const ImageFigure& figure, const std::filesystem::path& path) {
+  if (figure.panels.empty()) throw InputError("plot", "an image figure with no panel", "a panel");
+  for (const ImagePanel& panel : figure.panels) {
+    if (panel.image == nullptr || panel.image->width < 1 || panel.image->height < 1 ||
+        panel.image->width != figure.panels.front().image->width ||
+        panel.image->height != figure.panels.front().image->height) {
+      throw InputError("plot", "panel \"" + panel.title + "\" has no image or another size",
+                       "images of one size");
+    }
+  }
+  if (figure.width < 100 || figure.height < 100) {
+    throw InputError("plot",
+                     "size " + std::to_string(figure.width) + "x" + std::to_string(figure.height),
+                     "at least 100 x 100 pixels");
+  }
+  if (!(figure.gamma > 0.0) || !std::isfinite(figure.gamma)) {
+    throw InputError("gamma", "got " + std::to_string(figure.gamma), "a finite number > 0");
+  }
+  if (!std::isfinite(figure.exposure)) {
+    throw InputError("exposure", "got " + std::to_string(figure.exposure),
+                     "a finite number (stops)");
+  }
+  draw({path}, [&figure](std::size_t, const std::string& output) {
+    return image_figure_json(figure, output);
+  });
+}
+
 void write_png(const LinePlot& plot, const std::filesystem::path& path) {
   write_pngs({PlotFile{plot, path}});
+}
+
+std::string to_string(AxisScale scale) {
+  switch (scale) {
+    case AxisScale::linear:
+      return "linear";
+    case AxisScale::log:
+      return "log";
+    case AxisScale::sqrt:
+      return "sqrt";
+  }
+  return "linear";
 }
 
 }  // namespace scatterlab

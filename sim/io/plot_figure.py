@@ -1,4 +1,4 @@
-# Draws the line plots of io/plot.hpp with matplotlib (Agg backend). Compiled into the library as
+# Draws the line plots and image figures of io/plot.hpp with matplotlib (Agg backend). Compiled into the library as
 # a string (sim/CMakeLists.txt) and run as `python3 -c <this> <figures.json>` by write_png, which
 # writes the JSON (sim/io/plot.cpp says its fields) and reads back the PNG files drawn here.
 #
@@ -216,11 +216,30 @@ def draw(figure, path):
     plt.close(fig)
 
 
+def draw_images(figure, path):
+    """Images side by side in grey, pixels as squares, each titled; no axes."""
+    panels = figure["panels"]
+    fig, axes = plt.subplots(1, len(panels), figsize=(figure["width"] / DPI, figure["height"] / DPI),
+                             dpi=DPI, layout="constrained", squeeze=False)
+    for ax, panel in zip(axes[0], panels):
+        ax.imshow(panel["pixels"], cmap="gray", vmin=0.0, vmax=1.0, interpolation="nearest")
+        lines = [w for line in panel["title"].split("\n") for w in textwrap.wrap(line, 30)]
+        ax.set_title("\n".join(lines), fontsize=8)
+        ax.set_xticks([])
+        ax.set_yticks([])
+    fig.suptitle(figure["title"], fontsize=10.5)
+    fig.savefig(path, format="png", dpi=DPI)
+    plt.close(fig)
+
+
 def main():
     with open(sys.argv[1], encoding="utf-8") as file:
         request = json.load(file)
     for figure in request["figures"]:
-        draw(figure, figure["output"])
+        if figure.get("kind") == "images":
+            draw_images(figure, figure["output"])
+        else:
+            draw(figure, figure["output"])
 
 
 main()

@@ -1,8 +1,7 @@
-// PNG line plots: a valid PNG of the asked size with drawn content on every axis scale, several
-// at once, nothing left behind on bad input, and a message that says what to install when
-// python3 or matplotlib is missing.
+// PNG line plots and image figures: a valid PNG of the asked size with drawn content on every
+// axis scale, several at once, nothing left behind on bad input, and a message that says what to
+// install when python3 or matplotlib is missing.
 #include <gtest/gtest.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -30,10 +29,11 @@ std::uint32_t big_endian(const std::vector<unsigned char>& b, std::size_t at) {
          (std::uint32_t{b[at + 2]} << 8) | std::uint32_t{b[at + 3]};
 }
 
-void expect_png(const std::filesystem::path& path, std::uint32_t width, std::uint32_t height) {
+void expect_png(const std::filesystem::path& path, std::uint32_t width, std::uint32_t height,
+                std::size_t least_bytes = 10000) {
   const auto bytes = read_bytes(path);
   // A blank 640 x 480 PNG compresses to about 2 kB; axes, text and curves take several times that.
-  ASSERT_GT(bytes.size(), 10000u) << path;
+  ASSERT_GT(bytes.size(), least_bytes) << path;
   // PNG signature, then the IHDR chunk with width and height (PNG spec §5.2, §11.2.2).
   const std::vector<unsigned char> signature{0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   EXPECT_TRUE(std::equal(signature.begin(), signature.end(), bytes.begin()));
@@ -135,6 +135,31 @@ TEST(Plot, WritesSeveralPlotsAndChecksThemAllFirst) {
   LinePlot bad;
   EXPECT_THROW(write_pngs({{small_plot(), dir / "c.png"}, {bad, dir / "d.png"}}), InputError);
   EXPECT_FALSE(std::filesystem::exists(dir / "c.png"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Plot, WritesTitledImagesSideBySide) {
+  const auto dir = std::filesystem::temp_directory_path() / "scatterlab_test_plot_images";
+  std::filesystem::create_directories(dir);
+  Image a(8, 8), b(8, 8), other(4, 8);
+  for (int j = 0; j < 8; ++j) {
+    for (int i = 0; i < 8; ++i) a.at(i, j) = b.at(7 - i, j) = 0.1 * i;
+  }
+  ImageFigure figure;
+  figure.title = "images";
+  figure.width = 600;
+  figure.height = 300;
+  figure.panels = {{"reference", &a}, {"method\nbudget", &b}};
+  write_png(figure, dir / "images.png");
+  expect_png(dir / "images.png", 600, 300, 4000);
+  // Panels of different sizes, a missing image, no panel: refused, nothing written.
+  figure.panels.push_back({"other", &other});
+  EXPECT_THROW(write_png(figure, dir / "bad.png"), InputError);
+  figure.panels.back().image = nullptr;
+  EXPECT_THROW(write_png(figure, dir / "bad.png"), InputError);
+  figure.panels.clear();
+  EXPECT_THROW(write_png(figure, dir / "bad.png"), InputError);
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad.png"));
   std::filesystem::remove_all(dir);
 }
 

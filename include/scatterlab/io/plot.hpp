@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "scatterlab/io/image_file.hpp"
+
 namespace scatterlab {
 
 enum class AxisScale { linear, log, sqrt };
@@ -58,6 +60,24 @@ void write_png(const LinePlot& plot, const std::filesystem::path& path);
 // Several plots drawn by one python3 process (python and matplotlib start once, ~0.5 s): all
 // are checked before any is drawn, and each file is written as write_png writes it.
 void write_pngs(const std::vector<PlotFile>& plots);
+
+// Images side by side, each with its title, all at one exposure (render --study: the reference
+// and each method's image).
+struct ImagePanel {
+  std::string title;             // "\n" breaks it
+  const Image* image = nullptr;  // every panel the same size
+};
+
+struct ImageFigure {
+  std::string title;
+  std::vector<ImagePanel> panels;
+  double exposure = 0.0, gamma = 2.2;  // as write_png of an Image: (value * 2^exposure)^(1/gamma)
+  int width = 1500, height = 420;      // pixels, at 150 dots per inch
+};
+
+// Written as write_png of a LinePlot is, with the same errors (InputError "plot" for no panel,
+// a missing image or panels of different sizes; "gamma" and "exposure" as write_png of an Image).
+void write_png(const ImageFigure& figure, const std::filesystem::path& path);
 
 std::string to_string(AxisScale scale);
 
