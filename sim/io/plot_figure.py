@@ -13,6 +13,7 @@
 # what to install.
 import json
 import math
+import re
 import sys
 import textwrap
 
@@ -79,6 +80,24 @@ def style_of(series, fallback_index):
 
 def values(array):
     return [float("nan") if v is None else v for v in array]
+
+
+def shown_length(text):
+    """Characters a text shows: a mathtext command (\\sigma) is one, $ { } ^ _ are none."""
+    return len(re.sub(r"[${}^_]", "", re.sub(r"\\[A-Za-z]+", "x", text)))
+
+
+def wrap(line, width):
+    """Lines of at most `width` shown characters, broken at spaces (mathtext has none inside)."""
+    lines, current = [], ""
+    for word in line.split(" "):
+        candidate = f"{current} {word}" if current else word
+        if current and shown_length(candidate) > width:
+            lines.append(current)
+            current = word
+        else:
+            current = candidate
+    return lines + [current] if current else lines
 
 
 def set_scale(axis_setter, scale):
@@ -206,7 +225,11 @@ def draw(figure, path):
     if figure["y_scale"] == "linear":
         ax.yaxis.set_minor_locator(ticker.AutoMinorLocator())
     ax.grid(True, which="major")
-    ax.set_title(figure["title"])
+    # The title is centred over the axes, which leave room for the legend on the right: a line
+    # longer than about 0.7 of the figure's width in characters (10.5 pt, ~5.5 pt each) is cut
+    # off at the figure's edge, so it is wrapped.
+    title_chars = int(figure["width"] / DPI * 72 / 5.5 * 0.7)
+    ax.set_title("\n".join(w for line in figure["title"].split("\n") for w in wrap(line, title_chars)))
     ax.set_xlabel(figure["x_label"])
     ax.set_ylabel(figure["y_label"] + (", square-root axis" if figure["y_scale"] == "sqrt" else ""))
     if legend:

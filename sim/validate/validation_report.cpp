@@ -289,8 +289,8 @@ std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceCompar
     };
     for (const ModelPart part : {ModelPart::multiple, ModelPart::all}) {
       LinePlot plot;
-      plot.title = fmt::format("Searchlight, fluence of {} near the beam ($r$ < {:.3g} mfp)\n{}",
-                               part_title(part), c.r_edges[1], medium_title);
+      plot.title = fmt::format("Searchlight, fluence near the beam ($r$ < {:.3g} mfp) of {}\n{}",
+                               c.r_edges[1], part_title(part), medium_title);
       plot.x_label = "depth $z$ (mfp)";
       plot.y_label = "$\\phi(r, z)$ (mfp$^{-2}$ per unit incident power)";
       plot.y_scale = AxisScale::log;
