@@ -10,7 +10,8 @@ packages=(
   libopenmpi-dev openmpi-bin
   libembree-dev libtinyobjloader-dev libopenexr-dev libpng-dev
   clang-format
-  python3-h5py python3-matplotlib python3-nbconvert python3-nbclient python3-ipykernel
+  python3-matplotlib  # the figures (sim/io/plot_figure.py) and the notebooks
+  python3-h5py python3-nbconvert python3-nbclient python3-ipykernel
 )
 
 missing=()

@@ -47,7 +47,7 @@ STYLES = {
     # Monte Carlo and its estimators
     "monte_carlo": (OKABE_ITO["blue"], "-", "o", 4),
     "collision": (OKABE_ITO["blue"], "-", "o", 4),
-    "track_length": (OKABE_ITO["vermillion"], "-", "s", 4),
+    "track_length": (OKABE_ITO["sky_blue"], "-", "s", 4),
     "standard_error": ("#777777", ":", None, 3),
     # diffusion models; a model plus the exact single scattering keeps the model's style
     "diffusion": (OKABE_ITO["vermillion"], "-", None, 2),

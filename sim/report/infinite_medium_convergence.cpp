@@ -69,8 +69,8 @@ Section infinite_medium_convergence(const Profile& profile) {
         point_source_fluence_shell_average(kAlbedo, shells.edge(i), shells.edge(i + 1));
   }
 
-  LinePlot plot{fmt::format("Infinite medium, isotropic point source, albedo {:g}: error of the\n"
-                            "fluence in shells from {:g} to {:g} mfp against run time",
+  LinePlot plot{fmt::format("Infinite medium, isotropic point source, albedo {:g}:\nerror of the "
+                            "fluence (shells {:g} to {:g} mfp) against run time",
                             kAlbedo, kRhoMin, kRhoMax),
                 "wall-clock time (s)",
                 "relative RMS error of $\\phi$",
