@@ -137,7 +137,8 @@ int run_searchlight_validation(const SearchlightValidateOptions& o) {
   const MonteCarloCurve& single = reflectance[ModelPart::single];
   const SingleScatterAgreement agreement =
       compare_single_scatter(single, exact, single.total, single.total_stderr);
-  const auto more = write_single_scatter_report(r, single, exact, o.out, "searchlight");
+  const auto more =
+      write_single_scatter_report(r, single, exact, comparison.medium, o.out, "searchlight");
   files.insert(files.end(), more.begin(), more.end());
 
   fmt::print("scatterlab validate searchlight: albedo {}, g {}, eta {}, {} photons\n", o.albedo,

@@ -55,6 +55,14 @@ std::string style_key(const std::string& model) {
 
 constexpr const char* monte_carlo_name = "Monte Carlo ±1σ";
 
+// The medium, short enough for a plot title's line (matplotlib mathtext), its values rounded:
+// 1 - 0.99 is 0.010000000000000009 in binary.
+std::string title_of(const HalfSpaceMedium& medium) {
+  return fmt::format(
+      "$\\sigma_a$ = {:.4g}, $\\sigma_s$ = {:.4g} mfp$^{{-1}}$, $g$ = {:.4g}, $\\eta$ = {:.4g}",
+      medium.sigma_a, medium.sigma_s, medium.g, medium.eta);
+}
+
 }  // namespace
 
 std::vector<std::filesystem::path> write_point_source_report(
@@ -148,11 +156,7 @@ std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceCompar
   const auto medium_line = fmt::format(
       "sigma_a {:.4g}, sigma_s {:.4g}, g {:.4g}, eta {:.4g}, entry transmittance {:.4f}",
       c.medium.sigma_a, c.medium.sigma_s, c.medium.g, c.medium.eta, c.entry_transmittance);
-  // The medium, short enough for a plot title's second line (matplotlib mathtext), its values
-  // rounded: 1 - 0.99 is 0.010000000000000009 in binary.
-  const auto medium_title = fmt::format(
-      "$\\sigma_a$ = {:.4g}, $\\sigma_s$ = {:.4g} mfp$^{{-1}}$, $g$ = {:.4g}, $\\eta$ = {:.4g}",
-      c.medium.sigma_a, c.medium.sigma_s, c.medium.g, c.medium.eta);
+  const std::string medium_title = title_of(c.medium);
   const ModelPart parts[] = {ModelPart::all, ModelPart::single, ModelPart::multiple};
   const auto part_name = [](ModelPart part) {
     const std::string suffix = tally_suffix(part);
@@ -337,8 +341,8 @@ SingleScatterAgreement compare_single_scatter(const MonteCarloCurve& monte_carlo
 
 std::vector<std::filesystem::path> write_single_scatter_report(
     const std::vector<double>& r_edges, const MonteCarloCurve& mc,
-    const SingleScatterReflectance& exact, const std::filesystem::path& directory,
-    const std::string& stem) {
+    const SingleScatterReflectance& exact, const HalfSpaceMedium& medium,
+    const std::filesystem::path& directory, const std::string& stem) {
   make_output_directory(directory, "--out");
   const std::size_t nr = r_edges.size() - 1;
   const auto csv = directory / fmt::format("{}_single_scatter.csv", stem);
@@ -357,8 +361,9 @@ std::vector<std::filesystem::path> write_single_scatter_report(
   std::vector<double> r(nr);
   for (std::size_t i = 0; i < nr; ++i) r[i] = 0.5 * (r_edges[i] + r_edges[i + 1]);
   LinePlot plot{
-      "Searchlight, reflectance of light scattered once:\nMonte Carlo against the "
-      "exact refractive single-scatter solution",
+      "Searchlight, reflectance of light scattered once: Monte Carlo against the exact "
+      "refractive single-scatter solution\n" +
+          title_of(medium),
       "distance from the beam $r$ (mfp)",
       "$R_1(r)$ (mfp$^{-2}$ per unit incident power)",
       AxisScale::log,
