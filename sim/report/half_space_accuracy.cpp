@@ -68,7 +68,7 @@ Section half_space_convergence(const Profile& profile) {
                             "total diffuse reflectance against run time",
                             albedo),
                 "wall-clock time (s)",
-                "relative error of $R_d$",
+                "relative error of $R_\\mathrm{d}$",
                 AxisScale::log,
                 true,
                 {}};

@@ -230,8 +230,8 @@ std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceCompar
       plot.title =
           fmt::format("Searchlight, diffuse reflectance of {}\n{}", part_title(part), medium_title);
       plot.x_label = "distance from the beam $r$ (mfp)";
-      plot.y_label = mode.times_r ? "$r\\,R_d(r)$ (mfp$^{-1}$ per unit incident power)"
-                                  : "$R_d(r)$ (mfp$^{-2}$ per unit incident power)";
+      plot.y_label = mode.times_r ? "$r\\,R_\\mathrm{d}(r)$ (mfp$^{-1}$ per unit incident power)"
+                                  : "$R_\\mathrm{d}(r)$ (mfp$^{-2}$ per unit incident power)";
       plot.y_scale = mode.scale;
       const auto mc = c.reflectance_mc.find(part);
       if (mc != c.reflectance_mc.end()) {
