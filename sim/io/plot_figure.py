@@ -100,6 +100,13 @@ def wrap(line, width):
     return lines + [current] if current else lines
 
 
+def titled(figure):
+    """The title, centred over the whole figure (the legend included, so that a long title has
+    the figure's width), its lines wrapped to that width: 10.5 pt characters, ~5.8 pt each."""
+    chars = int(figure["width"] / DPI * 72 / 5.8 * 0.95)
+    return "\n".join(w for line in figure["title"].split("\n") for w in wrap(line, chars))
+
+
 def set_scale(axis_setter, scale):
     if scale == "log":
         axis_setter("log", nonpositive="clip")
@@ -225,11 +232,7 @@ def draw(figure, path):
     if figure["y_scale"] == "linear":
         ax.yaxis.set_minor_locator(ticker.AutoMinorLocator())
     ax.grid(True, which="major")
-    # The title is centred over the axes, which leave room for the legend on the right: a line
-    # longer than about 0.7 of the figure's width in characters (10.5 pt, ~5.5 pt each) is cut
-    # off at the figure's edge, so it is wrapped.
-    title_chars = int(figure["width"] / DPI * 72 / 5.5 * 0.7)
-    ax.set_title("\n".join(w for line in figure["title"].split("\n") for w in wrap(line, title_chars)))
+    fig.suptitle(titled(figure), fontsize=10.5)
     ax.set_xlabel(figure["x_label"])
     ax.set_ylabel(figure["y_label"] + (", square-root axis" if figure["y_scale"] == "sqrt" else ""))
     if legend:
@@ -250,7 +253,7 @@ def draw_images(figure, path):
         ax.set_title("\n".join(lines), fontsize=8)
         ax.set_xticks([])
         ax.set_yticks([])
-    fig.suptitle(figure["title"], fontsize=10.5)
+    fig.suptitle(titled(figure), fontsize=10.5)
     fig.savefig(path, format="png", dpi=DPI)
     plt.close(fig)
 
