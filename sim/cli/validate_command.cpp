@@ -16,6 +16,7 @@
 #include "progress_reporter.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/io/plot.hpp"
 #include "scatterlab/tally/scalar_estimate.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/validate/half_space_comparison.hpp"
@@ -224,6 +225,7 @@ Action add_validate_command(CLI::App& app) {
     OutputPlan plan;
     plan.output_directory("--out", deon->parsed() ? options->out : half_space->out);
     prepare_outputs(plan);
+    require_plotting();  // before the runs, not after them
     if (deon->parsed()) return run_deon(*options);
     if (searchlight->parsed()) return run_searchlight_validation(*half_space);
     return 1;

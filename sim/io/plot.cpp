@@ -163,8 +163,9 @@ class ScratchDirectory {
   std::filesystem::path path_;
 };
 
-// Runs `python -c script request`, with stdout and stderr captured; returns the exit status and
-// the captured text. posix_spawn, not a shell: no quoting of the arguments.
+// Runs `python -c script request` (`python -c script` for an empty request: the script only
+// imports matplotlib), with stdout and stderr captured; returns the exit status and the captured
+// text. posix_spawn, not a shell: no quoting of the arguments.
 std::pair<int, std::string> run_python(const std::string& python,
                                        const std::filesystem::path& request) {
   int pipe_fds[2];
@@ -179,7 +180,8 @@ std::pair<int, std::string> run_python(const std::string& python,
   const std::string script(detail::plot_figure_script());
   const std::string request_path = request.string();
   std::string arg0 = python, arg1 = "-c", arg2 = script, arg3 = request_path;
-  char* argv[] = {arg0.data(), arg1.data(), arg2.data(), arg3.data(), nullptr};
+  char* argv[] = {arg0.data(), arg1.data(), arg2.data(), request.empty() ? nullptr : arg3.data(),
+                  nullptr};
   pid_t pid = 0;
   const int spawned = python.find('/') == std::string::npos
                           ? ::posix_spawnp(&pid, python.c_str(), &actions, nullptr, argv, environ)
@@ -236,8 +238,9 @@ void draw(const std::vector<std::filesystem::path>& paths,
 
   const std::string python = python_program();
   const auto [code, output] = run_python(python, request_path);
-  if (code == 3)
+  if (code == 3) {
     throw std::runtime_error(fmt::format("{} ({}: {})", missing_matplotlib, python, output));
+  }
   if (code != 0) {
     throw std::runtime_error(fmt::format("plot: {} failed drawing {} (exit status {}): {}", python,
                                          paths.front().string(), code, output));
@@ -279,6 +282,15 @@ std::string image_figure_json(const ImageFigure& figure, const std::string& outp
 }
 
 }  // namespace
+
+void require_plotting() {
+  const std::string python = python_program();
+  const auto [code, output] = run_python(python, {});
+  if (code != 0) {
+    throw std::runtime_error(
+        fmt::format("{} ({}: exit status {}: {})", missing_matplotlib, python, code, output));
+  }
+}
 
 void write_pngs(const std::vector<PlotFile>& plots) {
   if (plots.empty()) return;

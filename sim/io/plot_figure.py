@@ -10,7 +10,7 @@
 #  - the legend outside the axes, where it covers no data;
 #  - log axes with major and minor ticks, labelled; a sqrt axis labelled in the plotted quantity.
 # Exit status 3 when matplotlib cannot be imported: write_png turns it into a message that says
-# what to install.
+# what to install. Without a request it only imports matplotlib (require_plotting).
 import json
 import math
 import re
@@ -259,6 +259,8 @@ def draw_images(figure, path):
 
 
 def main():
+    if len(sys.argv) < 2:
+        return  # only asked whether matplotlib imports (require_plotting)
     with open(sys.argv[1], encoding="utf-8") as file:
         request = json.load(file)
     for figure in request["figures"]:

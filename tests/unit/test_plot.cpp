@@ -166,29 +166,37 @@ TEST(Plot, WritesTitledImagesSideBySide) {
 TEST(Plot, SaysWhatToInstallWithoutPythonOrMatplotlib) {
   const auto dir = std::filesystem::temp_directory_path() / "scatterlab_test_plot_python";
   std::filesystem::create_directories(dir);
+  // write_png, and require_plotting, which commands call before their work.
   const auto expect_install_message = [&](const std::string& why) {
-    try {
-      write_png(small_plot(), dir / "p.png");
-      ADD_FAILURE() << why << ": no error";
-    } catch (const std::runtime_error& error) {
-      EXPECT_NE(std::string(error.what())
-                    .find("figures need python3 with matplotlib (Debian: "
-                          "python3-matplotlib)"),
-                std::string::npos)
-          << why << ": " << error.what();
+    for (const bool drawing : {true, false}) {
+      try {
+        if (drawing) {
+          write_png(small_plot(), dir / "p.png");
+        } else {
+          require_plotting();
+        }
+        ADD_FAILURE() << why << ": no error";
+      } catch (const std::runtime_error& error) {
+        EXPECT_NE(std::string(error.what())
+                      .find("figures need python3 with matplotlib (Debian: "
+                            "python3-matplotlib)"),
+                  std::string::npos)
+            << why << ": " << error.what();
+      }
     }
     EXPECT_FALSE(std::filesystem::exists(dir / "p.png")) << why;
   };
+  EXPECT_NO_THROW(require_plotting());
   {
     const PythonOverride none((dir / "no-such-python3").string());
     expect_install_message("no python3");
   }
   // A python3 where importing matplotlib fails, as where it is not installed: the script's own
-  // check answers. It runs the drawing script (-c SCRIPT REQUEST) with matplotlib blocked.
+  // check answers. It runs the drawing script (-c SCRIPT [REQUEST]) with matplotlib blocked.
   if (::access("/usr/bin/python3", X_OK) == 0) {
     const auto wrapper = dir / "python3-without-matplotlib";
     std::ofstream(wrapper) << "#!/bin/sh\nexec /usr/bin/python3 -c \"import sys; "
-                              "sys.modules['matplotlib'] = None\n$2\" \"$3\"\n";
+                              "sys.modules['matplotlib'] = None\n$2\" ${3+\"$3\"}\n";
     std::filesystem::permissions(wrapper, std::filesystem::perms::owner_all);
     const PythonOverride blocked(wrapper.string());
     expect_install_message("no matplotlib");

@@ -79,6 +79,11 @@ struct ImageFigure {
 // a missing image or panels of different sizes; "gamma" and "exposure" as write_png of an Image).
 void write_png(const ImageFigure& figure, const std::filesystem::path& path);
 
+// Throws write_png's std::runtime_error ("figures need python3 with matplotlib ...") when python3
+// or matplotlib is missing; commands that write figures call it before their work, so that a
+// long run does not fail at its end. Starts python3 and imports matplotlib: about 0.3 s.
+void require_plotting();
+
 std::string to_string(AxisScale scale);
 
 }  // namespace scatterlab
