@@ -1,11 +1,13 @@
-# Draws the line plots and image figures of io/plot.hpp with matplotlib (Agg backend). Compiled into the library as
-# a string (sim/CMakeLists.txt) and run as `python3 -c <this> <figures.json>` by write_png, which
-# writes the JSON (sim/io/plot.cpp says its fields) and reads back the PNG files drawn here.
+# Draws the line plots and image figures of io/plot.hpp with matplotlib (Agg backend). Compiled
+# into the library as a string (sim/CMakeLists.txt) and run as `python3 -c <this> <figures.json>`
+# by write_png, which writes the JSON (figure_json in sim/io/plot.cpp gives its fields) and reads
+# back the PNG files drawn here.
 #
 # What a figure for a paper needs, and where it is done:
 #  - one colour, line style and marker per model in every figure (STYLES, by the series' model
 #    key), the colour-blind-safe palette of Okabe & Ito (2008, "Color universal design");
-#  - the exact reference drawn last, on top, black and dashed, so that no curve hides it;
+#  - the exact reference on top of every curve (drawing order), black and dashed, so that no
+#    curve hides it and it shows through the Monte Carlo points;
 #  - Monte Carlo as points with their +-1 standard error bars;
 #  - the legend outside the axes, where it covers no data;
 #  - log axes with major and minor ticks, labelled; a sqrt axis labelled in the plotted quantity.
@@ -38,8 +40,8 @@ OKABE_ITO = {
     "purple": "#CC79A7",
 }
 
-# model key -> (colour, line style, marker, drawing order). Lines without markers have marker
-# None; Monte Carlo series are drawn as markers whatever their key says.
+# model key -> (colour, line style, marker, drawing order: higher on top). A series with markers
+# (Monte Carlo) is drawn as points, with the key's marker or a circle.
 STYLES = {
     # references
     "exact": (OKABE_ITO["black"], (0, (5, 2.5)), None, 10),
@@ -171,14 +173,16 @@ def draw(figure, path):
             "grid.linewidth": 0.6,
         }
     )
-    fig = plt.figure(figsize=(figure["width"] / DPI, figure["height"] / DPI), dpi=DPI, layout="constrained")
+    size = (figure["width"] / DPI, figure["height"] / DPI)
+    fig = plt.figure(figsize=size, dpi=DPI, layout="constrained")
     ax = fig.add_subplot()
     fallback = 0
     core = []  # the values the y axis must show: points, and bar ends near their point
     legend = []  # (handle, label) in the order of the series
     for series in figure["series"]:
         colour, line_style, marker, order = style_of(series, fallback)
-        if series.get("model", "") not in STYLES and not series.get("model", "").endswith("+single_scatter"):
+        key = series.get("model", "")
+        if key not in STYLES and not key.endswith("+single_scatter"):
             fallback += 1
         x, y = values(series["x"]), values(series["y"])
         core += [v for v in series["y"] if v is not None]
@@ -190,13 +194,16 @@ def draw(figure, path):
                 # A bar reaching more than a factor 30 below its point (a standard error as large
                 # as the value) would stretch a log axis over many empty decades: it runs off the
                 # bottom of the axis instead, which is what such a bar means.
-                core += [lo for v, lo in zip(series["y"], low) if v is not None and lo is not None and lo > v / 30]
-                core += [hi for v, hi in zip(series["y"], high) if v is not None and hi is not None]
+                ends = list(zip(series["y"], low, high))
+                shown = [(v, lo, hi) for v, lo, hi in ends if v is not None]
+                core += [lo for v, lo, _ in shown if lo is not None and lo > v / 30]
+                core += [hi for _, _, hi in shown if hi is not None]
                 # A null low end is one the axis cannot show: the bar runs to 0, off a log axis.
-                error = [
-                    [0.0 if v is None else v if lo is None else max(v - lo, 0.0) for v, lo in zip(series["y"], low)],
-                    [max(hi - v, 0.0) if v is not None and hi is not None else 0.0 for v, hi in zip(series["y"], high)],
+                below = [
+                    0.0 if v is None else v if lo is None else max(v - lo, 0.0) for v, lo, _ in ends
                 ]
+                above = [0.0 if v is None or hi is None else max(hi - v, 0.0) for v, _, hi in ends]
+                error = [below, above]
             handle = ax.errorbar(
                 x,
                 y,
@@ -212,8 +219,17 @@ def draw(figure, path):
                 zorder=order,
             )
         else:
-            (handle,) = ax.plot(x, y, color=colour, linestyle=line_style, marker=marker, markersize=4,
-                    linewidth=1.8 if order >= 10 else 1.5, label=label, zorder=order)
+            (handle,) = ax.plot(
+                x,
+                y,
+                color=colour,
+                linestyle=line_style,
+                marker=marker,
+                markersize=4,
+                linewidth=1.8 if order >= 10 else 1.5,
+                label=label,
+                zorder=order,
+            )
         if label:
             legend.append((handle, label))
     set_scale(ax.set_yscale, figure["y_scale"])
@@ -236,8 +252,15 @@ def draw(figure, path):
     ax.set_xlabel(figure["x_label"])
     ax.set_ylabel(figure["y_label"] + (", square-root axis" if figure["y_scale"] == "sqrt" else ""))
     if legend:
-        ax.legend([h for h, _ in legend], [l for _, l in legend], loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, frameon=False,
-                  handlelength=2.6)
+        ax.legend(
+            [h for h, _ in legend],
+            [text for _, text in legend],
+            loc="upper left",
+            bbox_to_anchor=(1.02, 1.0),
+            borderaxespad=0.0,
+            frameon=False,
+            handlelength=2.6,
+        )
     fig.savefig(path, format="png", dpi=DPI)
     plt.close(fig)
 
@@ -245,8 +268,10 @@ def draw(figure, path):
 def draw_images(figure, path):
     """Images side by side in grey, pixels as squares, each titled; no axes."""
     panels = figure["panels"]
-    fig, axes = plt.subplots(1, len(panels), figsize=(figure["width"] / DPI, figure["height"] / DPI),
-                             dpi=DPI, layout="constrained", squeeze=False)
+    size = (figure["width"] / DPI, figure["height"] / DPI)
+    fig, axes = plt.subplots(
+        1, len(panels), figsize=size, dpi=DPI, layout="constrained", squeeze=False
+    )
     for ax, panel in zip(axes[0], panels):
         ax.imshow(panel["pixels"], cmap="gray", vmin=0.0, vmax=1.0, interpolation="nearest")
         lines = [w for line in panel["title"].split("\n") for w in textwrap.wrap(line, 30)]
