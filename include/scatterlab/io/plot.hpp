@@ -1,7 +1,8 @@
 #pragma once
 // PNG line plots for validation figures and reports: several named series (lines, or markers
 // with error bars for Monte Carlo), a linear, logarithmic or square-root y axis (Bitterli §3.6.3:
-// log for the far field, sqrt to see near-source errors), axis labels and a legend.
+// log for the far field, sqrt to see near-source errors), axis labels and a legend; and titled
+// images side by side (ImageFigure).
 // Drawn by matplotlib (Debian: python3-matplotlib) in a python3 process that write_png starts:
 // the plot goes to it as JSON, and the script that draws it (sim/io/plot_figure.py) is compiled
 // into the library, so that the program finds it wherever it runs. Each series names its model
