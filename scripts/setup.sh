@@ -8,10 +8,10 @@ packages=(
   libeigen3-dev libhdf5-dev libceres-dev libfmt-dev libgtest-dev libgmock-dev
   libcli11-dev libtomlplusplus-dev librandom123-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
-  libplplot-dev plplot-driver-cairo
   libembree-dev libtinyobjloader-dev libopenexr-dev libpng-dev
   clang-format
-  python3-h5py python3-h5netcdf python3-matplotlib python3-nbconvert python3-nbclient python3-ipykernel
+  python3-matplotlib  # the figures (sim/io/plot_figure.py) and the notebooks
+  python3-h5py python3-h5netcdf python3-nbconvert python3-nbclient python3-ipykernel
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-xarray python3-pytest
 )
 

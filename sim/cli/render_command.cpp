@@ -16,6 +16,7 @@
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
+#include "scatterlab/io/plot.hpp"
 #include "scatterlab/render/render_scene.hpp"
 #include "scatterlab/render/render_study.hpp"
 #include "scatterlab/render/single_scatter_renderer.hpp"
@@ -51,6 +52,7 @@ int run_study(const RenderOptions& o, const std::filesystem::path& out_dir) {
   for (const std::string& path : paths) {
     scenes.push_back({std::filesystem::path(path).stem().string(), load_render_scene(path)});
   }
+  require_plotting();  // before the renders, not after them
   plan.make_output_directories();
   RenderStudyOptions options = o.quick ? RenderStudyOptions::quick() : RenderStudyOptions{};
   options.threads = o.threads;

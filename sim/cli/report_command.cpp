@@ -15,6 +15,7 @@
 #include "progress_reporter.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/io/plot.hpp"
 #include "scatterlab/report/report_writer.hpp"
 #include "scatterlab/report/suites.hpp"
 
@@ -78,6 +79,7 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
     OutputPlan plan;
     plan.output_directory("--out", options->out);
     prepare_outputs(plan);
+    require_plotting();  // before the sections, not after them
     plan.make_output_directories();
     auto chosen = [&options](const std::string& name) {
       return options->sections.empty() ||

@@ -16,6 +16,7 @@
 #include "progress_reporter.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/io/plot.hpp"
 #include "scatterlab/tally/scalar_estimate.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/validate/half_space_comparison.hpp"
@@ -137,7 +138,8 @@ int run_searchlight_validation(const SearchlightValidateOptions& o) {
   const MonteCarloCurve& single = reflectance[ModelPart::single];
   const SingleScatterAgreement agreement =
       compare_single_scatter(single, exact, single.total, single.total_stderr);
-  const auto more = write_single_scatter_report(r, single, exact, o.out, "searchlight");
+  const auto more =
+      write_single_scatter_report(r, single, exact, comparison.medium, o.out, "searchlight");
   files.insert(files.end(), more.begin(), more.end());
 
   fmt::print("scatterlab validate searchlight: albedo {}, g {}, eta {}, {} photons\n", o.albedo,
@@ -223,6 +225,7 @@ Action add_validate_command(CLI::App& app) {
     OutputPlan plan;
     plan.output_directory("--out", deon->parsed() ? options->out : half_space->out);
     prepare_outputs(plan);
+    require_plotting();  // before the runs, not after them
     if (deon->parsed()) return run_deon(*options);
     if (searchlight->parsed()) return run_searchlight_validation(*half_space);
     return 1;

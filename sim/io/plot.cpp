@@ -1,78 +1,51 @@
 #include "scatterlab/io/plot.hpp"
 
-#include <plplot.h>
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <iterator>
 #include <limits>
 #include <memory>
-#include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <system_error>
+#include <utility>
+#include <vector>
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
 
+extern char** environ;
+
 namespace scatterlab {
+
+namespace detail {
+std::string_view plot_figure_script();  // sim/io/plot_figure.py, compiled in (plot_script.cpp.in)
+}  // namespace detail
+
 namespace {
 
-// PLplot keeps global state per stream; one plot at a time.
-std::mutex plplot_mutex;
+constexpr const char* missing_matplotlib =
+    "figures need python3 with matplotlib (Debian: python3-matplotlib)";
 
-// Distinct colours (Okabe-Ito), as PLplot colour-map-0 indices 1.., 0 being the background.
-constexpr int palette[][3] = {{0, 0, 0},       {230, 159, 0},  {86, 180, 233}, {0, 158, 115},
-                              {213, 94, 0},    {0, 114, 178},  {204, 121, 167}, {240, 228, 66},
-                              {120, 120, 120}};
-constexpr int palette_size = static_cast<int>(std::size(palette));
-
-bool device_available(const char* name) {
-  // plgDevs fills caller-owned arrays; the count goes in as their capacity.
-  std::vector<const char*> menu(256), devices(256);
-  int count = static_cast<int>(devices.size());
-  const char** menu_data = menu.data();
-  const char** device_data = devices.data();
-  plgDevs(&menu_data, &device_data, &count);
-  for (int i = 0; i < count; ++i) {
-    if (devices[static_cast<std::size_t>(i)] != nullptr && std::string(devices[static_cast<std::size_t>(i)]) == name) return true;
-  }
-  return false;
+// The value as drawn: nullopt where the scale cannot show it.
+std::optional<double> drawable(double v, AxisScale scale) {
+  if (!std::isfinite(v)) return std::nullopt;
+  if (scale == AxisScale::log && !(v > 0.0)) return std::nullopt;
+  if (scale == AxisScale::sqrt && v < 0.0) return std::nullopt;
+  return v;
 }
-
-// The y value as drawn: log10 on a log axis, sqrt on a sqrt axis; NaN where it cannot be shown.
-double transform(double y, AxisScale scale) {
-  if (!std::isfinite(y)) return std::numeric_limits<double>::quiet_NaN();
-  switch (scale) {
-    case AxisScale::log: return y > 0.0 ? std::log10(y) : std::numeric_limits<double>::quiet_NaN();
-    case AxisScale::sqrt: return y >= 0.0 ? std::sqrt(y) : std::numeric_limits<double>::quiet_NaN();
-    case AxisScale::linear: break;
-  }
-  return y;
-}
-
-// Tick labels of the sqrt axis show y, not sqrt(y).
-void sqrt_axis_label(PLINT axis, PLFLT value, char* label, PLINT length, PLPointer) {
-  if (axis == PL_Y_AXIS) {
-    std::snprintf(label, static_cast<std::size_t>(length), "%.3g", value * value);
-  } else {
-    std::snprintf(label, static_cast<std::size_t>(length), "%.3g", value);
-  }
-}
-
-struct Range {
-  double lo = std::numeric_limits<double>::infinity();
-  double hi = -std::numeric_limits<double>::infinity();
-  void add(double v) {
-    if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
-  }
-  bool empty() const { return !(hi >= lo); }
-  void pad(double fraction) {
-    const double span = hi > lo ? hi - lo : std::max(std::abs(hi), 1.0);
-    lo -= fraction * span;
-    hi += fraction * span;
-  }
-};
 
 void check(const LinePlot& plot) {
   if (plot.series.empty()) throw InputError("plot", "no series", "at least one series");
@@ -83,158 +56,293 @@ void check(const LinePlot& plot) {
     }
   }
   if (plot.width < 100 || plot.height < 100) {
-    throw InputError("plot", "size " + std::to_string(plot.width) + "x" + std::to_string(plot.height),
+    throw InputError("plot",
+                     "size " + std::to_string(plot.width) + "x" + std::to_string(plot.height),
                      "at least 100 x 100 pixels");
   }
+  const AxisScale x_scale = plot.log_x ? AxisScale::log : AxisScale::linear;
+  for (const PlotSeries& s : plot.series) {
+    for (std::size_t i = 0; i < s.y.size(); ++i) {
+      if (drawable(s.x[i], x_scale) && drawable(s.y[i], plot.y_scale)) return;
+    }
+  }
+  throw InputError("plot", "no point can be drawn on a " + to_string(plot.y_scale) + " axis",
+                   "at least one finite point (positive on a log axis)");
+}
+
+// A JSON string: quotes, backslashes and control characters escaped (RFC 8259 §7).
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      out += fmt::format("\\u{:04x}", static_cast<unsigned>(c));
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string json_number(std::optional<double> v) {
+  return v ? fmt::format("{:.17g}", *v) : "null";
+}
+
+// One figure as JSON for plot_figure.py; points the scales cannot show become null (a gap).
+std::string figure_json(const LinePlot& plot, const std::string& output) {
+  const AxisScale x_scale = plot.log_x ? AxisScale::log : AxisScale::linear;
+  std::string json = fmt::format(
+      "{{\"output\": {}, \"title\": {}, \"x_label\": {}, \"y_label\": {}, \"y_scale\": {}, "
+      "\"log_x\": {}, \"width\": {}, \"height\": {}, \"series\": [",
+      json_string(output), json_string(plot.title), json_string(plot.x_label),
+      json_string(plot.y_label), json_string(to_string(plot.y_scale)), plot.log_x, plot.width,
+      plot.height);
+  for (std::size_t k = 0; k < plot.series.size(); ++k) {
+    const PlotSeries& s = plot.series[k];
+    std::string xs, ys, lows, highs;
+    for (std::size_t i = 0; i < s.y.size(); ++i) {
+      const auto x = drawable(s.x[i], x_scale);
+      const auto y = x ? drawable(s.y[i], plot.y_scale) : std::nullopt;
+      // Appended in two steps: "const char* + std::string" trips GCC 12's -Wrestrict at -O3.
+      const auto append = [i](std::string& list, std::optional<double> v) {
+        if (i > 0) list += ", ";
+        list += json_number(v);
+      };
+      append(xs, y ? x : std::nullopt);
+      append(ys, y);
+      if (!s.y_error.empty()) {
+        // A low end the scale cannot show (at or below 0 on a log axis, below 0 on a sqrt axis)
+        // is null: plot_figure.py runs the bar off the bottom of the axis.
+        const double e = s.y_error[i];
+        const bool bar = y && std::isfinite(e);
+        append(lows, bar ? drawable(*y - e, plot.y_scale) : y);
+        append(highs, bar ? drawable(*y + e, plot.y_scale).value_or(*y) : y);
+      }
+    }
+    json += fmt::format(
+        "{}{{\"name\": {}, \"model\": {}, \"markers\": {}, \"x\": [{}], \"y\": [{}]",
+        k == 0 ? "" : ", ", json_string(s.name), json_string(s.model), s.markers, xs, ys);
+    if (!s.y_error.empty()) json += fmt::format(", \"low\": [{}], \"high\": [{}]", lows, highs);
+    json += "}";
+  }
+  return json + "]}";
+}
+
+// The python3 that draws: $SCATTERLAB_PYTHON, else Debian's /usr/bin/python3 (where
+// python3-matplotlib installs), else python3 on the PATH.
+std::string python_program() {
+  const char* chosen = std::getenv("SCATTERLAB_PYTHON");
+  if (chosen != nullptr && *chosen != '\0') return chosen;
+  if (::access("/usr/bin/python3", X_OK) == 0) return "/usr/bin/python3";
+  return "python3";
+}
+
+// A private directory under the system's temporary directory, removed with this object.
+class ScratchDirectory {
+ public:
+  ScratchDirectory() {
+    std::string pattern =
+        (std::filesystem::temp_directory_path() / "scatterlab-plot-XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr) {
+      throw std::runtime_error("plot: cannot make a scratch directory " + pattern + ": " +
+                               std::strerror(errno));
+    }
+    path_ = pattern;
+  }
+  ScratchDirectory(const ScratchDirectory&) = delete;
+  ScratchDirectory& operator=(const ScratchDirectory&) = delete;
+  ~ScratchDirectory() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// Runs `python -c script request` (`python -c script` for an empty request: the script only
+// imports matplotlib), with stdout and stderr captured; returns the exit status and the captured
+// text. posix_spawn, not a shell: no quoting of the arguments.
+std::pair<int, std::string> run_python(const std::string& python,
+                                       const std::filesystem::path& request) {
+  int pipe_fds[2];
+  if (::pipe2(pipe_fds, O_CLOEXEC) != 0) {
+    throw std::runtime_error(std::string("plot: no pipe for python3: ") + std::strerror(errno));
+  }
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], STDERR_FILENO);
+  const std::string script(detail::plot_figure_script());
+  const std::string request_path = request.string();
+  std::string arg0 = python, arg1 = "-c", arg2 = script, arg3 = request_path;
+  char* argv[] = {arg0.data(), arg1.data(), arg2.data(), request.empty() ? nullptr : arg3.data(),
+                  nullptr};
+  pid_t pid = 0;
+  const int spawned = python.find('/') == std::string::npos
+                          ? ::posix_spawnp(&pid, python.c_str(), &actions, nullptr, argv, environ)
+                          : ::posix_spawn(&pid, python.c_str(), &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(pipe_fds[1]);
+  if (spawned != 0) {
+    ::close(pipe_fds[0]);
+    throw std::runtime_error(
+        fmt::format("{}: cannot run {}: {}", missing_matplotlib, python, std::strerror(spawned)));
+  }
+  std::string output;
+  char buffer[4096];
+  for (;;) {
+    const ssize_t n = ::read(pipe_fds[0], buffer, sizeof buffer);
+    if (n > 0) {
+      output.append(buffer, static_cast<std::size_t>(n));
+    } else if (n == 0 || errno != EINTR) {
+      break;
+    }
+  }
+  ::close(pipe_fds[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR)
+      throw std::runtime_error(std::string("plot: waitpid: ") + std::strerror(errno));
+  }
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return {code, output};
+}
+
+std::string read_bytes(const std::filesystem::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+}
+
+// Draws figure k of `paths.size()` (its JSON from figure_json(k, where python writes it)) and
+// writes each to its path, atomically. The figures have been checked.
+void draw(const std::vector<std::filesystem::path>& paths,
+          const std::function<std::string(std::size_t, const std::string&)>& figure_json) {
+  // The outputs' directories are checked (InputError "out") before python starts.
+  std::vector<std::unique_ptr<AtomicOutput>> outputs;
+  for (const auto& path : paths) outputs.push_back(std::make_unique<AtomicOutput>(path));
+
+  const ScratchDirectory scratch;
+  std::string request = "{\"figures\": [";
+  for (std::size_t k = 0; k < paths.size(); ++k) {
+    if (k > 0) request += ", ";
+    request += figure_json(k, (scratch.path() / fmt::format("{}.png", k)).string());
+  }
+  request += "]}\n";
+  const auto request_path = scratch.path() / "figures.json";
+  write_whole_file(request_path, request);
+
+  const std::string python = python_program();
+  const auto [code, output] = run_python(python, request_path);
+  if (code == 3) {
+    throw std::runtime_error(fmt::format("{} ({}: {})", missing_matplotlib, python, output));
+  }
+  if (code != 0) {
+    throw std::runtime_error(fmt::format("plot: {} failed drawing {} (exit status {}): {}", python,
+                                         paths.front().string(), code, output));
+  }
+  for (std::size_t k = 0; k < paths.size(); ++k) {
+    const std::string png = read_bytes(scratch.path() / fmt::format("{}.png", k));
+    if (png.empty())
+      throw std::runtime_error("plot: matplotlib drew nothing for " + paths[k].string());
+    write_whole_file(outputs[k]->temporary_path(), png);
+  }
+  for (const auto& file : outputs) file->commit();
+}
+
+// The panels as JSON: each image's display values, (value * 2^exposure)^(1/gamma) clamped to
+// [0, 1] as write_png of an Image maps them to grey levels, rows from the top.
+std::string image_figure_json(const ImageFigure& figure, const std::string& output) {
+  std::string json = fmt::format(
+      "{{\"kind\": \"images\", \"output\": {}, \"title\": {}, \"width\": {}, \"height\": {}, "
+      "\"panels\": [",
+      json_string(output), json_string(figure.title), figure.width, figure.height);
+  const double scale = std::exp2(figure.exposure);
+  for (std::size_t p = 0; p < figure.panels.size(); ++p) {
+    const Image& image = *figure.panels[p].image;
+    json += fmt::format("{}{{\"title\": {}, \"pixels\": [", p == 0 ? "" : ", ",
+                        json_string(figure.panels[p].title));
+    for (int j = 0; j < image.height; ++j) {
+      json += j == 0 ? "[" : ", [";
+      for (int i = 0; i < image.width; ++i) {
+        const double v = std::clamp(
+            std::pow(std::max(image.at(i, j) * scale, 0.0), 1.0 / figure.gamma), 0.0, 1.0);
+        if (i > 0) json += ", ";
+        json += fmt::format("{:.4f}", std::isfinite(v) ? v : 0.0);
+      }
+      json += "]";
+    }
+    json += "]}";
+  }
+  return json + "]}";
 }
 
 }  // namespace
 
+void require_plotting() {
+  const std::string python = python_program();
+  const auto [code, output] = run_python(python, {});
+  if (code != 0) {
+    throw std::runtime_error(
+        fmt::format("{} ({}: exit status {}: {})", missing_matplotlib, python, code, output));
+  }
+}
+
+void write_pngs(const std::vector<PlotFile>& plots) {
+  if (plots.empty()) return;
+  for (const PlotFile& p : plots) check(p.plot);
+  std::vector<std::filesystem::path> paths;
+  for (const PlotFile& p : plots) paths.push_back(p.path);
+  draw(paths, [&plots](std::size_t k, const std::string& output) {
+    return figure_json(plots[k].plot, output);
+  });
+}
+
+void write_png(const ImageFigure& figure, const std::filesystem::path& path) {
+  if (figure.panels.empty()) throw InputError("plot", "an image figure with no panel", "a panel");
+  for (const ImagePanel& panel : figure.panels) {
+    if (panel.image == nullptr || panel.image->width < 1 || panel.image->height < 1 ||
+        panel.image->width != figure.panels.front().image->width ||
+        panel.image->height != figure.panels.front().image->height) {
+      throw InputError("plot", "panel \"" + panel.title + "\" has no image or another size",
+                       "images of one size");
+    }
+  }
+  if (figure.width < 100 || figure.height < 100) {
+    throw InputError("plot",
+                     "size " + std::to_string(figure.width) + "x" + std::to_string(figure.height),
+                     "at least 100 x 100 pixels");
+  }
+  if (!(figure.gamma > 0.0) || !std::isfinite(figure.gamma)) {
+    throw InputError("gamma", "got " + std::to_string(figure.gamma), "a finite number > 0");
+  }
+  if (!std::isfinite(figure.exposure)) {
+    throw InputError("exposure", "got " + std::to_string(figure.exposure),
+                     "a finite number (stops)");
+  }
+  draw({path}, [&figure](std::size_t, const std::string& output) {
+    return image_figure_json(figure, output);
+  });
+}
+
+void write_png(const LinePlot& plot, const std::filesystem::path& path) {
+  write_pngs({PlotFile{plot, path}});
+}
+
 std::string to_string(AxisScale scale) {
   switch (scale) {
-    case AxisScale::linear: return "linear";
-    case AxisScale::log: return "log";
-    case AxisScale::sqrt: return "sqrt";
+    case AxisScale::linear:
+      return "linear";
+    case AxisScale::log:
+      return "log";
+    case AxisScale::sqrt:
+      return "sqrt";
   }
   return "linear";
-}
-
-// The plot with x replaced by log10 x on a logarithmic x axis (x <= 0 becomes NaN: not drawn).
-LinePlot with_drawn_x(const LinePlot& plot) {
-  LinePlot drawn = plot;
-  if (!plot.log_x) return drawn;
-  for (PlotSeries& s : drawn.series) {
-    for (double& x : s.x) x = x > 0.0 ? std::log10(x) : std::numeric_limits<double>::quiet_NaN();
-  }
-  return drawn;
-}
-
-void write_png(const LinePlot& requested, const std::filesystem::path& path) {
-  check(requested);
-  const LinePlot plot = with_drawn_x(requested);
-  // Transformed copies and the drawn ranges.
-  std::vector<std::vector<double>> ys(plot.series.size()), lows(plot.series.size()),
-      highs(plot.series.size());
-  Range xr, yr;
-  for (std::size_t k = 0; k < plot.series.size(); ++k) {
-    const PlotSeries& s = plot.series[k];
-    for (std::size_t i = 0; i < s.y.size(); ++i) {
-      const double y = transform(s.y[i], plot.y_scale);
-      ys[k].push_back(y);
-      if (!std::isfinite(y) || !std::isfinite(s.x[i])) continue;
-      xr.add(s.x[i]);
-      yr.add(y);
-      if (!s.y_error.empty()) {
-        const double low = transform(s.y[i] - s.y_error[i], plot.y_scale);
-        const double high = transform(s.y[i] + s.y_error[i], plot.y_scale);
-        lows[k].push_back(std::isfinite(low) ? low : y);
-        highs[k].push_back(std::isfinite(high) ? high : y);
-        yr.add(lows[k].back());
-        yr.add(highs[k].back());
-      }
-    }
-  }
-  if (xr.empty() || yr.empty()) {
-    throw InputError("plot", "no point can be drawn on a " + to_string(plot.y_scale) + " axis",
-                     "at least one finite point (positive on a log axis)");
-  }
-  xr.pad(0.02);
-  yr.pad(0.05);
-  if (plot.y_scale == AxisScale::sqrt) yr.lo = std::max(yr.lo, 0.0);
-
-  AtomicOutput output(path);
-  // PLplot ignores a failed write of its PNG: it draws into memory (the stream plend1 closes),
-  // and write_whole_file puts it on the disk, where a failure is reported.
-  char* image = nullptr;
-  std::size_t image_size = 0;
-  {
-    const std::lock_guard<std::mutex> lock(plplot_mutex);
-    if (!device_available("pngcairo")) {
-      throw std::runtime_error(
-          "plot: PLplot has no pngcairo device (install plplot-driver-cairo)");
-    }
-    std::FILE* memory = open_memstream(&image, &image_size);
-    if (memory == nullptr) throw std::runtime_error("plot: no memory for " + path.string());
-    PLINT previous = 0, stream = 0;
-    plgstrm(&previous);
-    plmkstrm(&stream);
-    plsdev("pngcairo");
-    plsfile(memory);
-    plspage(0.0, 0.0, plot.width, plot.height, 0, 0);
-    plscolbg(255, 255, 255);
-    for (int c = 0; c < palette_size; ++c) plscol0(c + 1, palette[c][0], palette[c][1], palette[c][2]);
-    plinit();
-    pladv(0);
-    plvpor(0.10, 0.95, 0.10, 0.88);  // room above for the title and the axis exponent
-    plwind(xr.lo, xr.hi, yr.lo, yr.hi);
-    plcol0(1);
-    if (plot.y_scale == AxisScale::sqrt) plslabelfunc(sqrt_axis_label, nullptr);
-    const char* y_options = plot.y_scale == AxisScale::log    ? "bcnstlv"
-                            : plot.y_scale == AxisScale::sqrt ? "bcnstov"
-                                                              : "bcnstv";
-    plbox(plot.log_x ? "bcnstl" : "bcnst", 0.0, 0, y_options, 0.0, 0);
-    plslabelfunc(nullptr, nullptr);
-    const std::string y_label =
-        plot.y_label + (plot.y_scale == AxisScale::linear ? "" : " (" + to_string(plot.y_scale) + " scale)");
-    pllab(plot.x_label.c_str(), y_label.c_str(), plot.title.c_str());
-
-    std::vector<PLINT> opt(plot.series.size()), colours(plot.series.size()), styles(plot.series.size(), 1),
-        symbol_numbers(plot.series.size(), 1);
-    std::vector<PLFLT> widths(plot.series.size(), 2.0), symbol_scales(plot.series.size(), 1.0);
-    std::vector<const char*> texts(plot.series.size()), symbols(plot.series.size());
-    for (std::size_t k = 0; k < plot.series.size(); ++k) {
-      const PlotSeries& s = plot.series[k];
-      const PLINT colour = 2 + static_cast<PLINT>(k % (palette_size - 1));
-      plcol0(colour);
-      plwidth(2.0);
-      if (s.markers) {
-        std::vector<double> px, py;
-        for (std::size_t i = 0; i < s.x.size(); ++i) {
-          if (std::isfinite(ys[k][i]) && std::isfinite(s.x[i])) px.push_back(s.x[i]), py.push_back(ys[k][i]);
-        }
-        plstring(static_cast<PLINT>(px.size()), px.data(), py.data(), "#(728)");
-        if (!s.y_error.empty() && !lows[k].empty()) {
-          plwidth(1.0);
-          plerry(static_cast<PLINT>(px.size()), px.data(), lows[k].data(), highs[k].data());
-        }
-      } else {
-        // Draw each run of drawable points as one line.
-        std::vector<double> px, py;
-        const auto flush = [&] {
-          if (px.size() >= 2) plline(static_cast<PLINT>(px.size()), px.data(), py.data());
-          px.clear();
-          py.clear();
-        };
-        for (std::size_t i = 0; i < s.x.size(); ++i) {
-          if (std::isfinite(ys[k][i]) && std::isfinite(s.x[i])) {
-            px.push_back(s.x[i]);
-            py.push_back(ys[k][i]);
-          } else {
-            flush();
-          }
-        }
-        flush();
-      }
-      opt[k] = s.markers ? PL_LEGEND_SYMBOL : PL_LEGEND_LINE;
-      colours[k] = colour;
-      texts[k] = s.name.c_str();
-      symbols[k] = "#(728)";
-    }
-    PLFLT legend_width = 0, legend_height = 0;
-    plcol0(1);
-    pllegend(&legend_width, &legend_height, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX,
-             PL_POSITION_RIGHT | PL_POSITION_TOP | PL_POSITION_INSIDE, 0.02, 0.02, 0.08, 0, 1, 1, 0,
-             0, static_cast<PLINT>(plot.series.size()), opt.data(), 1.0, 0.9, 2.0, 0.0,
-             colours.data(), texts.data(), nullptr, nullptr, nullptr, nullptr, colours.data(),
-             styles.data(), widths.data(), colours.data(), symbol_scales.data(),
-             symbol_numbers.data(), symbols.data());
-    plend1();
-    plsstrm(previous);
-  }
-  const std::unique_ptr<char, decltype(&std::free)> owned(image, &std::free);
-  if (image_size == 0) throw std::runtime_error("plot: PLplot drew nothing for " + path.string());
-  write_whole_file(output.temporary_path(), {image, image_size});
-  output.commit();
 }
 
 }  // namespace scatterlab

@@ -52,23 +52,6 @@ double exposure_for(const Image& reference) {
   return high > 0.0 ? -std::log2(high) : 0.0;
 }
 
-// The panels left to right with a black gap, each enlarged by pixel replication to at least 128
-// pixels wide so that small study images can be seen.
-Image side_by_side(const std::vector<const Image*>& panels) {
-  const int w = panels.front()->width, h = panels.front()->height;
-  const int zoom = std::max(1, 128 / w), gap = 2 * zoom;
-  const int count = static_cast<int>(panels.size());
-  Image out(count * w * zoom + (count - 1) * gap, h * zoom);
-  for (int p = 0; p < count; ++p) {
-    const Image& panel = *panels[static_cast<std::size_t>(p)];
-    for (int j = 0; j < h * zoom; ++j) {
-      for (int i = 0; i < w * zoom; ++i)
-        out.at(p * (w * zoom + gap) + i, j) = panel.at(i / zoom, j / zoom);
-    }
-  }
-  return out;
-}
-
 void write_csv(const std::vector<RenderStudyRow>& rows, const std::filesystem::path& path) {
   write_text_file(path, [&rows](std::ostream& file) {
     file << "scene,method,budget,light_samples,seconds,rmse,relative_error,mean_z2\n";
@@ -80,17 +63,33 @@ void write_csv(const std::vector<RenderStudyRow>& rows, const std::filesystem::p
   });
 }
 
+// A method's name in a legend, with the paper it follows (render/single_scatter_renderer.hpp).
+std::string method_name(RenderMethod method) {
+  switch (method) {
+    case RenderMethod::straight:
+      return "straight shadow rays (Jensen et al. 2001)";
+    case RenderMethod::walter:
+      return "refracted paths (Walter et al. 2009)";
+    case RenderMethod::holzschuch:
+      return "support intervals (Holzschuch 2013)";
+    case RenderMethod::pathtrace:
+      return "path tracing (Monte Carlo)";
+  }
+  return to_string(method);
+}
+
 void write_error_plot(const std::string& scene, const std::vector<RenderStudyRow>& rows,
                       const std::filesystem::path& path) {
   LinePlot plot;
-  plot.title = fmt::format("{}: single scattering, error against run time", scene);
-  plot.x_label = "seconds per image";
-  plot.y_label = "relative RMS error against the reference";
+  plot.title = fmt::format("{}: once-scattered image, error against run time", scene);
+  plot.x_label = "wall-clock time per image (s)";
+  plot.y_label = "relative RMS error against the reference image";
   plot.y_scale = AxisScale::log;
   plot.log_x = true;
   for (const RenderMethod method : study_methods) {
     PlotSeries series;
-    series.name = to_string(method);
+    series.name = method_name(method);
+    series.model = to_string(method);
     for (const RenderStudyRow& row : rows) {
       if (row.scene != scene || row.method != method) continue;
       // A log axis cannot show 0 s; the clock's resolution is the floor.
@@ -172,10 +171,27 @@ std::vector<RenderStudyRow> run_render_study(
       largest.push_back(std::move(last));
     }
     write_error_plot(entry.name, rows, out_dir / (entry.name + "_error.png"));
-    std::vector<const Image*> panels = {&reference.image};
-    for (const RenderResult& result : largest) panels.push_back(&result.image);
-    write_png(side_by_side(panels), out_dir / (entry.name + "_images.png"),
-              exposure_for(reference.image), 2.2);
+    // The reference and each method at its largest budget, titled, at one exposure.
+    ImageFigure figure;
+    figure.title =
+        fmt::format("{}: once-scattered radiance, {} x {} pixels, one exposure for every image",
+                    entry.name, options.size, options.size);
+    figure.exposure = exposure_for(reference.image);
+    figure.panels.push_back(
+        {fmt::format("reference: {}\n{} points per interval, {} on the light",
+                     method_name(RenderMethod::holzschuch), options.reference_samples,
+                     options.reference_light_samples),
+         &reference.image});
+    for (std::size_t m = 0; m < largest.size(); ++m) {
+      const RenderMethod method = study_methods[m];
+      const std::string budget =
+          method == RenderMethod::pathtrace
+              ? fmt::format("{} paths per pixel", options.pathtrace_budgets.back())
+              : fmt::format("{} points per ray and on the light", options.budgets.back());
+      figure.panels.push_back(
+          {fmt::format("{}\n{}", method_name(method), budget), &largest[m].image});
+    }
+    write_png(figure, out_dir / (entry.name + "_images.png"));
   }
   write_csv(rows, out_dir / "render_study.csv");
   return rows;

@@ -64,10 +64,16 @@ Section half_space_convergence(const Profile& profile) {
       "N^-1/2 (least-squares slope of log stderr against log photons in [-0.6, -0.4]).";
   section.table.columns = {"photons", "seconds", "photons_per_second", "diffuse_reflectance",
                            "stderr", "relative_error", "z"};
-  LinePlot plot{"Half-space, index-matched: error against run time", "wall seconds",
-                "relative error of the total diffuse reflectance", AxisScale::log, true, {}};
-  PlotSeries errors{"|Monte Carlo - exact| / exact", {}, {}, {}, true};
-  PlotSeries predicted{"standard error / exact", {}, {}, {}, false};
+  LinePlot plot{fmt::format("Index-matched half-space, normal beam, albedo {:g}:\nerror of the "
+                            "total diffuse reflectance against run time",
+                            albedo),
+                "wall-clock time (s)",
+                "relative error of $R_\\mathrm{d}$",
+                AxisScale::log,
+                true,
+                {}};
+  PlotSeries errors{"|Monte Carlo − exact| / exact", {}, {}, {}, true, "monte_carlo"};
+  PlotSeries predicted{"standard error / exact", {}, {}, {}, false, "standard_error"};
   std::vector<double> photon_counts, standard_errors;
   const int budgets = profile.quick ? 6 : 9;
   for (int b = 0; b < budgets; ++b) {

@@ -69,8 +69,14 @@ Section infinite_medium_convergence(const Profile& profile) {
         point_source_fluence_shell_average(kAlbedo, shells.edge(i), shells.edge(i + 1));
   }
 
-  LinePlot plot{"Infinite medium, point source: error against run time", "wall seconds",
-                "relative RMS error of the shell fluence", AxisScale::log, true, {}};
+  LinePlot plot{fmt::format("Infinite medium, isotropic point source, albedo {:g}:\nerror of the "
+                            "fluence (shells {:g} to {:g} mfp) against run time",
+                            kAlbedo, kRhoMin, kRhoMax),
+                "wall-clock time (s)",
+                "relative RMS error of $\\phi$",
+                AxisScale::log,
+                true,
+                {}};
   const int budgets = profile.quick ? 6 : 8;
   const double first_budget = profile.quick ? 2e4 : 1e5;
   for (Estimator estimator : {Estimator::collision, Estimator::track_length}) {
@@ -101,7 +107,13 @@ Section infinite_medium_convergence(const Profile& profile) {
            fmt::format("{:.4g}", last.predicted_relative_rms),
            fmt::format("{:.3f}", last.mean_squared_z)});
     }
-    plot.series.push_back({to_string(estimator), seconds, errors, {}, true});
+    plot.series.push_back(
+        {estimator == Estimator::collision ? "collision estimator" : "track-length estimator",
+         seconds,
+         errors,
+         {},
+         true,
+         to_string(estimator)});
     const double slope = log_log_slope(photons, errors);
     const double time_slope = log_log_slope(seconds, errors);
     section.checks.push_back(

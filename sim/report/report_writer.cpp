@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/io/simulation_file.hpp"
@@ -72,7 +74,10 @@ void write_report(const std::filesystem::path& directory, const std::string& com
         to_markdown(section.table), section.id, section.id);
     for (const Figure& figure : section.figures) {
       write_png(figure.plot, directory / (figure.id + ".png"));
-      markdown += fmt::format("\n![{}]({}.png)\n", figure.plot.title, figure.id);
+      // The title's line break (io/plot.hpp) is a space in the image's text.
+      std::string alt = figure.plot.title;
+      std::replace(alt.begin(), alt.end(), '\n', ' ');
+      markdown += fmt::format("\n![{}]({}.png)\n", alt, figure.id);
     }
     const auto failures = section.failures();
     if (!failures.empty()) {

@@ -32,18 +32,35 @@ std::string nan_or(double v) {
   return std::isnan(v) ? "nan" : fmt::format("{:.6g}", v);
 }
 
-// A model's name in a legend: what it is and where it is published.
+// A model's name in a legend: what it is and where it is published (models/dipole.hpp,
+// models/quantized_diffusion.hpp, models/grosjean_beam.hpp).
 std::string display_name(const std::string& model) {
   const std::string sum = "+single_scatter";
   if (model.ends_with(sum)) {
-    return display_name(model.substr(0, model.size() - sum.size())) + " + exact single";
+    return display_name(model.substr(0, model.size() - sum.size())) + " + exact single scattering";
   }
-  if (model == "dipole") return "dipole (Jensen 2001)";
+  if (model == "dipole") return "classical dipole (Jensen et al. 2001)";
   if (model == "better_dipole") return "better dipole (d'Eon 2012)";
   if (model == "quantized_diffusion") return "quantized diffusion (d'Eon & Irving 2011)";
   if (model == "scatterlab_grosjean_beam") return "Grosjean beam (scatterlab)";
-  if (model == "single_scatter") return "exact single scatter";
+  if (model == "single_scatter") return "exact single scattering";
   return model;
+}
+
+// A model's style key (io/plot.hpp): the same colour and line in every figure.
+std::string style_key(const std::string& model) {
+  const std::string prefix = "scatterlab_";
+  return model.starts_with(prefix) ? model.substr(prefix.size()) : model;
+}
+
+constexpr const char* monte_carlo_name = "Monte Carlo ±1σ";
+
+// The medium, short enough for a plot title's line (matplotlib mathtext), its values rounded:
+// 1 - 0.99 is 0.010000000000000009 in binary.
+std::string title_of(const HalfSpaceMedium& medium) {
+  return fmt::format(
+      "$\\sigma_a$ = {:.4g}, $\\sigma_s$ = {:.4g} mfp$^{{-1}}$, $g$ = {:.4g}, $\\eta$ = {:.4g}",
+      medium.sigma_a, medium.sigma_s, medium.g, medium.eta);
 }
 
 }  // namespace
@@ -86,27 +103,31 @@ std::vector<std::filesystem::path> write_point_source_report(
   });
   written.push_back(errors);
 
+  std::vector<PlotFile> figures;
   for (const PointSourceComparison& c : comparisons) {
     const auto rho = centres(c.rho_lo, c.rho_hi);
     for (const AxisScale scale : {AxisScale::linear, AxisScale::log}) {
       LinePlot plot;
-      plot.title = fmt::format("Isotropic point source, albedo {}, g = 0", c.albedo);
-      plot.x_label = "r (mfp)";
-      plot.y_label = "r#u2#d #gf(r)";
+      plot.title = fmt::format(
+          "Isotropic point source in an infinite medium, albedo {:g}, isotropic scattering",
+          c.albedo);
+      plot.x_label = "distance from the source $r$ (mfp)";
+      plot.y_label = "$r^2\\,\\phi(r)$ (per unit source power)";
       plot.y_scale = scale;
       std::vector<double> mc_error = times_rho2(rho, c.monte_carlo_stderr);
       plot.series = {
-          {"Monte Carlo", rho, times_rho2(rho, c.monte_carlo), mc_error, true},
-          {"exact", rho, times_rho2(rho, c.exact), {}, false},
-          {"diffusion", rho, times_rho2(rho, c.diffusion), {}, false},
-          {"Grosjean", rho, times_rho2(rho, c.grosjean), {}, false},
+          {monte_carlo_name, rho, times_rho2(rho, c.monte_carlo), mc_error, true, "monte_carlo"},
+          {"exact transport", rho, times_rho2(rho, c.exact), {}, false, "exact"},
+          {"classical diffusion", rho, times_rho2(rho, c.diffusion), {}, false, "diffusion"},
+          {"Grosjean (1956)", rho, times_rho2(rho, c.grosjean), {}, false, "grosjean"},
       };
       const auto path =
           directory / fmt::format("deon_albedo_{}_{}.png", c.albedo, to_string(scale));
-      write_png(plot, path);
+      figures.push_back({plot, path});
       written.push_back(path);
     }
   }
+  write_pngs(figures);
   return written;
 }
 
@@ -135,10 +156,7 @@ std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceCompar
   const auto medium_line = fmt::format(
       "sigma_a {:.4g}, sigma_s {:.4g}, g {:.4g}, eta {:.4g}, entry transmittance {:.4f}",
       c.medium.sigma_a, c.medium.sigma_s, c.medium.g, c.medium.eta, c.entry_transmittance);
-  // The medium, short enough for a plot title (PLplot: #gs sigma, #gy eta, #d / #u sub/sup).
-  const auto medium_title =
-      fmt::format("#gs#da#u {:.4g}, #gs#ds#u {:.4g}, g {:.4g}, #gy {:.4g}", c.medium.sigma_a,
-                  c.medium.sigma_s, c.medium.g, c.medium.eta);
+  const std::string medium_title = title_of(c.medium);
   const ModelPart parts[] = {ModelPart::all, ModelPart::single, ModelPart::multiple};
   const auto part_name = [](ModelPart part) {
     const std::string suffix = tally_suffix(part);
@@ -195,38 +213,45 @@ std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceCompar
   const auto part_title = [](ModelPart part) {
     switch (part) {
       case ModelPart::single:
-        return "once scattered";
+        return "light scattered once";
       case ModelPart::multiple:
-        return "scattered at least twice";
+        return "light scattered at least twice";
       case ModelPart::all:
         return "all scattered light";
     }
     return "";
   };
+  std::vector<PlotFile> figures;
   for (const ModelPart part : {ModelPart::multiple, ModelPart::all}) {
     for (const Mode mode :
          {Mode{"linear", AxisScale::linear, false}, Mode{"log", AxisScale::log, false},
           Mode{"sqrt", AxisScale::sqrt, false}, Mode{"rR", AxisScale::linear, true}}) {
       LinePlot plot;
-      plot.title = fmt::format("R#dd#u(r), {}: {}", part_title(part), medium_title);
-      plot.x_label = "r (mfp)";
-      plot.y_label = mode.times_r ? "r R#dd#u(r) (mfp#u-1#d per W incident)"
-                                  : "R#dd#u(r) (mfp#u-2#d per W incident)";
+      plot.title =
+          fmt::format("Searchlight, diffuse reflectance of {}\n{}", part_title(part), medium_title);
+      plot.x_label = "distance from the beam $r$ (mfp)";
+      plot.y_label = mode.times_r ? "$r\\,R_\\mathrm{d}(r)$ (mfp$^{-1}$ per unit incident power)"
+                                  : "$R_\\mathrm{d}(r)$ (mfp$^{-2}$ per unit incident power)";
       plot.y_scale = mode.scale;
       const auto mc = c.reflectance_mc.find(part);
       if (mc != c.reflectance_mc.end()) {
         const MonteCarloCurve& m = mc->second;
-        plot.series.push_back({"Monte Carlo", r, mode.times_r ? times_r(m.mean) : m.mean,
-                               mode.times_r ? times_r(m.stderr_of_mean) : m.stderr_of_mean, true});
+        plot.series.push_back({monte_carlo_name, r, mode.times_r ? times_r(m.mean) : m.mean,
+                               mode.times_r ? times_r(m.stderr_of_mean) : m.stderr_of_mean, true,
+                               "monte_carlo"});
       }
       for (const ModelCurve& m : c.reflectance) {
         if (m.part != part) continue;
-        plot.series.push_back(
-            {display_name(m.model), r, mode.times_r ? times_r(m.values) : m.values, {}, false});
+        plot.series.push_back({display_name(m.model),
+                               r,
+                               mode.times_r ? times_r(m.values) : m.values,
+                               {},
+                               false,
+                               style_key(m.model)});
       }
       const auto path =
           directory / fmt::format("{}_reflectance_{}_{}.png", stem, part_name(part), mode.name);
-      write_png(plot, path);
+      figures.push_back({plot, path});
       written.push_back(path);
     }
   }
@@ -268,26 +293,29 @@ std::vector<std::filesystem::path> write_half_space_report(const HalfSpaceCompar
     };
     for (const ModelPart part : {ModelPart::multiple, ModelPart::all}) {
       LinePlot plot;
-      plot.title = fmt::format("#gf on the axis (r < {:.3g} mfp), {}: {}", c.r_edges[1],
-                               part_title(part), medium_title);
-      plot.x_label = "z (mfp)";
-      plot.y_label = "#gf(r, z) (mfp#u-2#d per W incident)";
+      plot.title = fmt::format("Searchlight, fluence near the beam ($r$ < {:.3g} mfp) of {}\n{}",
+                               c.r_edges[1], part_title(part), medium_title);
+      plot.x_label = "depth $z$ (mfp)";
+      plot.y_label = "$\\phi(r, z)$ (mfp$^{-2}$ per unit incident power)";
       plot.y_scale = AxisScale::log;
       const auto mc = c.fluence_mc.find(part);
       if (mc != c.fluence_mc.end()) {
-        plot.series.push_back({"Monte Carlo", z, first_row(mc->second.mean),
-                               first_row(mc->second.stderr_of_mean), true});
+        plot.series.push_back({monte_carlo_name, z, first_row(mc->second.mean),
+                               first_row(mc->second.stderr_of_mean), true, "monte_carlo"});
       }
       for (const ModelCurve& m : c.fluence) {
-        if (m.part == part)
-          plot.series.push_back({display_name(m.model), z, first_row(m.values), {}, false});
+        if (m.part == part) {
+          plot.series.push_back(
+              {display_name(m.model), z, first_row(m.values), {}, false, style_key(m.model)});
+        }
       }
       if (plot.series.empty()) continue;
       const auto path = directory / fmt::format("{}_fluence_axis_{}.png", stem, part_name(part));
-      write_png(plot, path);
+      figures.push_back({plot, path});
       written.push_back(path);
     }
   }
+  write_pngs(figures);
   return written;
 }
 
@@ -313,8 +341,8 @@ SingleScatterAgreement compare_single_scatter(const MonteCarloCurve& monte_carlo
 
 std::vector<std::filesystem::path> write_single_scatter_report(
     const std::vector<double>& r_edges, const MonteCarloCurve& mc,
-    const SingleScatterReflectance& exact, const std::filesystem::path& directory,
-    const std::string& stem) {
+    const SingleScatterReflectance& exact, const HalfSpaceMedium& medium,
+    const std::filesystem::path& directory, const std::string& stem) {
   make_output_directory(directory, "--out");
   const std::size_t nr = r_edges.size() - 1;
   const auto csv = directory / fmt::format("{}_single_scatter.csv", stem);
@@ -332,14 +360,18 @@ std::vector<std::filesystem::path> write_single_scatter_report(
   });
   std::vector<double> r(nr);
   for (std::size_t i = 0; i < nr; ++i) r[i] = 0.5 * (r_edges[i] + r_edges[i + 1]);
-  LinePlot plot{"Once-scattered reflectance: Monte Carlo against the exact solver",
-                "r (mfp)",
-                "R#d1#u(r)",
-                AxisScale::log,
-                false,
-                {}};
-  plot.series.push_back({"Monte Carlo, once scattered", r, mc.mean, mc.stderr_of_mean, true});
-  plot.series.push_back({"exact (refractive single scatter)", r, exact.mean, {}, false});
+  LinePlot plot{
+      "Searchlight, reflectance of light scattered once: Monte Carlo against the exact "
+      "refractive single-scatter solution\n" +
+          title_of(medium),
+      "distance from the beam $r$ (mfp)",
+      "$R_1(r)$ (mfp$^{-2}$ per unit incident power)",
+      AxisScale::log,
+      false,
+      {}};
+  plot.series.push_back(
+      {"Monte Carlo ±1σ, once scattered", r, mc.mean, mc.stderr_of_mean, true, "monte_carlo"});
+  plot.series.push_back({"exact single scattering", r, exact.mean, {}, false, "exact"});
   const auto png = directory / fmt::format("{}_single_scatter_log.png", stem);
   write_png(plot, png);
   return {csv, png};

@@ -160,6 +160,15 @@ for albedo in 0.01 0.1 0.3 0.5 0.7 0.9 0.99; do
 done
 if [ "$pngs" -eq 14 ]; then pass; else fail "validate deon: $pngs of 14 PNG files"; fi
 if compgen -G "$work/deon/*.tmp-*" >/dev/null; then fail "validate deon left temporary files"; else pass; fi
+# Without python3 and matplotlib, the commands that draw figures stop before their work, say what
+# to install, and write nothing.
+if SCATTERLAB_PYTHON="$work/no-python3" "$exe" validate deon --quick --out "$work/deon-nopy" \
+  >/dev/null 2>"$work/stderr"; then
+  fail "validate deon without python3: exited 0"
+elif grep -q "figures need python3 with matplotlib (Debian: python3-matplotlib)" "$work/stderr" &&
+  [ ! -e "$work/deon-nopy" ]; then pass; else
+  fail "validate deon without python3: $(cat "$work/stderr"; ls "$work/deon-nopy" 2>&1)"
+fi
 if "$exe" validate deon --photons 2.5 --out "$work/deon2" >/dev/null 2>"$work/stderr"; then
   fail "validate deon --photons 2.5: exited 0"
 elif grep -q "photons" "$work/stderr" && [ ! -e "$work/deon2" ]; then pass; else

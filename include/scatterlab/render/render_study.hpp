@@ -15,7 +15,8 @@
 // Writes into the output directory: render_study.csv (scene, method, budget, light_samples,
 // seconds, rmse, relative_error, mean_z2), <scene>_error.png (relative error against seconds,
 // both axes logarithmic, one line per method), and <scene>_images.png (reference, then each
-// method at its largest budget, side by side, one exposure for all).
+// method at its largest budget, side by side, one exposure for all, each titled with its method
+// and budget).
 
 #include <filesystem>
 #include <functional>

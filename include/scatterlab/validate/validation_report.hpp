@@ -44,10 +44,10 @@ SingleScatterAgreement compare_single_scatter(const MonteCarloCurve& monte_carlo
                                               double monte_carlo_total_stderr);
 
 // <stem>_single_scatter.csv (r, MC, stderr, exact, its quadrature error, z) and
-// <stem>_single_scatter_log.png. Returns the paths.
+// <stem>_single_scatter_log.png, whose title gives the medium. Returns the paths.
 std::vector<std::filesystem::path> write_single_scatter_report(
     const std::vector<double>& r_edges, const MonteCarloCurve& monte_carlo,
-    const SingleScatterReflectance& exact, const std::filesystem::path& directory,
-    const std::string& stem);
+    const SingleScatterReflectance& exact, const HalfSpaceMedium& medium,
+    const std::filesystem::path& directory, const std::string& stem);
 
 }  // namespace scatterlab
