@@ -47,6 +47,13 @@ std::optional<double> drawable(double v, AxisScale scale) {
   return v;
 }
 
+void check_size(int width, int height) {
+  if (width < 100 || height < 100) {
+    throw InputError("plot", "size " + std::to_string(width) + "x" + std::to_string(height),
+                     "at least 100 x 100 pixels");
+  }
+}
+
 void check(const LinePlot& plot) {
   if (plot.series.empty()) throw InputError("plot", "no series", "at least one series");
   for (const PlotSeries& s : plot.series) {
@@ -55,11 +62,7 @@ void check(const LinePlot& plot) {
                        "x, y (and y_error if given) of equal length");
     }
   }
-  if (plot.width < 100 || plot.height < 100) {
-    throw InputError("plot",
-                     "size " + std::to_string(plot.width) + "x" + std::to_string(plot.height),
-                     "at least 100 x 100 pixels");
-  }
+  check_size(plot.width, plot.height);
   const AxisScale x_scale = plot.log_x ? AxisScale::log : AxisScale::linear;
   for (const PlotSeries& s : plot.series) {
     for (std::size_t i = 0; i < s.y.size(); ++i) {
@@ -312,11 +315,7 @@ void write_png(const ImageFigure& figure, const std::filesystem::path& path) {
                        "images of one size");
     }
   }
-  if (figure.width < 100 || figure.height < 100) {
-    throw InputError("plot",
-                     "size " + std::to_string(figure.width) + "x" + std::to_string(figure.height),
-                     "at least 100 x 100 pixels");
-  }
+  check_size(figure.width, figure.height);
   if (!(figure.gamma > 0.0) || !std::isfinite(figure.gamma)) {
     throw InputError("gamma", "got " + std::to_string(figure.gamma), "a finite number > 0");
   }
