@@ -158,7 +158,7 @@ def fit(file: str | Path | Result, *,
     return read(file)
 
 
-def open(path: str | Path) -> Result:  # noqa: A001 (named as h5py.File and io.open are: it opens a file)
+def open(path: str | Path) -> Result:  # noqa: A001 (it opens a file, as io.open does)
     """Reads any file scatterlab wrote (simulate, searchlight, sphere, slab, merge, fit) whole:
     the same Result as ``simulate`` returns."""
     return read(path)
