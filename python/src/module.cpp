@@ -72,20 +72,18 @@ void run_scene(const std::string& toml, const std::string& origin, const std::st
                const std::string& path, const std::string& command, bool model_fluence,
                const py::object& progress) {
   // Runs the spec (the engine checks its memory first, engine.hpp), and writes its file unless
-  // the run was stopped.
-  auto run_and_write = [&](auto& spec, auto&& run, auto&& write) {
+  // the run was stopped; `extra` are write_run_result's further arguments for this geometry.
+  const std::filesystem::path out_path(path);
+  auto run_and_write = [&](auto& spec, auto&& run, auto... extra) {
     without_gil(progress, [&](const ProgressCallback& callback, const RunControl& control,
                               const std::atomic<bool>& stopped) {
       const TransportOutput out = run(spec, callback, control);
-      if (!stopped) write(spec, out);
+      if (!stopped) write_run_result(out_path, spec, out, command, extra...);
     });
   };
-  const std::filesystem::path out_path(path);
   if (geometry == "infinite") {
     Scene scene = parse_scene(toml, origin, Validation::on_read);
-    run_and_write(
-        scene.spec, [](auto& s, auto& p, auto& c) { return simulate(s, p, c); },
-        [&](auto& s, auto& out) { write_run_result(out_path, s, out, command); });
+    run_and_write(scene.spec, [](auto& s, auto& p, auto& c) { return simulate(s, p, c); });
   } else if (geometry == "half_space") {
     SearchlightScene scene = parse_searchlight_scene(toml, origin, Validation::on_read);
     if (model_fluence && !scene.spec.tallies.fluence) {
@@ -94,17 +92,13 @@ void run_scene(const std::string& toml, const std::string& origin, const std::st
     }
     run_and_write(
         scene.spec, [](auto& s, auto& p, auto& c) { return run_searchlight(s, p, c); },
-        [&](auto& s, auto& out) { write_run_result(out_path, s, out, command, model_fluence); });
+        model_fluence);
   } else if (geometry == "sphere") {
     LitSphereScene scene = parse_lit_sphere_scene(toml, origin, Validation::on_read);
-    run_and_write(
-        scene.spec, [](auto& s, auto& p, auto& c) { return run_lit_sphere(s, p, c); },
-        [&](auto& s, auto& out) { write_run_result(out_path, s, out, command); });
+    run_and_write(scene.spec, [](auto& s, auto& p, auto& c) { return run_lit_sphere(s, p, c); });
   } else if (geometry == "slab") {
     LayeredSlabScene scene = parse_layered_slab_scene(toml, origin, Validation::on_read);
-    run_and_write(
-        scene.spec, [](auto& s, auto& p, auto& c) { return run_layered_slab(s, p, c); },
-        [&](auto& s, auto& out) { write_run_result(out_path, s, out, command); });
+    run_and_write(scene.spec, [](auto& s, auto& p, auto& c) { return run_layered_slab(s, p, c); });
   } else {
     throw InputError("geometry.type", "got \"" + geometry + "\"",
                      "infinite, half_space, sphere or slab");
@@ -142,9 +136,7 @@ void fit_file(const std::string& path, const std::string& csv, const std::string
 // A build without the fit component (Ceres) answers as the program's `fit` does.
 void fit_file(const std::string&, const std::string&, const std::string&, int, int,
               const py::object&) {
-  throw InputError("fit", "this build of scatterlab has no 'fit' command",
-                   "a build with Ceres (Debian: libceres-dev): install it, then configure and "
-                   "build again");
+  throw not_in_this_build("fit", "Ceres (Debian: libceres-dev)");
 }
 #endif
 

@@ -13,11 +13,7 @@ Action add_unavailable_command(CLI::App& app, const std::string& name,
   auto* command = app.add_subcommand(
       name, fmt::format("{} (not in this build: it needs {})", description, needs));
   command->allow_extras();
-  return [name, needs]() -> int {
-    throw InputError(
-        name, "this build of scatterlab has no '" + name + "' command",
-        fmt::format("a build with {}: install it, then configure and build again", needs));
-  };
+  return [name, needs]() -> int { throw not_in_this_build(name, needs); };
 }
 
 }  // namespace scatterlab::cli

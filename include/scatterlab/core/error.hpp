@@ -1,5 +1,6 @@
 #pragma once
-// Bad input is reported once, naming the field and what it accepts (docs/architecture.md, "Errors").
+// Bad input is reported once, naming the field and what it accepts (docs/architecture.md,
+// "Errors").
 
 #include <stdexcept>
 #include <string>
@@ -17,5 +18,12 @@ class InputError : public std::runtime_error {
  private:
   std::string field_;
 };
+
+// A command of an optional component that this build left out (CMakeLists.txt, "Optional
+// components"), e.g. not_in_this_build("fit", "Ceres (Debian: libceres-dev)").
+inline InputError not_in_this_build(const std::string& command, const std::string& needs) {
+  return InputError(command, "this build of scatterlab has no '" + command + "' command",
+                    "a build with " + needs + ": install it, then configure and build again");
+}
 
 }  // namespace scatterlab
