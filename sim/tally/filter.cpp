@@ -73,6 +73,10 @@ Filter sphere_patch_filter(const UniformAxis& psi, const UniformAxis& azimuth, d
   return f;
 }
 
+Filter triangle_filter(const std::vector<double>& areas) {
+  return {{"triangle"}, {areas.size()}, areas};
+}
+
 Filter component_filter(std::size_t components) {
   return {{"component"}, {components}, std::vector<double>(components, 1.0)};
 }

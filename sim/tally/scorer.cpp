@@ -84,6 +84,7 @@ Scorer::Scorer(const TallyAxes& axes, const TallyBook& book)
                    book.offset(Score::transmitted_by_angle),
                    book.offset(Score::transmitted_by_radius_angle)},
       exit_by_polar_angle_(book.offset(Score::exit_by_polar_angle)),
+      exit_by_triangle_(book.offset(Score::exit_by_triangle)),
       reflected_at_entry_(book.offset(Score::reflected_at_entry)),
       absorbed_(book.offset(Score::absorbed)),
       absorbed_in_grid_(book.offset(Score::absorbed_in_grid)),

@@ -3,92 +3,56 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "scatterlab/core/phase_function.hpp"
-#include "scatterlab/tally/scorer.hpp"
-#include "scatterlab/tally/tally_book.hpp"
 #include "scatterlab/transport/half_space.hpp"
 #include "scatterlab/transport/infinite_medium.hpp"
-#include "scatterlab/transport/random_walk.hpp"
+#include "scatterlab/transport/kernel.hpp"
 #include "scatterlab/transport/slab.hpp"
 #include "scatterlab/transport/sphere.hpp"
 
 namespace scatterlab {
 namespace {
 
-// What every kernel shares: the problem, its tallies' buffer layout and scorer, and how to run.
-struct Kernel {
-  const TransportProblem& problem;
-  const TallyBook& book;
-  const Scorer& scorer;
-  const ProgressCallback& progress;
-  const RunControl& control;
-
-  template <class Geometry, class Phase, VolumeEstimator estimator,
-            Weighting weighting = Weighting::analog>
-  BatchOutcome run(const Geometry& geometry, const Phase& phase) const {
-    const RandomWalk<Geometry, Phase, estimator, weighting> walk(
-        geometry, phase, problem.source, scorer, problem.albedo, problem.run.escape_radius,
-        problem.run.seed);
-    return run_batches(problem.run, book.size(), walk, progress, control);
+// The slab's layers hold their own media (the phase function is unused) and are scored at events
+// alone.
+BatchOutcome run_slab(const detail::Kernel& kernel) {
+  const TransportProblem& problem = kernel.problem;
+  if (kernel.book.scores_volume()) {
+    throw std::invalid_argument("transport: a slab is scored at absorption and exit only");
   }
+  const Slab geometry(problem.layers, problem.n_above, problem.n_below);
+  if (problem.weighting == Weighting::implicit_capture) {
+    return kernel.run<Slab, IsotropicPhase, VolumeEstimator::none, Weighting::implicit_capture>(
+        geometry, IsotropicPhase{}, problem.source);
+  }
+  return kernel.run<Slab, IsotropicPhase, VolumeEstimator::none>(geometry, IsotropicPhase{},
+                                                                 problem.source);
+}
 
-  // No volume tally: nothing is scored at collisions or along flights.
-  template <class Geometry, class Phase>
-  BatchOutcome with_estimator(const Geometry& geometry, const Phase& phase) const {
-    if (!book.scores_volume()) return run<Geometry, Phase, VolumeEstimator::none>(geometry, phase);
-    if (problem.estimator == Estimator::collision) {
-      return run<Geometry, Phase, VolumeEstimator::collision>(geometry, phase);
-    }
-    if constexpr (Geometry::has_surface) {
+// The geometries this module holds. eta = 1: no Fresnel arithmetic and no extra random numbers
+// at the surface.
+BatchOutcome select_kernel(const detail::Kernel& kernel) {
+  const TransportProblem& problem = kernel.problem;
+  if (problem.weighting != Weighting::analog && problem.geometry != GeometryKind::slab) {
+    throw std::invalid_argument("transport: implicit capture runs only in a slab");
+  }
+  const Source& source = problem.source;
+  switch (problem.geometry) {
+    case GeometryKind::infinite:
+      return kernel.with_phase(InfiniteMedium{}, source);
+    case GeometryKind::half_space:
+      if (problem.eta == 1.0) return kernel.with_phase(HalfSpace<false>(problem.eta), source);
+      return kernel.with_phase(HalfSpace<true>(problem.eta), source);
+    case GeometryKind::sphere:
+      if (problem.eta == 1.0) return kernel.with_phase(Sphere<false>(problem.radius, 1.0), source);
+      return kernel.with_phase(Sphere<true>(problem.radius, problem.eta), source);
+    case GeometryKind::slab:
+      return run_slab(kernel);
+    case GeometryKind::mesh:
       throw std::invalid_argument(
-          "transport: the track-length estimator runs only in the infinite medium");
-    } else {
-      return run<Geometry, Phase, VolumeEstimator::track_length>(geometry, phase);
-    }
+          "transport: a mesh runs with its geometry and light (kernel.hpp, render/lit_mesh.hpp)");
   }
-
-  // The layers hold their own media (the phase function is unused) and are scored at events
-  // alone.
-  BatchOutcome slab() const {
-    if (book.scores_volume()) {
-      throw std::invalid_argument("transport: a slab is scored at absorption and exit only");
-    }
-    const Slab geometry(problem.layers, problem.n_above, problem.n_below);
-    if (problem.weighting == Weighting::implicit_capture) {
-      return run<Slab, IsotropicPhase, VolumeEstimator::none, Weighting::implicit_capture>(
-          geometry, IsotropicPhase{});
-    }
-    return run<Slab, IsotropicPhase, VolumeEstimator::none>(geometry, IsotropicPhase{});
-  }
-
-  // eta = 1: no Fresnel arithmetic and no extra random numbers at the surface.
-  template <class Phase>
-  BatchOutcome with_geometry(const Phase& phase) const {
-    switch (problem.geometry) {
-      case GeometryKind::infinite:
-        return with_estimator(InfiniteMedium{}, phase);
-      case GeometryKind::half_space:
-        if (problem.eta == 1.0) return with_estimator(HalfSpace<false>(problem.eta), phase);
-        return with_estimator(HalfSpace<true>(problem.eta), phase);
-      case GeometryKind::sphere:
-        if (problem.eta == 1.0) return with_estimator(Sphere<false>(problem.radius, 1.0), phase);
-        return with_estimator(Sphere<true>(problem.radius, problem.eta), phase);
-      case GeometryKind::slab:
-        return slab();
-    }
-    throw std::invalid_argument("transport: unknown geometry");
-  }
-
-  // g = 0 samples isotropically: no HG arithmetic where the scene does not need it.
-  BatchOutcome select() const {
-    if (problem.weighting != Weighting::analog && problem.geometry != GeometryKind::slab) {
-      throw std::invalid_argument("transport: implicit capture runs only in a slab");
-    }
-    if (problem.geometry == GeometryKind::slab) return slab();
-    return problem.g == 0.0 ? with_geometry(IsotropicPhase{})
-                            : with_geometry(HenyeyGreenstein{problem.g});
-  }
-};
+  throw std::invalid_argument("transport: unknown geometry");
+}
 
 }  // namespace
 
@@ -121,6 +85,12 @@ void check_transport_memory(const TransportProblem& problem, int ranks, bool res
 
 TransportOutput transport(const TransportProblem& problem, const ProgressCallback& progress,
                           const RunControl& control) {
+  return detail::run_kernel(problem, progress, control, select_kernel);
+}
+
+TransportOutput detail::run_kernel(const TransportProblem& problem,
+                                   const ProgressCallback& progress, const RunControl& control,
+                                   const std::function<BatchOutcome(const Kernel&)>& select) {
   const auto start = std::chrono::steady_clock::now();
   // Every rank decides on the root's figure (it alone holds a resumed state), so that all stop.
   SerialCommunicator serial;
@@ -129,7 +99,7 @@ TransportOutput transport(const TransportProblem& problem, const ProgressCallbac
   check_transport_memory(problem, world.size(), resuming);
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
-  const BatchOutcome outcome = Kernel{problem, book, scorer, progress, control}.select();
+  const BatchOutcome outcome = select(Kernel{problem, book, scorer, progress, control});
   TransportOutput output;
   if (!outcome.mean.empty()) {  // the root's; other ranks fold only their slice
     output.tallies = book.finish(outcome.mean, outcome.standard_error, problem.photon_power);

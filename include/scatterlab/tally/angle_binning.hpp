@@ -21,7 +21,8 @@ class CosineBinning {
 
   explicit CosineBinning(const UniformAxis& angle) : bins_(angle.bins) {
     edge_cosines_.resize(static_cast<std::size_t>(bins_) + 1);
-    for (int k = 0; k <= bins_; ++k) edge_cosines_[static_cast<std::size_t>(k)] = std::cos(angle.edge(k));
+    for (int k = 0; k <= bins_; ++k)
+      edge_cosines_[static_cast<std::size_t>(k)] = std::cos(angle.edge(k));
     // Cells narrower than the closest pair of edge cosines hold at most one edge each, so the
     // loop in bin() runs at most once; very fine grids cap the table and loop a little more.
     double narrowest = 2.0;

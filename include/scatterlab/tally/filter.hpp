@@ -45,6 +45,8 @@ Filter layer_filter(std::size_t layers);
 // On a sphere of radius R, a point's polar angle psi from the lit pole and its azimuth about the
 // z axis, by the area of each patch: R^2 (cos psi0 - cos psi1) (azimuth1 - azimuth0), in mfp^2.
 Filter sphere_patch_filter(const UniformAxis& psi, const UniformAxis& azimuth, double radius);
+// The triangles of a mesh, by each triangle's area (in mfp^2).
+Filter triangle_filter(const std::vector<double>& areas);
 // The components of a vector (E_r, E_z): measure 1.
 Filter component_filter(std::size_t components);
 

@@ -54,6 +54,7 @@ class Scorer {
         add_by_azimuth(buffer, zone, block, where.x, where.y, weight);
       }
     }
+    if (exit_by_triangle_ != absent) add(buffer, exit_by_triangle_ + where.triangle, block, weight);
     const double cos_outside = where.cos_outside;
     if (side.by_angle != absent) {
       add(buffer, side.by_angle + static_cast<std::size_t>(exit_binning_.bin(cos_outside)), block,
@@ -193,7 +194,7 @@ class Scorer {
     std::size_t total, by_radius, by_angle, by_radius_angle;
   };
   SideScores exited_, transmitted_;
-  std::size_t exit_by_polar_angle_, reflected_at_entry_;
+  std::size_t exit_by_polar_angle_, exit_by_triangle_, reflected_at_entry_;
   std::size_t absorbed_, absorbed_in_grid_, absorbed_outside_grid_, absorption_depth_, escaped_;
   std::size_t absorbed_by_layer_, absorbed_by_depth_, absorbed_by_radius_depth_;
   // Strides of the row-major arrays [r][z][theta][phi] and [r][theta_o].

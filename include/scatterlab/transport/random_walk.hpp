@@ -40,8 +40,9 @@ namespace scatterlab {
 // run with surface tallies alone).
 enum class VolumeEstimator { none, collision, track_length };
 
+// `Light` launches each photon (Source, or a light that knows its geometry: kernel.hpp).
 template <class Geometry, class Phase, VolumeEstimator estimator,
-          Weighting weighting = Weighting::analog>
+          Weighting weighting = Weighting::analog, class Light = Source>
 class RandomWalk {
   // A flight that is bent at a surface is not one straight track.
   static_assert(!(Geometry::has_surface && estimator == VolumeEstimator::track_length),
@@ -53,7 +54,7 @@ class RandomWalk {
  public:
   // `escape_radius`: photons farther than this from the origin are stopped and counted as
   // escaped (infinity for none).
-  RandomWalk(const Geometry& geometry, const Phase& phase, const Source& source,
+  RandomWalk(const Geometry& geometry, const Phase& phase, const Light& source,
              const Scorer& scorer, double albedo, double escape_radius, std::uint64_t seed)
       : geometry_(geometry),
         phase_(phase),
@@ -157,7 +158,7 @@ class RandomWalk {
  private:
   Geometry geometry_;
   Phase phase_;
-  Source source_;
+  Light source_;
   const Scorer& scorer_;
   double albedo_;
   double escape_radius_;

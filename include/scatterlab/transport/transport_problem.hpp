@@ -24,6 +24,8 @@ enum class GeometryKind {
   half_space,  // z > 0 behind a smooth interface at z = 0 (half_space.hpp)
   sphere,      // |x| < radius behind a smooth interface (sphere.hpp)
   slab,        // layers from z = 0 down, between two ambient media (slab.hpp)
+  mesh,        // a closed triangle mesh: its geometry and light come from outside this module
+               // (kernel.hpp; render/lit_mesh.hpp, with Embree)
 };
 
 struct TransportProblem {

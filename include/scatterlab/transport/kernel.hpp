@@ -1,0 +1,89 @@
+#pragma once
+// The engine's kernel selection (engine.hpp), open to geometries the transport module does not
+// hold: a triangle mesh traced with Embree (render/mesh_boundary.hpp) brings its geometry and its
+// light and runs on the same random walk, batches, statistics and tallies as every other scene.
+//
+// A geometry is a policy of random_walk.hpp; a light provides
+//   bool launch(PhotonRandom&, Vec3& start, Vec3& heading) const;
+// as Source (source.hpp) does: false when the photon is reflected off the surface and never
+// enters.
+
+#include <functional>
+#include <stdexcept>
+
+#include "scatterlab/core/phase_function.hpp"
+#include "scatterlab/tally/scorer.hpp"
+#include "scatterlab/tally/tally_book.hpp"
+#include "scatterlab/transport/batch_runner.hpp"
+#include "scatterlab/transport/engine.hpp"
+#include "scatterlab/transport/random_walk.hpp"
+
+namespace scatterlab {
+namespace detail {
+
+// What every kernel shares: the problem, its tallies' buffer layout and scorer, and how to run.
+struct Kernel {
+  const TransportProblem& problem;
+  const TallyBook& book;
+  const Scorer& scorer;
+  const ProgressCallback& progress;
+  const RunControl& control;
+
+  template <class Geometry, class Phase, VolumeEstimator estimator,
+            Weighting weighting = Weighting::analog, class Light = Source>
+  BatchOutcome run(const Geometry& geometry, const Phase& phase, const Light& light) const {
+    const RandomWalk<Geometry, Phase, estimator, weighting, Light> walk(
+        geometry, phase, light, scorer, problem.albedo, problem.run.escape_radius,
+        problem.run.seed);
+    return run_batches(problem.run, book.size(), walk, progress, control);
+  }
+
+  // No volume tally: nothing is scored at collisions or along flights.
+  template <class Geometry, class Phase, class Light = Source>
+  BatchOutcome with_estimator(const Geometry& geometry, const Phase& phase,
+                              const Light& light) const {
+    if (!book.scores_volume()) {
+      return run<Geometry, Phase, VolumeEstimator::none, Weighting::analog, Light>(geometry, phase,
+                                                                                   light);
+    }
+    if (problem.estimator == Estimator::collision) {
+      return run<Geometry, Phase, VolumeEstimator::collision, Weighting::analog, Light>(
+          geometry, phase, light);
+    }
+    if constexpr (Geometry::has_surface) {
+      throw std::invalid_argument(
+          "transport: the track-length estimator runs only in the infinite medium");
+    } else {
+      return run<Geometry, Phase, VolumeEstimator::track_length, Weighting::analog, Light>(
+          geometry, phase, light);
+    }
+  }
+
+  // g = 0 samples isotropically: no HG arithmetic where the scene does not need it.
+  template <class Geometry, class Light = Source>
+  BatchOutcome with_phase(const Geometry& geometry, const Light& light) const {
+    if (problem.g == 0.0) return with_estimator(geometry, IsotropicPhase{}, light);
+    return with_estimator(geometry, HenyeyGreenstein{problem.g}, light);
+  }
+};
+
+// Runs the kernel `select` picks for `problem`: checks its memory, lays out its tallies, runs
+// the batches and finishes the tallies (transport() in engine.hpp, which it serves).
+TransportOutput run_kernel(const TransportProblem& problem, const ProgressCallback& progress,
+                           const RunControl& control,
+                           const std::function<BatchOutcome(const Kernel&)>& select);
+
+}  // namespace detail
+
+// transport() for a geometry and a light from outside the transport module; the problem's
+// geometry kind, eta, radius and source are not read. Analog absorption.
+template <class Geometry, class Light>
+TransportOutput transport(const TransportProblem& problem, const Geometry& geometry,
+                          const Light& light, const ProgressCallback& progress = {},
+                          const RunControl& control = {}) {
+  return detail::run_kernel(problem, progress, control, [&](const detail::Kernel& kernel) {
+    return kernel.with_phase(geometry, light);
+  });
+}
+
+}  // namespace scatterlab
