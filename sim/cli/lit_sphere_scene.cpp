@@ -14,6 +14,10 @@
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/validate/run_file.hpp"
+#ifdef SCATTERLAB_WITH_RENDER
+#include "scatterlab/render/lit_mesh.hpp"
+#include "scatterlab/render/render_scene.hpp"
+#endif
 
 namespace scatterlab::cli {
 namespace {
@@ -33,8 +37,8 @@ void refuse_other_flags(const CLI::App& command, const std::string& scene) {
     if (name == "--memory-limit" || name == "--help") continue;
     if (std::find(kSphereFlags.begin(), kSphereFlags.end(), name) != kSphereFlags.end()) continue;
     throw InputError(name,
-                     fmt::format("is not for a sphere scene ({} has geometry.type = "
-                                 "\"sphere\"; set the sphere in the file)",
+                     fmt::format("is not for a lit object's scene ({} has geometry.type "
+                                 "\"sphere\" or \"mesh\"; set the object in the file)",
                                  scene),
                      "the medium's flags, --photons, --batches, --seed, --threads, "
                      "--split-orders, --out, the checkpoint flags and --log-interval");
@@ -57,9 +61,11 @@ LitSphereSpec sphere_spec(const CLI::App& command, const SphereFlags& flags,
 }
 
 void print_summary(const LitSphereSpec& spec, const TransportOutput& out, const std::string& path) {
-  fmt::print("scatterlab simulate: sphere of radius {} {}, {} light, albedo {}, g {}, eta {}\n",
-             spec.radius, spec.medium.length_unit, to_string(spec.light), spec.medium.albedo,
-             spec.medium.g, spec.eta);
+  const std::string object =
+      spec.mesh ? fmt::format("mesh ({}, in {})", spec.mesh_source, spec.medium.length_unit)
+                : fmt::format("sphere of radius {} {}", spec.radius, spec.medium.length_unit);
+  fmt::print("scatterlab simulate: {}, {} light, albedo {}, g {}, eta {}\n", object,
+             to_string(spec.light), spec.medium.albedo, spec.medium.g, spec.eta);
   if (spec.material) {
     fmt::print("  material {} ({}), {} channel\n", spec.material->name, spec.material->library,
                spec.material->channel);
@@ -68,8 +74,37 @@ void print_summary(const LitSphereSpec& spec, const TransportOutput& out, const 
   // Each photon ends in exactly one of these: they sum to 1 photon by photon.
   print_energy_balance(out, {"reflected_at_entry", "exited", "absorbed"});
   print_figures_of_merit(out, {"exited", "absorbed", "exitance"});
-  fmt::print("  wrote {}: exitance [{}] against the angle from the lit pole\n", path,
-             spec.psi.bins);
+  if (spec.mesh) {
+    fmt::print("  wrote {}: exitance [{}] per triangle\n", path, spec.mesh->triangle_count());
+  } else {
+    fmt::print("  wrote {}: exitance [{}] against the angle from the lit pole\n", path,
+               spec.psi.bins);
+  }
+}
+
+// A mesh scene's object, read as render reads its [mesh] table; without the renderer's
+// libraries (Embree, tinyobjloader) there is no mesh to run.
+void load_mesh(const std::string& scene, LitSphereSpec& spec) {
+#ifdef SCATTERLAB_WITH_RENDER
+  SceneMesh mesh = load_scene_mesh(scene);
+  spec.mesh_source = std::move(mesh.source);
+  spec.mesh = std::make_shared<const TriangleMesh>(std::move(mesh.mesh));
+#else
+  (void)spec;
+  throw InputError(
+      "geometry.type",
+      fmt::format("is \"mesh\" in {}, but this build of scatterlab has no renderer", scene),
+      "a build with Embree, tinyobjloader, OpenEXR and libpng: install them, then "
+      "configure and build again");
+#endif
+}
+
+TransportOutput run_object(const LitSphereSpec& spec, const ProgressCallback& progress,
+                           const RunControl& control) {
+#ifdef SCATTERLAB_WITH_RENDER
+  if (spec.mesh) return run_lit_mesh(spec, progress, control);
+#endif
+  return run_lit_sphere(spec, progress, control);
 }
 
 }  // namespace
@@ -78,8 +113,12 @@ int run_lit_sphere_scene(CLI::App& command, const SphereFlags& flags,
                          const LongRunOptions& long_run_options, double log_interval,
                          const std::string& command_line, World& world) {
   refuse_other_flags(command, flags.scene);
-  const LitSphereScene scene = load_lit_sphere_scene(flags.scene, Validation::on_read);
+  LitSphereScene scene = load_lit_sphere_scene(flags.scene, Validation::on_read);
+  if (scene.mesh) load_mesh(flags.scene, scene.spec);
   LitSphereSpec spec = sphere_spec(command, flags, scene);
+#ifdef SCATTERLAB_WITH_RENDER
+  if (spec.mesh) check_lit_mesh(spec);
+#endif
   check_transport_memory(transport_problem(spec), world.size(), long_run_options.resume);
   const std::filesystem::path output =
       prepare_scene_outputs(command, flags.scene, flags.out, scene.output_path, "lit-sphere.h5",
@@ -89,7 +128,7 @@ int run_lit_sphere_scene(CLI::App& command, const SphereFlags& flags,
       "simulate", long_run_options, output, fingerprint(spec), spec.run.batches, log_interval,
       world,
       [&spec](const ProgressCallback& progress, const RunControl& control) {
-        return run_lit_sphere(spec, progress, control);
+        return run_object(spec, progress, control);
       },
       [&](const std::filesystem::path& path, const TransportOutput& out) {
         write_run_result(path, spec, out, command_line);

@@ -239,7 +239,7 @@ int run_simulate(CLI::App& command, const SimulateOptions& o, const LongRunOptio
   // A sphere scene runs the lit sphere (lit_sphere_scene.hpp) with the flags that apply to it.
   const std::string geometry =
       command.get_option("--scene")->count() > 0 ? scene_geometry(o.scene) : "infinite";
-  if (geometry == "sphere") {
+  if (geometry == "sphere" || geometry == "mesh") {
     const SphereFlags flags{o.scene,   o.out,    o.albedo, o.g,
                             o.sigma_t, o.medium, o.run,    o.split_orders};
     return run_lit_sphere_scene(command, flags, long_run, log_interval, command_line, world);

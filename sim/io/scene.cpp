@@ -111,7 +111,8 @@ class SceneReader : public TomlReader {
   // The lit sphere's scene (scene.hpp): [geometry] type = "sphere", radius, eta; [source] type;
   // [grid] psi, azimuth; [tallies] split_by_order; the medium, run and output as above.
   LitSphereScene read_lit_sphere(const toml::table& root) {
-    check_keys(root, "", {"geometry", "medium", "source", "grid", "tallies", "run", "output"});
+    check_keys(root, "",
+               {"geometry", "mesh", "medium", "source", "grid", "tallies", "run", "output"});
     LitSphereScene scene;
     LitSphereSpec& spec = scene.spec;
     if (const auto* medium = subtable(root, "medium", "")) {
@@ -119,7 +120,16 @@ class SceneReader : public TomlReader {
     }
     if (const toml::table* geometry = subtable(root, "geometry", "")) {
       check_keys(*geometry, "geometry", {"type", "radius", "eta"});
-      read_geometry_type(*geometry, "sphere", "\"sphere\"");
+      const std::string_view types = "\"sphere\" or \"mesh\" (with a [mesh] table)";
+      const auto type = string(*geometry, "type", "geometry", types);
+      if (type && *type != "sphere" && *type != "mesh") {
+        wrong_type(*geometry->get("type"), "geometry.type", types);
+      }
+      scene.mesh = type == "mesh";
+      if (scene.mesh && geometry->get("radius") != nullptr) {
+        throw InputError("geometry.radius", "given for a mesh" + at(*geometry->get("radius")),
+                         "the mesh's size in its [mesh] table");
+      }
       if (const auto radius = number(*geometry, "radius", "geometry",
                                      "a finite number > 0 (in medium.length_unit)")) {
         spec.radius = *radius;
@@ -158,7 +168,18 @@ class SceneReader : public TomlReader {
         }
       }
     }
+    if (root.get("mesh") != nullptr && !scene.mesh) {
+      throw InputError("mesh", "given for a sphere" + at(*root.get("mesh")),
+                       "a [mesh] table with geometry.type = \"mesh\"");
+    }
+    if (root.get("mesh") == nullptr && scene.mesh) {
+      throw InputError("mesh", "missing", "a [mesh] table with geometry.type = \"mesh\"");
+    }
     if (const auto* grid = subtable(root, "grid", "")) {
+      if (scene.mesh) {
+        throw InputError("grid", "given for a mesh" + at(*root.get("grid")),
+                         "no [grid]: a mesh's exitance is per triangle");
+      }
       check_keys(*grid, "grid", {"psi", "azimuth"});
       read_axis(*grid, "psi", {"bins"}, spec.psi);
       read_axis(*grid, "azimuth", {"bins"}, spec.azimuth);
@@ -169,7 +190,7 @@ class SceneReader : public TomlReader {
     }
     if (const auto* run = subtable(root, "run", "")) read_run(*run, spec.run);
     scene.output_path = read_output(root);
-    if (validation_ == Validation::on_read) spec.validate();
+    if (validation_ == Validation::on_read && !scene.mesh) spec.validate();
     return scene;
   }
 

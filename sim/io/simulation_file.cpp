@@ -158,11 +158,36 @@ void write_searchlight_parameters(hdf5::Group& root, const SearchlightSpec& spec
   parameters.write_int64_attribute("threads", spec.run.threads);
 }
 
+// A mesh's vertices (in the length unit), its triangles (vertex indices, counter-clockwise seen
+// from outside) and their areas: what the exitance per triangle is drawn on.
+void write_mesh(hdf5::Group& parameters, const LitSphereSpec& spec) {
+  const TriangleMesh& mesh = *spec.mesh;
+  hdf5::Group group = parameters.create_group("mesh");
+  group.write_string_attribute("source", spec.mesh_source);
+  std::vector<double> positions;
+  for (const Vec3& p : mesh.positions) positions.insert(positions.end(), {p.x(), p.y(), p.z()});
+  group.write_dataset("positions", positions, {mesh.positions.size(), 3})
+      .write_string_attribute("units", spec.medium.length_unit);
+  std::vector<std::int32_t> corners;
+  std::vector<double> areas;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    for (const std::uint32_t v : mesh.triangles[t]) corners.push_back(static_cast<std::int32_t>(v));
+    areas.push_back(mesh.area(t));
+  }
+  group.write_dataset("triangles", corners, {mesh.triangle_count(), 3});
+  group.write_dataset("area", areas)
+      .write_string_attribute("units", spec.medium.length_unit + "^2");
+}
+
 void write_lit_sphere_parameters(hdf5::Group& root, const LitSphereSpec& spec) {
   hdf5::Group parameters = root.create_group("parameters");
-  parameters.write_string_attribute("geometry", "sphere");
+  parameters.write_string_attribute("geometry", spec.mesh ? "mesh" : "sphere");
   parameters.write_string_attribute("source", to_string(spec.light));
-  parameters.write_double_attribute("radius", spec.radius);
+  if (spec.mesh) {
+    write_mesh(parameters, spec);
+  } else {
+    parameters.write_double_attribute("radius", spec.radius);
+  }
   if (spec.light == SphereLight::beam) {
     parameters.write_string_attribute(
         "beam", fmt::format("from ({}, {}, {}) along ({}, {}, {})", spec.beam_origin[0],
@@ -546,6 +571,7 @@ void write_lit_sphere_file(const std::filesystem::path& path, const LitSphereSpe
   write_run_file(path, spec, tallies, provenance, {}, [&spec](hdf5::Group& root) {
     write_lit_sphere_parameters(root, spec);
     hdf5::Group grid = root.create_group("grid");
+    if (spec.mesh) return;  // the exitance is per triangle of /parameters/mesh
     write_axis(grid, "psi", spec.psi, "rad");
     write_axis(grid, "azimuth", spec.azimuth, "rad");
   });

@@ -39,6 +39,20 @@ class RenderSceneReader : public TomlReader {
     return scene;
   }
 
+  SceneMesh read_mesh_only(const toml::table& root) const {
+    const toml::table* table = subtable(root, "mesh", "");
+    if (table == nullptr) {
+      throw InputError("mesh", "missing", "a [mesh] table with geometry.type = \"mesh\"");
+    }
+    SceneMesh out;
+    std::filesystem::path file;
+    out.mesh = read_mesh(*table, file);
+    const std::string shape = table->get("shape")->value_or(std::string());
+    out.source = file.empty() ? fmt::format("{} of {} triangles", shape, out.mesh.triangle_count())
+                              : fmt::format("OBJ file {}", file.string());
+    return out;
+  }
+
  private:
   std::optional<Vec3> vec3(const toml::table& table, std::string_view key,
                            const std::string& path) const {
@@ -324,6 +338,11 @@ void RenderScene::validate() const {
 RenderScene parse_render_scene(std::string_view toml_text, const std::string& origin,
                                const std::filesystem::path& base) {
   return RenderSceneReader(origin, base).read(parse_toml(toml_text, origin));
+}
+
+SceneMesh load_scene_mesh(const std::filesystem::path& scene) {
+  return RenderSceneReader(scene.string(), scene.parent_path())
+      .read_mesh_only(parse_toml(read_text(scene), scene.string()));
 }
 
 RenderScene load_render_scene(const std::filesystem::path& path) {

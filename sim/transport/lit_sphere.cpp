@@ -50,29 +50,53 @@ std::optional<BeamEntry> beam_entry(const LitSphereSpec& spec, double radius_mfp
 std::vector<TallyDeclaration> declare_tallies(const LitSphereSpec& spec, double radius_mfp,
                                               double beam_reflectance) {
   std::vector<TallyDeclaration> tallies;
-  tallies.push_back({"exitance",
-                     Score::exit_by_polar_angle,
-                     {sphere_patch_filter(spec.psi, spec.azimuth, radius_mfp)},
-                     "W mfp^-2 per W incident",
-                     "radiant exitance M(psi, azimuth) on the sphere: power leaving per unit area "
-                     "of the patch at angle psi from the lit pole (0, 0, -R) and azimuth about z "
-                     "from +x, patch average",
-                     true});
+  if (spec.mesh) {
+    // Triangle areas in mfp^2, as the mesh is transported.
+    const double scale = mfp_per_length_unit(spec.medium);
+    std::vector<double> areas(spec.mesh->triangle_count());
+    for (std::size_t t = 0; t < areas.size(); ++t) areas[t] = spec.mesh->area(t) * scale * scale;
+    tallies.push_back({"exitance",
+                       Score::exit_by_triangle,
+                       {triangle_filter(areas)},
+                       "W mfp^-2 per W incident",
+                       "radiant exitance M on the mesh: power leaving the object for good "
+                       "through each triangle per unit of its area",
+                       true});
+  } else {
+    tallies.push_back({"exitance",
+                       Score::exit_by_polar_angle,
+                       {sphere_patch_filter(spec.psi, spec.azimuth, radius_mfp)},
+                       "W mfp^-2 per W incident",
+                       "radiant exitance M(psi, azimuth) on the sphere: power leaving per unit "
+                       "area of the patch at angle psi from the lit pole (0, 0, -R) and azimuth "
+                       "about z from +x, patch average",
+                       true});
+  }
+  const char* object = spec.mesh ? "object" : "sphere";
   tallies.push_back({"exited",
                      Score::exit,
                      {},
                      "W per W incident",
-                     "total power leaving the sphere after it entered (any point, any angle)",
+                     fmt::format("total power leaving the {} after it entered (any point, any "
+                                 "angle)",
+                                 object),
                      true});
-  tallies.push_back(
-      {"absorbed", Score::absorbed, {}, "W per W incident", "power absorbed in the sphere", true});
-  if (spec.light == SphereLight::directional) {
+  tallies.push_back({"absorbed",
+                     Score::absorbed,
+                     {},
+                     "W per W incident",
+                     fmt::format("power absorbed in the {}", object),
+                     true});
+  // On a mesh even a beam's reflection is counted photon by photon: light reflected off one part
+  // of a shape that is not convex can enter another.
+  if (spec.light == SphereLight::directional || spec.mesh) {
     tallies.push_back({"reflected_at_entry",
                        Score::reflected_at_entry,
                        {},
                        "W per W incident",
-                       "light reflected where it meets the sphere (Fresnel, each photon's own "
-                       "angle of incidence)"});
+                       fmt::format("light reflected where it meets the {} (Fresnel, each "
+                                   "photon's own angle of incidence) that never enters",
+                                   object)});
   } else {
     tallies.push_back({"reflected_at_entry",
                        Score::exact,
@@ -100,9 +124,63 @@ std::string to_string(SphereLight light) {
   return "unknown";
 }
 
+namespace {
+
+// A sphere about the origin that holds the mesh, in mfp (its farthest vertex).
+double bounding_radius_mfp(const LitSphereSpec& spec) {
+  double farthest = 0.0;
+  for (const Vec3& p : spec.mesh->positions) farthest = std::max(farthest, p.norm());
+  return farthest * mfp_per_length_unit(spec.medium);
+}
+
+void check_beam(const LitSphereSpec& spec) {
+  for (const double x : spec.beam_origin) {
+    if (!std::isfinite(x)) {
+      throw InputError("source.origin", "is not finite", "three finite numbers [x, y, z]");
+    }
+  }
+  const double length =
+      std::hypot(spec.beam_direction[0], spec.beam_direction[1], spec.beam_direction[2]);
+  if (!(length > 0.0) || !std::isfinite(length)) {
+    throw InputError("source.direction", "is zero or not finite",
+                     "three finite numbers [x, y, z], not all 0");
+  }
+}
+
+// The mesh's own checks (closed, outside the beam's origin, met by the beam) need its ray
+// tracer: render/lit_mesh.hpp makes them.
+void validate_mesh_spec(const LitSphereSpec& spec) {
+  if (spec.light == SphereLight::pole_beam) {
+    throw InputError("source.type", "\"pole_beam\" on a mesh, which has no pole",
+                     "\"directional\" or \"beam\" (with source.origin and source.direction)");
+  }
+  if (spec.mesh->triangle_count() == 0) {
+    throw InputError("mesh", "has no triangles", "a closed triangle mesh");
+  }
+  spec.mesh->validate();
+  if (spec.light == SphereLight::beam) check_beam(spec);
+  const double radius_mfp = bounding_radius_mfp(spec);
+  if (!(radius_mfp >= 1e-6 && radius_mfp <= 1e6)) {
+    throw InputError("mesh", fmt::format("reaches {} mfp from the origin", radius_mfp),
+                     "a mesh within 1e-6 to 1e6 mean free paths of the origin");
+  }
+  check_run_settings(spec.run);
+  check_run_length(spec.run, spec.medium.albedo, radius_mfp);
+}
+
+}  // namespace
+
 void LitSphereSpec::validate() const {
   medium.validate();
   check_length_unit(medium);
+  if (!(eta >= min_eta && eta <= max_eta)) {
+    throw InputError("geometry.eta", got(eta),
+                     "a number in [0.1, 10] (n_medium / n_outside; 1 for no interface)");
+  }
+  if (mesh) {
+    validate_mesh_spec(*this);
+    return;
+  }
   if (!(radius > 0.0) || !std::isfinite(radius)) {
     throw InputError("geometry.radius", got(radius), "a finite number > 0 (in medium.length_unit)");
   }
@@ -110,10 +188,6 @@ void LitSphereSpec::validate() const {
   if (!(radius_mfp >= 1e-6 && radius_mfp <= 1e6)) {
     throw InputError("geometry.radius", fmt::format("is {} mfp", radius_mfp),
                      "a radius of 1e-6 to 1e6 mean free paths");
-  }
-  if (!(eta >= min_eta && eta <= max_eta)) {
-    throw InputError("geometry.eta", got(eta),
-                     "a number in [0.1, 10] (n_medium / n_outside; 1 for no interface)");
   }
   if (psi.min != 0.0 || std::abs(psi.max - std::numbers::pi) > 1e-12) {
     throw InputError("grid.psi", fmt::format("spans [{}, {}]", psi.min, psi.max),
@@ -131,16 +205,7 @@ void LitSphereSpec::validate() const {
                      "an integer >= 1, with grid.psi.bins x grid.azimuth.bins at most 1e7");
   }
   if (light == SphereLight::beam) {
-    for (const double x : beam_origin) {
-      if (!std::isfinite(x)) {
-        throw InputError("source.origin", "is not finite", "three finite numbers [x, y, z]");
-      }
-    }
-    const double length = std::hypot(beam_direction[0], beam_direction[1], beam_direction[2]);
-    if (!(length > 0.0) || !std::isfinite(length)) {
-      throw InputError("source.direction", "is zero or not finite",
-                       "three finite numbers [x, y, z], not all 0");
-    }
+    check_beam(*this);
     const double origin_mfp =
         std::hypot(beam_origin[0], beam_origin[1], beam_origin[2]) * mfp_per_length_unit(medium);
     if (!(origin_mfp > radius_mfp)) {
@@ -157,15 +222,31 @@ void LitSphereSpec::validate() const {
   check_run_length(run, medium.albedo, radius_mfp);
 }
 
+namespace {
+
+// Every vertex and triangle of a mesh, exactly.
+std::string mesh_fingerprint(const TriangleMesh& mesh) {
+  std::string text = fmt::format("|mesh {} {}", mesh.positions.size(), mesh.triangle_count());
+  for (const Vec3& p : mesh.positions) text += fmt::format(" {:a} {:a} {:a}", p.x(), p.y(), p.z());
+  for (const auto& t : mesh.triangles) text += fmt::format(" {} {} {}", t[0], t[1], t[2]);
+  return text;
+}
+
+}  // namespace
+
 std::string fingerprint(const LitSphereSpec& spec) {
   const Medium& m = spec.medium;
-  return fingerprint_of(fmt::format(
-      "lit_sphere|medium {:a} {:a} {:a} {}|radius {:a}|eta {:a}|light {}|beam {:a} {:a} {:a} {:a} "
-      "{:a} {:a}|psi {:a},{:a},{}|azimuth {}|split {}|run {} {} {}",
-      m.albedo, m.g, m.sigma_t, m.length_unit, spec.radius, spec.eta, to_string(spec.light),
-      spec.beam_origin[0], spec.beam_origin[1], spec.beam_origin[2], spec.beam_direction[0],
-      spec.beam_direction[1], spec.beam_direction[2], spec.psi.min, spec.psi.max, spec.psi.bins,
-      spec.azimuth.bins, spec.split_by_order, spec.run.photons, spec.run.batches, spec.run.seed));
+  return fingerprint_of(fmt::format("lit_sphere|medium {:a} {:a} {:a} {}|radius {:a}|eta "
+                                    "{:a}|light {}|beam {:a} {:a} {:a} {:a} "
+                                    "{:a} {:a}|psi {:a},{:a},{}|azimuth {}|split {}|run {} {} {}",
+                                    m.albedo, m.g, m.sigma_t, m.length_unit, spec.radius, spec.eta,
+                                    to_string(spec.light), spec.beam_origin[0], spec.beam_origin[1],
+                                    spec.beam_origin[2], spec.beam_direction[0],
+                                    spec.beam_direction[1], spec.beam_direction[2], spec.psi.min,
+                                    spec.psi.max, spec.psi.bins, spec.azimuth.bins,
+                                    spec.split_by_order, spec.run.photons, spec.run.batches,
+                                    spec.run.seed) +
+                        (spec.mesh ? mesh_fingerprint(*spec.mesh) : std::string()));
 }
 
 TransportProblem transport_problem(const LitSphereSpec& spec) {
@@ -173,8 +254,22 @@ TransportProblem transport_problem(const LitSphereSpec& spec) {
   TransportProblem problem;
   problem.albedo = spec.medium.albedo;
   problem.g = spec.medium.g;
-  problem.geometry = GeometryKind::sphere;
   problem.eta = spec.eta;
+  problem.split_by_order = spec.split_by_order;
+  problem.estimator = Estimator::collision;
+  problem.run = spec.run;
+  problem.run.escape_radius = std::numeric_limits<double>::infinity();
+  if (spec.mesh) {
+    problem.geometry = GeometryKind::mesh;
+    // A closed mesh keeps every photon until it leaves; should round-off let one slip out
+    // unnoticed, it ends far away (uncounted, so that the energy balance shows it) rather than
+    // wander for ever.
+    problem.run.escape_radius = 1e3 * (1.0 + bounding_radius_mfp(spec));
+    problem.tallies = declare_tallies(spec, radius, 0.0);
+    problem.size_fields = "the mesh's triangles, run.threads";
+    return problem;
+  }
+  problem.geometry = GeometryKind::sphere;
   problem.radius = radius;
   // A beam is refracted where it meets the sphere, F of its incidence reflected, and 1 - F enters
   // and carries every other tally (as the searchlight's beam does); beyond the critical angle of
@@ -199,10 +294,6 @@ TransportProblem transport_problem(const LitSphereSpec& spec) {
   problem.axes.psi = spec.psi;
   problem.axes.azimuth = spec.azimuth;
   problem.tallies = declare_tallies(spec, radius, beam_reflectance);
-  problem.split_by_order = spec.split_by_order;
-  problem.estimator = Estimator::collision;
-  problem.run = spec.run;
-  problem.run.escape_radius = std::numeric_limits<double>::infinity();
   problem.size_fields = "grid.psi.bins x grid.azimuth.bins, run.threads";
   return problem;
 }
@@ -210,6 +301,7 @@ TransportProblem transport_problem(const LitSphereSpec& spec) {
 TransportOutput run_lit_sphere(const LitSphereSpec& spec, const ProgressCallback& progress,
                                const RunControl& control) {
   spec.validate();
+  if (spec.mesh) throw std::invalid_argument("run_lit_sphere: a mesh runs with run_lit_mesh");
   TransportOutput out = transport(transport_problem(spec), progress, control);
   tallies_to_length_unit(out.tallies, spec.medium);  // back from mfp (length_units.hpp)
   return out;

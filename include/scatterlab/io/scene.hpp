@@ -107,9 +107,10 @@ SearchlightScene parse_searchlight_scene(std::string_view toml_text, const std::
 SearchlightScene load_searchlight_scene(const std::filesystem::path& path,
                                         Validation validation = Validation::on_read);
 
-// The lit sphere's scene (scatterlab simulate on a scene whose geometry.type is "sphere";
-// data/scenes/lit-sphere.toml), as strict as the above:
-//   [geometry] type = "sphere", radius (in medium.length_unit), eta = n_medium / n_outside
+// The lit sphere's scene (scatterlab simulate on a scene whose geometry.type is "sphere" or
+// "mesh"; data/scenes/lit-sphere.toml, lit-mesh.toml), as strict as the above:
+//   [geometry] type = "sphere", radius (in medium.length_unit), eta = n_medium / n_outside;
+//              or type = "mesh" and eta, with a [mesh] table as a render scene's (no [grid])
 //   [medium]   as above; a material brings its table's eta unless geometry.eta is given
 //   [source]   type = "directional" | "pole_beam" | "beam"; for a beam, origin = [x, y, z]
 //              (outside the sphere, in medium.length_unit) and direction = [x, y, z]
@@ -122,6 +123,9 @@ struct LitSphereScene {
   std::optional<std::string> output_path;   // [output] path, as written
   std::optional<MaterialRequest> material;  // [medium] material and its keys, as written
   bool eta_given = false;                   // geometry.eta in the file
+  // geometry.type = "mesh": the object is the [mesh] table's (read as render reads it,
+  // render/render_scene.hpp), which the caller puts in spec.mesh before validating.
+  bool mesh = false;
 };
 
 LitSphereScene parse_lit_sphere_scene(std::string_view toml_text, const std::string& origin,

@@ -66,6 +66,15 @@ struct RenderScene {
   void validate() const;
 };
 
+// The [mesh] table of any scene file (a lit object's, transport/lit_sphere.hpp), read as a render
+// scene's is, and what it is in words: the shape and its triangle count, or the OBJ file. Other
+// tables are left to the scene's own reader.
+struct SceneMesh {
+  TriangleMesh mesh;
+  std::string source;
+};
+SceneMesh load_scene_mesh(const std::filesystem::path& scene);
+
 // `base` resolves relative OBJ paths.
 RenderScene parse_render_scene(std::string_view toml_text, const std::string& origin,
                                const std::filesystem::path& base = {});

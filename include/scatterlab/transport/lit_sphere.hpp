@@ -12,11 +12,13 @@
 // paths by default; transport runs in mfp (length_units.hpp converts).
 
 #include <array>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <string>
 
 #include "scatterlab/core/medium.hpp"
+#include "scatterlab/core/triangle_mesh.hpp"
 #include "scatterlab/tally/axis.hpp"
 #include "scatterlab/transport/engine.hpp"
 #include "scatterlab/transport/run_settings.hpp"
@@ -45,6 +47,12 @@ struct LitSphereSpec {
   bool split_by_order = true;  // siblings _unscattered, _single, _multiple
   RunSettings run{1'000'000, 64, 1, 0};
   std::optional<MaterialOrigin> material;  // set when the medium came from a measured table
+  // geometry.type = "mesh": a closed triangle mesh (in medium.length_unit) in place of the
+  // sphere, whose radius and psi-azimuth grid are then unused. Its exitance is per triangle; the
+  // directional light still travels along +z, and a beam meets the mesh where its line does.
+  // Run by render/lit_mesh.hpp (Embree); run_lit_sphere refuses it.
+  std::shared_ptr<const TriangleMesh> mesh;
+  std::string mesh_source;  // what the mesh is: the scene's shape and sizes, or its OBJ file
 
   // Throws InputError naming the first bad field and what it accepts.
   void validate() const;
@@ -53,7 +61,8 @@ struct LitSphereSpec {
 // What shapes the tallies: equal for a run and its resumption (run_settings.hpp).
 std::string fingerprint(const LitSphereSpec& spec);
 
-// The engine's problem for this spec: the sphere geometry, the light, the declared tallies.
+// The engine's problem for this spec: the sphere geometry, the light, the declared tallies. For a
+// mesh, the tallies and the run (GeometryKind::mesh): its geometry and light are render's.
 TransportProblem transport_problem(const LitSphereSpec& spec);
 
 // Runs the spec on the transport engine; only the root rank gets tallies.

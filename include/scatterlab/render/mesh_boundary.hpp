@@ -1,0 +1,181 @@
+#pragma once
+// A closed triangle mesh filled with the medium, behind a smooth interface of relative index
+// eta = n_medium / n_outside: a geometry of the transport engine's random walk
+// (transport/random_walk.hpp), traced with Embree (mesh_ray_tracer.hpp). Vavassori §4.3 fills
+// such objects with measured media; Bitterli 2013, Alg. 1 gives the boundary's analog choice.
+//
+// Inside, a flight that meets the surface is reflected with probability F(cos theta_i) (always
+// under total internal reflection) and flies on for the rest of its sampled path (the free path
+// is memoryless), or leaves, refracted (as at the half-space's surface, half_space.hpp). The
+// normal is the facet's geometric one: shading normals smooth an image, not the object light
+// actually crosses.
+//
+// A shape that is not convex can take the light back: a photon that leaves is followed outside
+// in a straight line, and where it meets the mesh again it is reflected off it (probability F,
+// and followed on) or refracted in, where it starts a fresh flight (an exponential free path:
+// nothing of the old one carries over a stretch of vacuum). It leaves for good when its line
+// meets the mesh no more. The exit tallies see only that last departure (the triangle it left
+// through for good): light that leaves and comes back is not counted where it left.
+//
+// Most flights of a large object end far from its surface. A ball inside the mesh (about the
+// centre of its box, as large as the nearest triangle allows) holds a flight whose two ends it
+// holds, since a ball is convex: such a flight needs no ray query.
+//
+// `fresnel` = false is the index-matched object (eta = 1): light crosses without reflection or
+// bending, and no random number is drawn at the surface but the fresh flight after a re-entry.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "scatterlab/core/frame.hpp"
+#include "scatterlab/core/fresnel.hpp"
+#include "scatterlab/core/random.hpp"
+#include "scatterlab/core/triangle_mesh.hpp"
+#include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/tally/surface_exit.hpp"
+
+namespace scatterlab {
+
+// Where a ray meets a closed mesh: the point (recomputed in double from Embree's barycentrics)
+// and the facet's outward unit normal.
+struct MeshCrossing {
+  Vec3 point;
+  Vec3 normal;
+  std::uint32_t triangle = 0;
+  double distance = 0.0;
+};
+
+// The meeting of a ray from `origin` along the unit `direction` with the mesh in
+// (t_near, t_far); false when there is none.
+inline bool next_crossing(const MeshRayTracer& tracer, const TriangleMesh& mesh, const Vec3& origin,
+                          const Vec3& direction, double t_near, double t_far,
+                          MeshCrossing& crossing) {
+  MeshHit hit;
+  if (!tracer.intersect(origin, direction, t_near, t_far, hit)) return false;
+  const Vec3& p0 = mesh.vertex(hit.triangle, 0);
+  const Vec3& p1 = mesh.vertex(hit.triangle, 1);
+  const Vec3& p2 = mesh.vertex(hit.triangle, 2);
+  crossing.point = (1.0 - hit.bary_a - hit.bary_b) * p0 + hit.bary_a * p1 + hit.bary_b * p2;
+  crossing.normal = (p1 - p0).cross(p2 - p0).normalized();
+  crossing.triangle = hit.triangle;
+  crossing.distance = hit.distance;
+  return true;
+}
+
+template <bool fresnel>
+class MeshBoundary {
+ public:
+  static constexpr bool has_surface = true;
+  static constexpr bool layered = false;
+
+  // `tracer` is over `mesh`; both outlive the boundary.
+  MeshBoundary(const MeshRayTracer& tracer, const TriangleMesh& mesh, double eta)
+      : tracer_(&tracer),
+        mesh_(&mesh),
+        eta_(eta),
+        epsilon_(tracer.epsilon()),
+        center_(mesh.bounds().center()) {
+    // A centre outside a shape that is not convex (a ring's) has no ball.
+    if (tracer.count_crossings(center_, Vec3(0.5773, 0.6123, 0.5407).normalized()) % 2 == 0) {
+      return;
+    }
+    double nearest = std::numeric_limits<double>::infinity();
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+      nearest = std::min(nearest, mesh.distance_to(t, center_));
+    }
+    // Less a margin for the single precision of the ray queries beyond it.
+    const double inner = std::max(0.0, nearest - 4.0 * epsilon_);
+    inner2_ = inner * inner;
+  }
+
+  const MeshRayTracer& tracer() const { return *tracer_; }
+  const TriangleMesh& mesh() const { return *mesh_; }
+
+  // The light outside at `position`, travelling along `direction`, meets the mesh (or not):
+  // reflected off it with probability F and followed on, or refracted in. True when it enters
+  // (position and direction then inside, at the surface); false when it goes off to infinity.
+  // `t_near`: skip the surface the ray starts on.
+  bool enter(Vec3& position, Vec3& direction, PhotonRandom& random, double t_near) const {
+    MeshCrossing at;
+    while (next_crossing(*tracer_, *mesh_, position, direction, t_near, infinity, at)) {
+      const double cos_outside = -direction.dot(at.normal);
+      // A facet seen from behind is the one the ray starts on (round-off): not a way in.
+      if (!(cos_outside > 0.0)) {
+        t_near = at.distance + epsilon_;
+        continue;
+      }
+      t_near = epsilon_;
+      const Vec3& normal = at.normal;
+      position = at.point;
+      if constexpr (fresnel) {
+        const FresnelDielectric surface = fresnel_dielectric_terms(cos_outside, eta_);
+        if (random.next4()[0] < surface.reflectance()) {
+          direction = (direction + 2.0 * cos_outside * normal).normalized();
+          continue;
+        }
+        refract(direction, normal, eta_, direction);
+      }
+      return true;
+    }
+    return false;
+  }
+
+  // The walk's surface (random_walk.hpp): the flight of `flight` mfp from `position` along
+  // `direction` that would end at `next`. Either the photon leaves for good (true, `exit`
+  // filled) or the flight goes on inside, after reflections or a re-entry, to end at `next`.
+  bool leaves(Vec3& position, Vec3& direction, Vec3& next, double flight, PhotonRandom& random,
+              SurfaceExit& exit) const {
+    if ((next - center_).squaredNorm() < inner2_ && (position - center_).squaredNorm() < inner2_) {
+      return false;
+    }
+    double t_near = 0.0;
+    MeshCrossing at;
+    while (next_crossing(*tracer_, *mesh_, position, direction, t_near, flight, at)) {
+      const double cos_inside = direction.dot(at.normal);
+      // A facet that faces the ray is the one the photon came in through: not a way out.
+      if (!(cos_inside > 0.0)) {
+        t_near = at.distance + epsilon_;
+        continue;
+      }
+      t_near = epsilon_;
+      const Vec3& normal = at.normal;
+      position = at.point;
+      if constexpr (fresnel) {
+        const FresnelDielectric surface = fresnel_dielectric_terms(cos_inside, 1.0 / eta_);
+        if (surface.total_internal_reflection || random.next4()[0] < surface.reflectance()) {
+          flight -= at.distance;
+          direction = (direction - 2.0 * cos_inside * normal).normalized();
+          next = position + flight * direction;
+          continue;
+        }
+        exit.cos_outside = surface.cos_transmitted;
+        refract(direction, -normal, 1.0 / eta_, direction);
+      } else {
+        exit.cos_outside = cos_inside;
+      }
+      exit.triangle = at.triangle;
+      exit.x = position.x();
+      exit.y = position.y();
+      const double distance = position.norm();
+      exit.cos_polar = distance > 0.0 ? -position.z() / distance : 1.0;
+      if (!enter(position, direction, random, epsilon_)) return true;
+      // Back inside: a fresh flight from the point of entry.
+      flight = -std::log(random.next4()[0]);
+      next = position + flight * direction;
+    }
+    return false;
+  }
+
+ private:
+  static constexpr double infinity = std::numeric_limits<double>::infinity();
+  const MeshRayTracer* tracer_;
+  const TriangleMesh* mesh_;
+  double eta_;
+  double epsilon_;
+  Vec3 center_;
+  double inner2_ = 0.0;  // the inner ball's radius squared (0: none)
+};
+
+}  // namespace scatterlab

@@ -1,0 +1,75 @@
+#pragma once
+// The lights of an object bounded by a triangle mesh (mesh_boundary.hpp), as the transport
+// engine launches them (transport/kernel.hpp):
+//   beam         a pencil beam from `origin` along `direction`, outside the object;
+//   directional  parallel light along `direction` over the whole object (Bitterli 2013, §3.2,
+//                on a sphere): photons start uniformly over the disc, facing the light, of the
+//                sphere that bounds the mesh, and those whose line misses the mesh are drawn
+//                again. Each photon therefore stands for an equal share of the power that
+//                meets the object, the normalisation of the lit sphere (source.hpp), whatever
+//                the object's shadow.
+// Both meet the surface as every light outside does (MeshBoundary::enter): reflected with
+// probability F, and followed on, or refracted in. launch is false for a photon that is
+// reflected off the object and never enters.
+
+#include <cmath>
+#include <cstdint>
+
+#include "scatterlab/core/azimuth.hpp"
+#include "scatterlab/core/frame.hpp"
+#include "scatterlab/core/random.hpp"
+#include "scatterlab/render/mesh_boundary.hpp"
+
+namespace scatterlab {
+
+template <bool fresnel>
+class MeshLight {
+ public:
+  enum class Kind { beam, directional };
+
+  // `center` and `radius`: a sphere holding the mesh (directional light only).
+  MeshLight(const MeshBoundary<fresnel>& boundary, Kind kind, const Vec3& origin,
+            const Vec3& direction, const Vec3& center, double radius)
+      : boundary_(boundary),
+        kind_(kind),
+        origin_(origin),
+        direction_(direction.normalized()),
+        across_(direction_),
+        center_(center),
+        radius_(radius) {}
+
+  bool launch(PhotonRandom& random, Vec3& start, Vec3& heading) const {
+    if (kind_ == Kind::beam) {
+      start = origin_;
+      heading = direction_;
+      return boundary_.enter(start, heading, random, 0.0);
+    }
+    // Uniform over the disc: r = R sqrt(u), on a plane a radius behind the centre. A closed mesh
+    // of positive volume has a shadow of positive area, so the draw ends (a needle 1e-3 of the
+    // disc takes a thousand tries).
+    for (;;) {
+      const auto u = random.next4();
+      const UnitCircle phi = azimuth(u[1]);
+      const double r = radius_ * std::sqrt(u[0]);
+      start =
+          center_ - 1.5 * radius_ * direction_ + across_.to_world(r * phi.cos, r * phi.sin, 0.0);
+      MeshCrossing first;
+      if (!next_crossing(boundary_.tracer(), boundary_.mesh(), start, direction_, 0.0,
+                         3.0 * radius_, first)) {
+        continue;
+      }
+      heading = direction_;
+      return boundary_.enter(start, heading, random, 0.0);
+    }
+  }
+
+ private:
+  const MeshBoundary<fresnel>& boundary_;
+  Kind kind_;
+  Vec3 origin_, direction_;
+  Frame across_;  // tangent and bitangent span the disc
+  Vec3 center_;
+  double radius_;
+};
+
+}  // namespace scatterlab

@@ -1,0 +1,76 @@
+#include "scatterlab/render/lit_mesh.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/render/mesh_boundary.hpp"
+#include "scatterlab/render/mesh_light.hpp"
+#include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/render/render_scene.hpp"
+#include "scatterlab/transport/kernel.hpp"
+#include "scatterlab/transport/length_units.hpp"
+
+namespace scatterlab {
+namespace {
+
+Vec3 vec3(const std::array<double, 3>& a) {
+  return Vec3(a[0], a[1], a[2]);
+}
+
+// A direction of no special alignment, so that a parity ray does not run along an edge.
+const Vec3 kProbe = Vec3(0.5773, 0.6123, 0.5407).normalized();
+
+}  // namespace
+
+void check_lit_mesh(const LitSphereSpec& spec) {
+  const TriangleMesh& mesh = *spec.mesh;
+  require_closed_mesh(mesh);
+  require_enclosed_volume(mesh);
+  if (spec.light != SphereLight::beam) return;
+  const MeshRayTracer tracer(mesh);
+  const Vec3 origin = vec3(spec.beam_origin);
+  if (tracer.count_crossings(origin, kProbe) % 2 == 1) {
+    throw InputError("source.origin", "is inside the mesh", "a point outside the object");
+  }
+  MeshHit hit;
+  if (!tracer.intersect(origin, vec3(spec.beam_direction).normalized(), 0.0,
+                        std::numeric_limits<double>::infinity(), hit)) {
+    throw InputError("source.direction", "misses the mesh from source.origin",
+                     "a direction from source.origin that meets the object");
+  }
+}
+
+TransportOutput run_lit_mesh(const LitSphereSpec& spec, const ProgressCallback& progress,
+                             const RunControl& control) {
+  spec.validate();
+  check_lit_mesh(spec);
+  // Transport runs in mfp (length_units.hpp): the mesh and the beam's origin are scaled to it.
+  const double scale = mfp_per_length_unit(spec.medium);
+  TriangleMesh mesh = *spec.mesh;
+  for (Vec3& p : mesh.positions) p *= scale;
+  const MeshRayTracer tracer(mesh);
+  const Vec3 center = mesh.bounds().center();
+  double radius = 0.0;
+  for (const Vec3& p : mesh.positions) radius = std::max(radius, (p - center).norm());
+  radius *= 1.0 + 1e-6;  // the disc's rim clears every vertex
+  const bool beam = spec.light == SphereLight::beam;
+  const Vec3 origin = beam ? Vec3(vec3(spec.beam_origin) * scale) : Vec3::Zero();
+  const Vec3 direction = beam ? vec3(spec.beam_direction).normalized() : Vec3::UnitZ();
+  const TransportProblem problem = transport_problem(spec);
+
+  const auto run = [&]<bool fresnel>() {
+    const MeshBoundary<fresnel> boundary(tracer, mesh, spec.eta);
+    const MeshLight<fresnel> light(
+        boundary, beam ? MeshLight<fresnel>::Kind::beam : MeshLight<fresnel>::Kind::directional,
+        origin, direction, center, radius);
+    return transport(problem, boundary, light, progress, control);
+  };
+  TransportOutput out =
+      spec.eta == 1.0 ? run.template operator()<false>() : run.template operator()<true>();
+  tallies_to_length_unit(out.tallies, spec.medium);  // back from mfp (length_units.hpp)
+  return out;
+}
+
+}  // namespace scatterlab

@@ -1,0 +1,235 @@
+// Objects bounded by a triangle mesh (render/lit_mesh.hpp, render/mesh_boundary.hpp): two boxes
+// in line, which light leaves and re-enters, against the closed form of a stack of slabs; a
+// finely tessellated sphere against the analytic sphere of the same engine; the energy balance
+// photon by photon on a shape that is not convex; and the scenes refused (fixed seeds; k sigma
+// tolerances).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/core/procedural_meshes.hpp"
+#include "scatterlab/render/lit_mesh.hpp"
+#include "scatterlab/render/render_scene.hpp"
+#include "simulation_fixtures.hpp"
+
+namespace scatterlab {
+namespace {
+
+using testing::find_tally;
+using testing::scalar;
+using testing::scalar_error;
+
+LitSphereSpec lit_mesh(TriangleMesh mesh, double albedo, double g, double eta,
+                       std::uint64_t photons) {
+  LitSphereSpec spec;
+  spec.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
+  spec.mesh_source = "test";
+  spec.medium.albedo = albedo;
+  spec.medium.g = g;
+  spec.eta = eta;
+  spec.run.photons = photons;
+  spec.run.batches = 32;
+  spec.run.threads = 2;
+  return spec;
+}
+
+// Two boxes of half size 1 x 1 x h/2 in line along z, the first at z in [-1.2, -1.2 + h1], the
+// second from z = 0.2: one mesh of two closed parts, 24 triangles; 14 and 15 are the second box's
+// top face (+z; make_box's second face).
+TriangleMesh two_boxes(double h1, double h2) {
+  TriangleMesh mesh;
+  const auto add = [&mesh](double z_low, double height) {
+    TriangleMesh box = make_box(Vec3(1.0, 1.0, 0.5 * height));
+    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+    for (const Vec3& p : box.positions)
+      mesh.positions.push_back(p + Vec3(0, 0, z_low + 0.5 * height));
+    for (auto t : box.triangles) mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  };
+  add(-1.2, h1);
+  add(0.2, h2);
+  return mesh;
+}
+
+// An absorbing slab of optical thickness h behind Fresnel faces, at normal incidence (reflectance
+// r0 = ((eta - 1) / (eta + 1))^2 each face), summing the light's passes:
+//   T = (1 - r0)^2 a / (1 - r0^2 a^2),  R = r0 + (1 - r0)^2 r0 a^2 / (1 - r0^2 a^2),  a = e^{-h}.
+// Two slabs with a gap (incoherent light going back and forth between them):
+//   T = T1 T2 / (1 - R1 R2),  R = R1 + T1^2 R2 / (1 - R1 R2).
+struct StackTotals {
+  double reflected, transmitted;
+};
+StackTotals slab_pair(double h1, double h2, double eta) {
+  const double r0 = std::pow((eta - 1.0) / (eta + 1.0), 2);
+  const auto slab = [r0](double h) {
+    const double a = std::exp(-h), bounce = 1.0 - r0 * r0 * a * a;
+    return StackTotals{r0 + (1.0 - r0) * (1.0 - r0) * r0 * a * a / bounce,
+                       (1.0 - r0) * (1.0 - r0) * a / bounce};
+  };
+  const StackTotals s1 = slab(h1), s2 = slab(h2);
+  const double between = 1.0 - s1.reflected * s2.reflected;
+  return {s1.reflected + s1.transmitted * s1.transmitted * s2.reflected / between,
+          s1.transmitted * s2.transmitted / between};
+}
+
+TEST(LitMesh, LightLeavesOneBoxAndEntersTheNext) {
+  // Parallel light along +z over the boxes' common footprint, no scattering: every photon
+  // crosses both. Index matched, the light left is e^{-(h1 + h2)}, all through the second box's
+  // top; without the re-entry it would be e^{-h1}, all through the first box's top.
+  const double h1 = 0.5, h2 = 0.8;
+  {
+    const TransportOutput out = run_lit_mesh(lit_mesh(two_boxes(h1, h2), 0.0, 0.0, 1.0, 200'000));
+    const double expected = std::exp(-(h1 + h2));
+    EXPECT_NEAR(scalar(out, "exited"), expected, 4.0 * scalar_error(out, "exited"));
+    EXPECT_LT(scalar_error(out, "exited"), 2e-3);
+    // Exitance per unit area of the top face (area 4), and none anywhere else.
+    const TallyResult& exitance = find_tally(out, "exitance");
+    double top = 0.0;
+    for (std::size_t t = 0; t < 24; ++t) {
+      if (t == 14 || t == 15) {
+        top += exitance.mean[t] * 2.0;  // each of the two triangles has area 2
+      } else {
+        EXPECT_EQ(exitance.mean[t], 0.0) << "triangle " << t;
+      }
+    }
+    EXPECT_NEAR(top, scalar(out, "exited"), 1e-12);
+  }
+  // Behind Fresnel faces at normal incidence the light also goes back and forth between the
+  // boxes: the stack's closed form. What the first face reflects is reflected at entry (exactly
+  // r0, drawn photon by photon); what comes back out through the bottom later has entered, and
+  // counts as exited.
+  for (const double eta : {1.5, 0.7}) {
+    const TransportOutput out = run_lit_mesh(lit_mesh(two_boxes(h1, h2), 0.0, 0.0, eta, 400'000));
+    const StackTotals stack = slab_pair(h1, h2, eta);
+    const double r0 = std::pow((eta - 1.0) / (eta + 1.0), 2);
+    const TallyResult& exitance = find_tally(out, "exitance");
+    const double through_top = 2.0 * (exitance.mean[14] + exitance.mean[15]);
+    const double top_error =
+        2.0 * std::hypot(exitance.stderr_of_mean[14], exitance.stderr_of_mean[15]);
+    const std::string label = "eta " + std::to_string(eta);
+    EXPECT_NEAR(through_top, stack.transmitted, 4.0 * top_error) << label;
+    EXPECT_NEAR(scalar(out, "reflected_at_entry"), r0,
+                4.0 * scalar_error(out, "reflected_at_entry"))
+        << label;
+    EXPECT_NEAR(scalar(out, "exited"), stack.transmitted + stack.reflected - r0,
+                4.0 * scalar_error(out, "exited"))
+        << label;
+    EXPECT_NEAR(scalar(out, "absorbed"), 1.0 - stack.transmitted - stack.reflected,
+                4.0 * scalar_error(out, "absorbed"))
+        << label;
+  }
+}
+
+TEST(LitMesh, FineSphereMeshIsTheAnalyticSphere) {
+  // The same medium and light on the analytic sphere (sphere.hpp) and on a 36 864-triangle
+  // sphere mesh of flat facets. Their difference in shape (the facets' chords, by (1 - cos(pi /
+  // 96)) ~ 5e-4 of R, and normals tilted by up to pi / 96 across a facet) moves the totals by
+  // ~1e-3 at most, under these runs' errors; each of the 12 zones of psi (8 rings of the mesh
+  // each) must hold the same power within 4 combined sigma plus that allowance.
+  const double radius = 2.0, eta = 1.3;
+  LitSphereSpec analytic;
+  analytic.medium.albedo = 0.9;
+  analytic.medium.g = 0.5;
+  analytic.eta = eta;
+  analytic.radius = radius;
+  analytic.psi.bins = 12;
+  analytic.run.photons = 1'000'000;
+  analytic.run.batches = 32;
+  analytic.run.threads = 2;
+  const TransportOutput sphere = run_lit_sphere(analytic);
+  LitSphereSpec spec =
+      lit_mesh(make_sphere(radius, 96, 192, false), 0.9, 0.5, eta, analytic.run.photons);
+  spec.run.seed = 7;
+  const TransportOutput mesh = run_lit_mesh(spec);
+
+  constexpr double allowance = 1e-3;
+  for (const std::string name : {"exited", "absorbed", "reflected_at_entry"}) {
+    EXPECT_NEAR(scalar(mesh, name), scalar(sphere, name),
+                4.0 * std::hypot(scalar_error(mesh, name), scalar_error(sphere, name)) + allowance)
+        << name;
+  }
+  // Zone k of psi (from the lit pole at -z) holds the rings 96 - 8 (k + 1) .. 96 - 8 k of theta
+  // (from +z); a triangle's zone is that of its centroid.
+  const TallyResult& by_triangle = find_tally(mesh, "exitance");
+  const TallyResult& by_zone = find_tally(sphere, "exitance");
+  std::vector<double> power(12, 0.0), variance(12, 0.0);
+  for (std::size_t t = 0; t < spec.mesh->triangle_count(); ++t) {
+    const Vec3 centroid =
+        (spec.mesh->vertex(t, 0) + spec.mesh->vertex(t, 1) + spec.mesh->vertex(t, 2)) / 3.0;
+    const double psi = std::acos(-centroid.normalized().z());
+    const auto zone = static_cast<std::size_t>(psi / (std::numbers::pi / 12));
+    const double area = spec.mesh->area(t);
+    power[zone] += by_triangle.mean[t] * area;
+    variance[zone] += std::pow(by_triangle.stderr_of_mean[t] * area, 2);
+  }
+  for (int k = 0; k < 12; ++k) {
+    const double area = 2.0 * std::numbers::pi * radius * radius *
+                        (std::cos(analytic.psi.edge(k)) - std::cos(analytic.psi.edge(k + 1)));
+    const auto z = static_cast<std::size_t>(k);
+    const double expected = by_zone.mean[z] * area;
+    // Triangles of one zone are correlated only through the batch means; their variances add
+    // as an upper bound for a sum of counts that exclude each other photon by photon.
+    const double sigma = std::hypot(std::sqrt(variance[z]), by_zone.stderr_of_mean[z] * area);
+    EXPECT_NEAR(power[z], expected, 4.0 * sigma + allowance * expected) << "zone " << k;
+  }
+}
+
+TEST(LitMesh, EnergyBalancesPhotonByPhotonOnAShapeThatIsNotConvex) {
+  const TriangleMesh bumpy = make_bumpy_sphere(3.0, 0.25, 5, 31, 40);
+  for (const SphereLight light : {SphereLight::directional, SphereLight::beam}) {
+    for (const double eta : {1.0, 1.4, 0.7}) {
+      LitSphereSpec spec = lit_mesh(bumpy, 0.95, 0.6, eta, 20'000);
+      spec.light = light;
+      spec.beam_origin = {0.3, 0.2, -6.0};
+      spec.beam_direction = {0.1, 0.0, 1.0};
+      const TransportOutput out = run_lit_mesh(spec);
+      const std::string label = to_string(light) + " eta " + std::to_string(eta);
+      EXPECT_NEAR(
+          scalar(out, "reflected_at_entry") + scalar(out, "exited") + scalar(out, "absorbed"), 1.0,
+          1e-12)
+          << label;
+      for (const std::string total : {"exited", "absorbed"}) {
+        EXPECT_NEAR(scalar(out, total + "_unscattered") + scalar(out, total + "_single") +
+                        scalar(out, total + "_multiple"),
+                    scalar(out, total), 1e-12)
+            << label << " " << total;
+      }
+      const TallyResult& exitance = find_tally(out, "exitance");
+      double total = 0.0;
+      for (std::size_t t = 0; t < bumpy.triangle_count(); ++t) {
+        total += exitance.mean[t] * bumpy.area(t);
+      }
+      EXPECT_NEAR(total, scalar(out, "exited"), 1e-12) << label;
+    }
+  }
+}
+
+TEST(LitMesh, BadScenesNameTheField) {
+  const auto field_of = [](const LitSphereSpec& spec) {
+    try {
+      run_lit_mesh(spec);
+    } catch (const InputError& e) {
+      return e.field();
+    }
+    return std::string("(accepted)");
+  };
+  EXPECT_EQ(field_of(lit_mesh(make_flat_square(1.0, 1), 0.9, 0.0, 1.3, 100)), "mesh");
+  LitSphereSpec spec = lit_mesh(make_sphere(1.0, 12, 24, false), 0.9, 0.0, 1.3, 100);
+  spec.light = SphereLight::pole_beam;
+  EXPECT_EQ(field_of(spec), "source.type");
+  spec.light = SphereLight::beam;
+  spec.beam_origin = {0.0, 0.1, 0.2};  // inside
+  EXPECT_EQ(field_of(spec), "source.origin");
+  spec.beam_origin = {0.0, 0.0, -3.0};
+  spec.beam_direction = {1.0, 0.0, 0.0};  // along x from below: misses
+  EXPECT_EQ(field_of(spec), "source.direction");
+  spec.beam_direction = {0.0, 0.0, 1.0};
+  EXPECT_EQ(field_of(spec), "(accepted)");
+}
+
+}  // namespace
+}  // namespace scatterlab
