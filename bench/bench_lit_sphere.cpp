@@ -3,15 +3,21 @@
 // order), for the same media as the HalfSpace rows of bench_half_space.cpp, so that the two
 // rows of a medium compare the boundary test's cost per event. A pole beam into a sphere of
 // 10 mfp stands beside the half-space's beam; a directional light on a sphere of 1 mfp shows the
-// cost per photon of the entry (a Fresnel choice and a refraction) over short walks.
+// cost per photon of the entry (a Fresnel choice and a refraction) over short walks. The Mesh
+// rows run the same media in a sphere of 10 mfp tessellated into 9 216 flat triangles
+// (render/mesh_boundary.hpp: a ray query per flight that leaves the inner ball), under a beam
+// near its pole, to set the cost of Embree's boundary test against the analytic sphere's.
 //
-//   ./build/bench/scatterlab_bench --benchmark_filter='Sphere|HalfSpace/'
+//   ./build/bench/scatterlab_bench --benchmark_filter='Sphere|Mesh|HalfSpace/'
 //       --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
+#include <memory>
 #include <vector>
 
 #include "scatterlab/core/phase_function.hpp"
+#include "scatterlab/core/procedural_meshes.hpp"
+#include "scatterlab/render/mesh_light.hpp"
 #include "scatterlab/tally/scorer.hpp"
 #include "scatterlab/tally/tally_book.hpp"
 #include "scatterlab/transport/lit_sphere.hpp"
@@ -49,6 +55,31 @@ void Sphere(benchmark::State& state, Phase phase, LitSphereSpec spec) {
   run_walk<Phase, false>(state, phase, spec);
 }
 
+template <class Phase, bool fresnel>
+void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitSphereSpec& spec) {
+  const TransportProblem problem = transport_problem(spec);
+  const TallyBook book(problem.tallies, problem.split_by_order);
+  const Scorer scorer(problem.axes, book);
+  const MeshRayTracer tracer(*spec.mesh);
+  const MeshBoundary<fresnel> boundary(tracer, *spec.mesh, spec.eta);
+  const MeshLight<fresnel> light(boundary, MeshLight<fresnel>::Kind::beam, Vec3(1e-3, 2e-3, -20.0),
+                                 Vec3::UnitZ(), Vec3::Zero(), 10.0);
+  const RandomWalk<MeshBoundary<fresnel>, Phase, VolumeEstimator::none, Weighting::analog,
+                   MeshLight<fresnel>>
+      walk(boundary, phase, light, scorer, problem.albedo, problem.run.escape_radius,
+           problem.run.seed);
+  bench::time_walk(state, walk, book.size());
+}
+
+template <class Phase>
+void Mesh(benchmark::State& state, Phase phase, double albedo, double g, double eta,
+          SphereLight kind) {
+  LitSphereSpec spec = lit_sphere(albedo, g, eta, 10.0, kind);
+  spec.mesh = std::make_shared<const TriangleMesh>(make_sphere(10.0, 48, 96, false));
+  if (eta != 1.0) return run_mesh_walk<Phase, true>(state, phase, spec);
+  run_mesh_walk<Phase, false>(state, phase, spec);
+}
+
 const IsotropicPhase iso{};
 const HenyeyGreenstein hg075{0.75};
 
@@ -58,6 +89,11 @@ BENCHMARK_CAPTURE(Sphere, pole_R10_iso_albedo0.99_eta1, iso, lit_sphere(0.99, 0.
 BENCHMARK_CAPTURE(Sphere, pole_R10_iso_albedo0.99_eta1.33, iso, lit_sphere(0.99, 0.0, 1.33, 10.0, SphereLight::pole_beam));
 BENCHMARK_CAPTURE(Sphere, pole_R10_hg_g0.75_albedo0.9_eta1.33, hg075, lit_sphere(0.9, 0.75, 1.33, 10.0, SphereLight::pole_beam));
 BENCHMARK_CAPTURE(Sphere, directional_R1_iso_albedo0.99_eta1.33, iso, lit_sphere(0.99, 0.0, 1.33, 1.0, SphereLight::directional));
+BENCHMARK_CAPTURE(Sphere, directional_R10_iso_albedo0.99_eta1.33, iso, lit_sphere(0.99, 0.0, 1.33, 10.0, SphereLight::directional));
+BENCHMARK_CAPTURE(Mesh, beam_R10_iso_albedo0.99_eta1, iso, 0.99, 0.0, 1.0, SphereLight::beam);
+BENCHMARK_CAPTURE(Mesh, beam_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::beam);
+BENCHMARK_CAPTURE(Mesh, beam_R10_hg_g0.75_albedo0.9_eta1.33, hg075, 0.9, 0.75, 1.33, SphereLight::beam);
+BENCHMARK_CAPTURE(Mesh, directional_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional);
 // clang-format on
 
 }  // namespace

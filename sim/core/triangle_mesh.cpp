@@ -67,31 +67,6 @@ void TriangleMesh::validate() const {
   }
 }
 
-double TriangleMesh::distance_to(std::size_t triangle, const Vec3& p) const {
-  // Ericson, Real-Time Collision Detection (2005), §5.1.5: the Voronoi region of the triangle's
-  // features that holds p, from the barycentric signs, and its closest point.
-  const Vec3 &a = vertex(triangle, 0), &b = vertex(triangle, 1), &c = vertex(triangle, 2);
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return ap.norm();  // corner a
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0.0 && d4 <= d3) return bp.norm();  // corner b
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return (ap - d1 / (d1 - d3) * ab).norm();  // edge ab
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0.0 && d5 <= d6) return cp.norm();  // corner c
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return (ap - d2 / (d2 - d6) * ac).norm();  // edge ac
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {  // edge bc
-    return (bp - (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b)).norm();
-  }
-  const double scale = 1.0 / (va + vb + vc);  // inside the face
-  return (ap - (vb * scale) * ab - (vc * scale) * ac).norm();
-}
-
 std::vector<Vec3> area_weighted_vertex_normals(const TriangleMesh& mesh) {
   std::vector<Vec3> sums(mesh.positions.size(), Vec3::Zero());
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {

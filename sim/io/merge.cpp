@@ -299,9 +299,18 @@ void check_parameter_groups(const Input& first, const Input& other) {
     for (const std::string& name : ga.member_names()) {
       const hdf5::Array x = ga.read_dataset(name), y = gb.read_dataset(name);
       if (x.values != y.values) {
-        mismatch(fmt::format("parameters.{}.{}", group, name), first.path,
-                 fmt::format("{}", fmt::join(x.values, ", ")), other.path,
-                 fmt::format("{}", fmt::join(y.values, ", ")));
+        // A mesh's vertices are thousands of values: name the first that differs.
+        const auto say = [&x, &y](const std::vector<double>& v) {
+          if (x.values.size() <= 8 || x.values.size() != y.values.size()) {
+            return fmt::format("{}", fmt::join(v, ", "));
+          }
+          const auto at = static_cast<std::size_t>(
+              std::mismatch(x.values.begin(), x.values.end(), y.values.begin()).first -
+              x.values.begin());
+          return fmt::format("{} values, value {} being {}", v.size(), at, v[at]);
+        };
+        mismatch(fmt::format("parameters.{}.{}", group, name), first.path, say(x.values),
+                 other.path, say(y.values));
       }
     }
   }

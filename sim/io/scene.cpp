@@ -34,7 +34,7 @@ class SceneReader : public TomlReader {
     if (const auto* geometry = subtable(root, "geometry", "")) {
       check_keys(*geometry, "geometry", {"type"});
       read_geometry_type(*geometry, "infinite",
-                         "\"infinite\", \"sphere\" or \"slab\" (a half-space scene runs with "
+                         "\"infinite\", \"sphere\", \"mesh\" or \"slab\" (a half-space scene runs with "
                          "scatterlab searchlight)");
     }
     if (const auto* medium = subtable(root, "medium", "")) {
@@ -140,8 +140,10 @@ class SceneReader : public TomlReader {
       }
     }
     if (const auto* source = subtable(root, "source", "")) {
-      check_keys(*source, "source", {"type", "origin", "direction"});
-      const std::string_view accepted = "\"directional\", \"pole_beam\" or \"beam\"";
+      check_keys(*source, "source", {"type", "origin", "direction", "position", "radius"});
+      const std::string_view accepted =
+          "\"directional\", \"pole_beam\", \"beam\" or \"sphere\" (a sphere of light, on a "
+          "mesh)";
       if (const auto type = string(*source, "type", "source", accepted)) {
         if (*type == "directional") {
           spec.light = SphereLight::directional;
@@ -149,6 +151,8 @@ class SceneReader : public TomlReader {
           spec.light = SphereLight::pole_beam;
         } else if (*type == "beam") {
           spec.light = SphereLight::beam;
+        } else if (*type == "sphere") {
+          spec.light = SphereLight::sphere;
         } else {
           wrong_type(*source->get("type"), "source.type", accepted);
         }
@@ -165,6 +169,20 @@ class SceneReader : public TomlReader {
           throw InputError(std::string("source.") + key,
                            "given for a light that is not a beam" + at(*source->get(key)),
                            "source.origin and source.direction with source.type = \"beam\"");
+        }
+      }
+      if (const auto position = vector3(*source, "position", "source", vector)) {
+        spec.light_center = *position;
+      }
+      if (const auto radius =
+              number(*source, "radius", "source", "a finite number > 0 (in medium.length_unit)")) {
+        spec.light_radius = *radius;
+      }
+      for (const char* key : {"position", "radius"}) {
+        if (source->get(key) != nullptr && spec.light != SphereLight::sphere) {
+          throw InputError(std::string("source.") + key,
+                           "given for a light that is not a sphere" + at(*source->get(key)),
+                           "source.position and source.radius with source.type = \"sphere\"");
         }
       }
     }

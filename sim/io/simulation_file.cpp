@@ -188,6 +188,12 @@ void write_lit_sphere_parameters(hdf5::Group& root, const LitSphereSpec& spec) {
   } else {
     parameters.write_double_attribute("radius", spec.radius);
   }
+  if (spec.light == SphereLight::sphere) {
+    parameters.write_string_attribute(
+        "light_sphere",
+        fmt::format("radius {} about ({}, {}, {})", spec.light_radius, spec.light_center[0],
+                    spec.light_center[1], spec.light_center[2]));
+  }
   if (spec.light == SphereLight::beam) {
     parameters.write_string_attribute(
         "beam", fmt::format("from ({}, {}, {}) along ({}, {}, {})", spec.beam_origin[0],

@@ -28,8 +28,21 @@ void check_lit_mesh(const LitSphereSpec& spec) {
   const TriangleMesh& mesh = *spec.mesh;
   require_closed_mesh(mesh);
   require_enclosed_volume(mesh);
-  if (spec.light != SphereLight::beam) return;
+  if (spec.light != SphereLight::beam && spec.light != SphereLight::sphere) return;
   const MeshRayTracer tracer(mesh);
+  if (spec.light == SphereLight::sphere) {
+    const Vec3 center = vec3(spec.light_center);
+    if (tracer.count_crossings(center, kProbe) % 2 == 1) {
+      throw InputError("source.position", "is inside the mesh", "a point outside the object");
+    }
+    for (const Vec3& p : mesh.positions) {
+      if ((p - center).norm() <= spec.light_radius) {
+        throw InputError("source.radius", "makes the sphere of light overlap the object",
+                         "a radius that keeps the light clear of every vertex of the mesh");
+      }
+    }
+    return;
+  }
   const Vec3 origin = vec3(spec.beam_origin);
   if (tracer.count_crossings(origin, kProbe) % 2 == 1) {
     throw InputError("source.origin", "is inside the mesh", "a point outside the object");
@@ -56,15 +69,23 @@ TransportOutput run_lit_mesh(const LitSphereSpec& spec, const ProgressCallback& 
   for (const Vec3& p : mesh.positions) radius = std::max(radius, (p - center).norm());
   radius *= 1.0 + 1e-6;  // the disc's rim clears every vertex
   const bool beam = spec.light == SphereLight::beam;
-  const Vec3 origin = beam ? Vec3(vec3(spec.beam_origin) * scale) : Vec3::Zero();
-  const Vec3 direction = beam ? vec3(spec.beam_direction).normalized() : Vec3::UnitZ();
+  const bool sphere = spec.light == SphereLight::sphere;
+  Vec3 origin = Vec3::Zero(), direction = Vec3::UnitZ();
+  if (beam) {
+    origin = vec3(spec.beam_origin) * scale;
+    direction = vec3(spec.beam_direction).normalized();
+  } else if (sphere) {
+    origin = vec3(spec.light_center) * scale;
+  }
   const TransportProblem problem = transport_problem(spec);
 
   const auto run = [&]<bool fresnel>() {
+    using Light = MeshLight<fresnel>;
     const MeshBoundary<fresnel> boundary(tracer, mesh, spec.eta);
-    const MeshLight<fresnel> light(
-        boundary, beam ? MeshLight<fresnel>::Kind::beam : MeshLight<fresnel>::Kind::directional,
-        origin, direction, center, radius);
+    const typename Light::Kind kind =
+        beam ? Light::Kind::beam : (sphere ? Light::Kind::sphere : Light::Kind::directional);
+    const Light light(boundary, kind, origin, direction, center,
+                      sphere ? spec.light_radius * scale : radius);
     return transport(problem, boundary, light, progress, control);
   };
   TransportOutput out =

@@ -120,6 +120,8 @@ std::string to_string(SphereLight light) {
       return "pole_beam";
     case SphereLight::beam:
       return "beam";
+    case SphereLight::sphere:
+      return "sphere";
   }
   return "unknown";
 }
@@ -159,6 +161,17 @@ void validate_mesh_spec(const LitSphereSpec& spec) {
   }
   spec.mesh->validate();
   if (spec.light == SphereLight::beam) check_beam(spec);
+  if (spec.light == SphereLight::sphere) {
+    for (const double x : spec.light_center) {
+      if (!std::isfinite(x)) {
+        throw InputError("source.position", "is not finite", "three finite numbers [x, y, z]");
+      }
+    }
+    if (!(spec.light_radius > 0.0) || !std::isfinite(spec.light_radius)) {
+      throw InputError("source.radius", got(spec.light_radius),
+                       "a finite number > 0 (in medium.length_unit)");
+    }
+  }
   const double radius_mfp = bounding_radius_mfp(spec);
   if (!(radius_mfp >= 1e-6 && radius_mfp <= 1e6)) {
     throw InputError("mesh", fmt::format("reaches {} mfp from the origin", radius_mfp),
@@ -188,6 +201,11 @@ void LitSphereSpec::validate() const {
   if (!(radius_mfp >= 1e-6 && radius_mfp <= 1e6)) {
     throw InputError("geometry.radius", fmt::format("is {} mfp", radius_mfp),
                      "a radius of 1e-6 to 1e6 mean free paths");
+  }
+  if (light == SphereLight::sphere) {
+    throw InputError("source.type", "\"sphere\" on the analytic sphere",
+                     "\"directional\", \"pole_beam\" or \"beam\"; a sphere of light shines on "
+                     "a mesh (geometry.type = \"mesh\", e.g. [mesh] shape = \"sphere\")");
   }
   if (psi.min != 0.0 || std::abs(psi.max - std::numbers::pi) > 1e-12) {
     throw InputError("grid.psi", fmt::format("spans [{}, {}]", psi.min, psi.max),
@@ -236,17 +254,21 @@ std::string mesh_fingerprint(const TriangleMesh& mesh) {
 
 std::string fingerprint(const LitSphereSpec& spec) {
   const Medium& m = spec.medium;
-  return fingerprint_of(fmt::format("lit_sphere|medium {:a} {:a} {:a} {}|radius {:a}|eta "
-                                    "{:a}|light {}|beam {:a} {:a} {:a} {:a} "
-                                    "{:a} {:a}|psi {:a},{:a},{}|azimuth {}|split {}|run {} {} {}",
-                                    m.albedo, m.g, m.sigma_t, m.length_unit, spec.radius, spec.eta,
-                                    to_string(spec.light), spec.beam_origin[0], spec.beam_origin[1],
-                                    spec.beam_origin[2], spec.beam_direction[0],
-                                    spec.beam_direction[1], spec.beam_direction[2], spec.psi.min,
-                                    spec.psi.max, spec.psi.bins, spec.azimuth.bins,
-                                    spec.split_by_order, spec.run.photons, spec.run.batches,
-                                    spec.run.seed) +
-                        (spec.mesh ? mesh_fingerprint(*spec.mesh) : std::string()));
+  return fingerprint_of(
+      fmt::format("lit_sphere|medium {:a} {:a} {:a} {}|radius {:a}|eta "
+                  "{:a}|light {}|beam {:a} {:a} {:a} {:a} "
+                  "{:a} {:a}|psi {:a},{:a},{}|azimuth {}|split {}|run {} {} {}",
+                  m.albedo, m.g, m.sigma_t, m.length_unit, spec.radius, spec.eta,
+                  to_string(spec.light), spec.beam_origin[0], spec.beam_origin[1],
+                  spec.beam_origin[2], spec.beam_direction[0], spec.beam_direction[1],
+                  spec.beam_direction[2], spec.psi.min, spec.psi.max, spec.psi.bins,
+                  spec.azimuth.bins, spec.split_by_order, spec.run.photons, spec.run.batches,
+                  spec.run.seed) +
+      (spec.light == SphereLight::sphere
+           ? fmt::format("|light sphere {:a} {:a} {:a} {:a}", spec.light_center[0],
+                         spec.light_center[1], spec.light_center[2], spec.light_radius)
+           : std::string()) +
+      (spec.mesh ? mesh_fingerprint(*spec.mesh) : std::string()));
 }
 
 TransportProblem transport_problem(const LitSphereSpec& spec) {

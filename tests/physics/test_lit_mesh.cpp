@@ -8,12 +8,14 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
 #include "scatterlab/render/lit_mesh.hpp"
+#include "scatterlab/render/mesh_ray_tracer.hpp"
 #include "scatterlab/render/render_scene.hpp"
 #include "simulation_fixtures.hpp"
 
@@ -124,6 +126,63 @@ TEST(LitMesh, LightLeavesOneBoxAndEntersTheNext) {
   }
 }
 
+TEST(LitMesh, ASphereOfLightSeesTheChordsItsRaysCross) {
+  // Index matched and without scattering, a ray from the sphere of light leaves the object
+  // attenuated by the chords it crosses on its straight line, e^{-(L1 + L2)} through the two
+  // boxes (or one of them). Evaluated independently here: rays drawn with another generator
+  // from the same emission (uniform over the light's surface, Lambert about its normal), the
+  // chords summed from the line's crossings, the rays that miss left out.
+  const double h1 = 0.5, h2 = 0.8;
+  LitSphereSpec spec = lit_mesh(two_boxes(h1, h2), 0.0, 0.0, 1.0, 200'000);
+  spec.light = SphereLight::sphere;
+  spec.light_center = {0.6, 0.3, -3.0};
+  spec.light_radius = 0.5;
+  const TransportOutput out = run_lit_mesh(spec);
+
+  const TriangleMesh& mesh = *spec.mesh;
+  const MeshRayTracer tracer(mesh);
+  std::mt19937_64 generator(12345);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const Vec3 center(0.6, 0.3, -3.0);
+  double sum = 0.0, sum2 = 0.0;
+  int hits = 0;
+  while (hits < 200'000) {
+    const double z = 1.0 - 2.0 * uniform(generator),
+                 a = 2.0 * std::numbers::pi * uniform(generator);
+    const Vec3 normal(std::sqrt(1.0 - z * z) * std::cos(a), std::sqrt(1.0 - z * z) * std::sin(a),
+                      z);
+    const double u = uniform(generator), b = 2.0 * std::numbers::pi * uniform(generator);
+    const Frame frame(normal);
+    const Vec3 way = frame.to_world(std::sqrt(1.0 - u) * std::cos(b),
+                                    std::sqrt(1.0 - u) * std::sin(b), std::sqrt(u));
+    const Vec3 start = center + 0.5 * normal;
+    // Inside from a facet that faces the ray to the next that faces away (a ray along an edge
+    // may meet both of its facets at once; the pairing by orientation takes it once).
+    double inside = 0.0, entered = -1.0;
+    bool met = false;
+    MeshHit hit;
+    double t = 0.0;
+    while (tracer.intersect(start, way, t, 1e30, hit)) {
+      met = true;
+      const bool entering = way.dot(mesh.geometric_normal(hit.triangle)) < 0.0;
+      if (entering && entered < 0.0) entered = hit.distance;
+      if (!entering && entered >= 0.0) {
+        inside += hit.distance - entered;
+        entered = -1.0;
+      }
+      t = hit.distance + tracer.epsilon();
+    }
+    if (!met) continue;
+    const double left = std::exp(-inside);
+    sum += left;
+    sum2 += left * left;
+    ++hits;
+  }
+  const double mean = sum / hits, error = std::sqrt((sum2 / hits - mean * mean) / hits);
+  EXPECT_NEAR(scalar(out, "exited"), mean, 4.0 * std::hypot(scalar_error(out, "exited"), error));
+  EXPECT_EQ(scalar(out, "reflected_at_entry"), 0.0);
+}
+
 TEST(LitMesh, FineSphereMeshIsTheAnalyticSphere) {
   // The same medium and light on the analytic sphere (sphere.hpp) and on a 36 864-triangle
   // sphere mesh of flat facets. Their difference in shape (the facets' chords, by (1 - cos(pi /
@@ -228,6 +287,14 @@ TEST(LitMesh, BadScenesNameTheField) {
   spec.beam_direction = {1.0, 0.0, 0.0};  // along x from below: misses
   EXPECT_EQ(field_of(spec), "source.direction");
   spec.beam_direction = {0.0, 0.0, 1.0};
+  EXPECT_EQ(field_of(spec), "(accepted)");
+  spec.light = SphereLight::sphere;
+  spec.light_center = {0.0, 0.0, 0.0};  // inside
+  EXPECT_EQ(field_of(spec), "source.position");
+  spec.light_center = {0.0, 0.0, -1.5};
+  spec.light_radius = 0.6;  // reaches the object
+  EXPECT_EQ(field_of(spec), "source.radius");
+  spec.light_radius = 0.4;
   EXPECT_EQ(field_of(spec), "(accepted)");
 }
 

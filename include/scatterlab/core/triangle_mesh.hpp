@@ -40,8 +40,6 @@ struct TriangleMesh {
   // Unit outward geometric normal (zero vector for a degenerate triangle).
   Vec3 geometric_normal(std::size_t triangle) const;
   double area(std::size_t triangle) const;
-  // Distance from `point` to the nearest point of the triangle (its inside, edges or corners).
-  double distance_to(std::size_t triangle, const Vec3& point) const;
   // The box of the positions (a zero box for an empty mesh).
   BoundingBox bounds() const;
 

@@ -112,8 +112,9 @@ SearchlightScene load_searchlight_scene(const std::filesystem::path& path,
 //   [geometry] type = "sphere", radius (in medium.length_unit), eta = n_medium / n_outside;
 //              or type = "mesh" and eta, with a [mesh] table as a render scene's (no [grid])
 //   [medium]   as above; a material brings its table's eta unless geometry.eta is given
-//   [source]   type = "directional" | "pole_beam" | "beam"; for a beam, origin = [x, y, z]
-//              (outside the sphere, in medium.length_unit) and direction = [x, y, z]
+//   [source]   type = "directional" | "pole_beam" | "beam" | "sphere"; for a beam, origin =
+//              [x, y, z] (outside the sphere, in medium.length_unit) and direction = [x, y, z];
+//              for a sphere of light (on a mesh), position = [x, y, z] and radius
 //   [grid]     psi = { bins }       (the angle from the lit pole, over [0, pi]),
 //              azimuth = { bins }   (about z from +x, over [0, 2 pi]; 1 by default)
 //   [tallies]  split_by_order = bool

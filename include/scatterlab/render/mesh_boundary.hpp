@@ -17,23 +17,23 @@
 // meets the mesh no more. The exit tallies see only that last departure (the triangle it left
 // through for good): light that leaves and comes back is not counted where it left.
 //
-// Most flights of a large object end far from its surface. A ball inside the mesh (about the
-// centre of its box, as large as the nearest triangle allows) holds a flight whose two ends it
-// holds, since a ball is convex: such a flight needs no ray query.
+// Most flights of a large object end far from its surface: one whose length is under the
+// clearance of its start (surface_clearance.hpp) cannot reach it and needs no ray query.
 //
 // `fresnel` = false is the index-matched object (eta = 1): light crosses without reflection or
 // bending, and no random number is drawn at the surface but the fresh flight after a re-entry.
 
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 
 #include "scatterlab/core/frame.hpp"
 #include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/core/random.hpp"
 #include "scatterlab/core/triangle_mesh.hpp"
 #include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/render/surface_clearance.hpp"
 #include "scatterlab/tally/surface_exit.hpp"
 
 namespace scatterlab {
@@ -76,19 +76,7 @@ class MeshBoundary {
         mesh_(&mesh),
         eta_(eta),
         epsilon_(tracer.epsilon()),
-        center_(mesh.bounds().center()) {
-    // A centre outside a shape that is not convex (a ring's) has no ball.
-    if (tracer.count_crossings(center_, Vec3(0.5773, 0.6123, 0.5407).normalized()) % 2 == 0) {
-      return;
-    }
-    double nearest = std::numeric_limits<double>::infinity();
-    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-      nearest = std::min(nearest, mesh.distance_to(t, center_));
-    }
-    // Less a margin for the single precision of the ray queries beyond it.
-    const double inner = std::max(0.0, nearest - 4.0 * epsilon_);
-    inner2_ = inner * inner;
-  }
+        clearance_(std::make_shared<const SurfaceClearance>(mesh)) {}
 
   const MeshRayTracer& tracer() const { return *tracer_; }
   const TriangleMesh& mesh() const { return *mesh_; }
@@ -127,9 +115,7 @@ class MeshBoundary {
   // filled) or the flight goes on inside, after reflections or a re-entry, to end at `next`.
   bool leaves(Vec3& position, Vec3& direction, Vec3& next, double flight, PhotonRandom& random,
               SurfaceExit& exit) const {
-    if ((next - center_).squaredNorm() < inner2_ && (position - center_).squaredNorm() < inner2_) {
-      return false;
-    }
+    if (flight < clearance_->at(position)) return false;
     double t_near = 0.0;
     MeshCrossing at;
     while (next_crossing(*tracer_, *mesh_, position, direction, t_near, flight, at)) {
@@ -174,8 +160,7 @@ class MeshBoundary {
   const TriangleMesh* mesh_;
   double eta_;
   double epsilon_;
-  Vec3 center_;
-  double inner2_ = 0.0;  // the inner ball's radius squared (0: none)
+  std::shared_ptr<const SurfaceClearance> clearance_;  // shared by the walk's copies
 };
 
 }  // namespace scatterlab

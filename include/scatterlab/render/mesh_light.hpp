@@ -7,13 +7,20 @@
 //                sphere that bounds the mesh, and those whose line misses the mesh are drawn
 //                again. Each photon therefore stands for an equal share of the power that
 //                meets the object, the normalisation of the lit sphere (source.hpp), whatever
-//                the object's shadow.
+//                the object's shadow;
+//   sphere       a sphere of light of uniform radiance about `origin`, of radius `radius`
+//                (Vavassori §4.3, the light over the milk sphere): photons leave its surface
+//                uniformly, each along a cosine-distributed direction about the outward normal
+//                (a uniform radiance's emission), and those whose line misses the object are drawn
+//                again, so they too stand for equal shares of the power that meets it. The light
+//                is no obstacle to light that leaves the object.
 // Both meet the surface as every light outside does (MeshBoundary::enter): reflected with
 // probability F, and followed on, or refracted in. launch is false for a photon that is
 // reflected off the object and never enters.
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "scatterlab/core/azimuth.hpp"
 #include "scatterlab/core/frame.hpp"
@@ -25,9 +32,10 @@ namespace scatterlab {
 template <bool fresnel>
 class MeshLight {
  public:
-  enum class Kind { beam, directional };
+  enum class Kind { beam, directional, sphere };
 
-  // `center` and `radius`: a sphere holding the mesh (directional light only).
+  // `center` and `radius`: a sphere holding the mesh (directional light); the light's own
+  // sphere about `origin` (sphere).
   MeshLight(const MeshBoundary<fresnel>& boundary, Kind kind, const Vec3& origin,
             const Vec3& direction, const Vec3& center, double radius)
       : boundary_(boundary),
@@ -43,6 +51,23 @@ class MeshLight {
       start = origin_;
       heading = direction_;
       return boundary_.enter(start, heading, random, 0.0);
+    }
+    if (kind_ == Kind::sphere) {
+      for (;;) {
+        const auto u = random.next4();
+        const Vec3 normal = isotropic_direction(u[0], u[1]);
+        // Lambert's law: cos theta = sqrt(u) about the normal.
+        const double cos_theta = std::sqrt(u[2]), sin_theta = std::sqrt(1.0 - u[2]);
+        const UnitCircle phi = azimuth(u[3]);
+        start = origin_ + radius_ * normal;
+        heading = Frame(normal).to_world(sin_theta * phi.cos, sin_theta * phi.sin, cos_theta);
+        MeshCrossing first;
+        if (!next_crossing(boundary_.tracer(), boundary_.mesh(), start, heading, 0.0,
+                           std::numeric_limits<double>::infinity(), first)) {
+          continue;
+        }
+        return boundary_.enter(start, heading, random, 0.0);
+      }
     }
     // Uniform over the disc: r = R sqrt(u), on a plane a radius behind the centre. A closed mesh
     // of positive volume has a shadow of positive area, so the draw ends (a needle 1e-3 of the

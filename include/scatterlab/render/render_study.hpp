@@ -41,7 +41,7 @@ struct RenderStudyOptions {
   std::vector<int> pathtrace_budgets = {4000, 16000, 64000, 256000};  // samples per pixel
   int reference_samples = 64;        // holzschuch samples per interval of the reference
   int reference_light_samples = 16;  // points on the sphere light for the reference
-  int threads = 0;             // 0: all
+  int threads = 0;                   // 0: all
   std::uint64_t seed = 1;
 
   // Small images and budgets: seconds on two cores (a smoke test of the whole study).
@@ -51,7 +51,7 @@ struct RenderStudyOptions {
 struct RenderStudyRow {
   std::string scene;
   RenderMethod method = RenderMethod::straight;
-  int budget = 0;  // samples per ray (per interval for holzschuch; per pixel for pathtrace)
+  int budget = 0;         // samples per ray (per interval for holzschuch; per pixel for pathtrace)
   int light_samples = 0;  // points on the light (0 for pathtrace)
   double seconds = 0.0;
   double rmse = 0.0;            // sqrt(mean over pixels of (L - L_ref)^2), radiance units

@@ -29,6 +29,7 @@ enum class SphereLight {
   directional,  // uniform over the sphere's shadow disk, along +z (Bitterli §3.2)
   pole_beam,    // a pencil beam at the lit pole, along the inward normal +z
   beam,         // a pencil beam from beam_origin along beam_direction, outside the sphere
+  sphere,       // a sphere of light (uniform radiance) about light_center: on a mesh only
 };
 
 struct LitSphereSpec {
@@ -40,6 +41,9 @@ struct LitSphereSpec {
   // direction that meets it; refracted where it meets the surface, its Fresnel reflection exact.
   std::array<double, 3> beam_origin{0.0, 0.0, -2.0};
   std::array<double, 3> beam_direction{0.0, 0.0, 1.0};
+  // The sphere of light (light = sphere; in medium.length_unit), clear of the object.
+  std::array<double, 3> light_center{0.0, 0.0, -4.0};
+  double light_radius = 0.5;
   UniformAxis psi{0.0, std::numbers::pi, 36};  // exit point's angle from the lit pole
   // The exit point's azimuth about z, from +x: one bin for a light symmetric about z (the
   // directional light, the pole beam), more for a beam off the axis.
