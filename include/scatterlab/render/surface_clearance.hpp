@@ -39,7 +39,7 @@ class SurfaceClearance {
   Vec3 lo_;
   double inverse_side_ = 0.0;
   int n_[3] = {1, 1, 1};
-  std::vector<float> clearance_;  // (k - 3/2) h per cell, 0 for k <= 1
+  std::vector<float> clearance_;  // (k - 3/2) h per cell, at least 0
 };
 
 }  // namespace scatterlab

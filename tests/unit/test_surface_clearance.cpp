@@ -1,0 +1,47 @@
+// The clearance grid (render/surface_clearance.hpp) is a lower bound: from points inside a
+// shape that is not convex, no ray meets the surface within the clearance; and it is of use:
+// deep inside it is the Chebyshev bound it promises.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "scatterlab/core/procedural_meshes.hpp"
+#include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/render/surface_clearance.hpp"
+
+namespace scatterlab {
+namespace {
+
+TEST(SurfaceClearance, NoRayMeetsTheSurfaceWithinIt) {
+  const TriangleMesh mesh = make_bumpy_sphere(5.0, 0.2, 4, 41, 48);
+  const MeshRayTracer tracer(mesh);
+  const SurfaceClearance clearance(mesh, 48);
+  std::mt19937_64 generator(3);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  int checked = 0, positive = 0;
+  while (checked < 2000) {
+    const Vec3 p = 5.0 * Vec3(uniform(generator), uniform(generator), uniform(generator));
+    if (tracer.count_crossings(p, Vec3(0.5773, 0.6123, 0.5407).normalized()) % 2 == 0) continue;
+    ++checked;
+    const double reach = clearance.at(p);
+    if (reach > 0.0) ++positive;
+    for (int k = 0; k < 64; ++k) {
+      const Vec3 way =
+          Vec3(uniform(generator), uniform(generator), uniform(generator)).normalized();
+      MeshHit hit;
+      ASSERT_FALSE(tracer.intersect(p, way, 0.0, reach, hit))
+          << "a surface point at " << hit.distance << " within the clearance " << reach;
+    }
+  }
+  // Most of the shape is more than two cells (of about 10 / 48) from its surface.
+  EXPECT_GT(positive, 1000);
+  // From the centre the surface is at 5 (1 - 0.2) = 4 or more: at least 4 / sqrt(3) cells of
+  // Chebyshev distance away, less the bound's 1.5 cells and the cell the centre is in.
+  const double cell = mesh.bounds().diagonal() / std::sqrt(3.0) / 48.0 * 1.05;
+  EXPECT_GT(clearance.at(Vec3::Zero()), 4.0 / std::sqrt(3.0) - 2.5 * cell);
+  EXPECT_EQ(clearance.at(Vec3(100.0, 0.0, 0.0)), 0.0);
+}
+
+}  // namespace
+}  // namespace scatterlab
