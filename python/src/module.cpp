@@ -95,6 +95,10 @@ void run_scene(const std::string& toml, const std::string& origin, const std::st
         model_fluence);
   } else if (geometry == "sphere") {
     LitSphereScene scene = parse_lit_sphere_scene(toml, origin, Validation::on_read);
+    if (scene.mesh) {  // meshes are traced with Embree, in the program's render component
+      throw InputError("geometry.type", "\"mesh\" in the Python module",
+                       "a sphere here; a mesh scene runs with scatterlab simulate --scene");
+    }
     run_and_write(scene.spec, [](auto& s, auto& p, auto& c) { return run_lit_sphere(s, p, c); });
   } else if (geometry == "slab") {
     LayeredSlabScene scene = parse_layered_slab_scene(toml, origin, Validation::on_read);

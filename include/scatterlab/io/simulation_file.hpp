@@ -106,9 +106,12 @@ void write_searchlight_file(const std::filesystem::path& path, const Searchlight
                             const std::vector<ModelResult>& models = {});
 
 // The same file for the lit sphere (transport/lit_sphere.hpp): /parameters adds geometry =
-// "sphere", source (directional or pole_beam), radius and eta; /grid holds psi, the angle of a
-// point of the surface from the lit pole; the tallies are those declared in
-// sim/transport/lit_sphere.cpp.
+// "sphere", source (directional, pole_beam, beam), radius and eta; /grid holds psi, the angle of
+// a point of the surface from the lit pole, and azimuth; the tallies are those declared in
+// sim/transport/lit_sphere.cpp. For a mesh, geometry = "mesh" and /parameters/mesh holds
+// positions (n x 3, in the length unit), triangles (m x 3 vertex indices, int32), area (m) and
+// the attribute source; /grid is empty (the exitance is per triangle); a sphere of light's
+// radius and centre are the attribute light_sphere.
 void write_lit_sphere_file(const std::filesystem::path& path, const LitSphereSpec& spec,
                            const std::vector<TallyResult>& tallies, const Provenance& provenance);
 
