@@ -31,6 +31,8 @@ mkdir -p "$data/render-study"
   "$source_dir/data/scenes/bumpy-sphere.toml" "$source_dir/data/scenes/tile.toml" >/dev/null
 "$exe" simulate "$source_dir/data/scenes/lit-sphere.toml" --albedo 0.9 --g 0.5 --photons 2e5 \
   --batches 16 --out "$data/lit-sphere.h5" >/dev/null
+"$exe" simulate "$source_dir/data/scenes/lit-mesh.toml" --photons 2e5 --batches 16 \
+  --out "$data/lit-mesh.h5" >/dev/null
 for albedo in 0.3 0.9; do
   "$exe" simulate --source point --albedo "$albedo" --g 0 --photons 5e4 --batches 16 \
     --out "$data/point-$albedo.h5" >/dev/null
