@@ -64,12 +64,11 @@ SurfaceClearance::SurfaceClearance(const TriangleMesh& mesh, int cells) {
       }
     }
   }
-  clearance_.resize(steps.size());
+  steps_.resize(steps.size());
   for (std::size_t k = 0; k < steps.size(); ++k) {
-    clearance_[k] = steps[k] != unset
-                        ? static_cast<float>(std::max(0.0, (steps[k] - 1.5) * side * (1.0 - 1e-6)))
-                        : 0.0f;
+    steps_[k] = static_cast<std::uint8_t>(std::min(steps[k], 255));
   }
+  for (int k = 2; k < 256; ++k) clearance_of_[k] = (k - 1.5) * side * (1.0 - 1e-6);
 }
 
 }  // namespace scatterlab
