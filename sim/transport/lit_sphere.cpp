@@ -154,7 +154,8 @@ void check_beam(const LitSphereSpec& spec) {
 void validate_mesh_spec(const LitSphereSpec& spec) {
   if (spec.light == SphereLight::pole_beam) {
     throw InputError("source.type", "\"pole_beam\" on a mesh, which has no pole",
-                     "\"directional\" or \"beam\" (with source.origin and source.direction)");
+                     "\"directional\", \"beam\" (with source.origin and source.direction) or "
+                     "\"sphere\" (with source.position and source.radius)");
   }
   if (spec.mesh->triangle_count() == 0) {
     throw InputError("mesh", "has no triangles", "a closed triangle mesh");

@@ -5,10 +5,11 @@
 // and whatever the geometry does where a flight meets its surface.
 //
 // Specialised at compile time on the geometry (infinite_medium.hpp, half_space.hpp, sphere.hpp,
-// slab.hpp), the phase function, the volume estimator and the weighting (weighting.hpp), so that
-// the loop holds no isotropic/HG branch, no collision/track-length branch, no boundary code where
-// the geometry has no surface and no weight where absorption is analog. One Philox call per event
-// (free path, absorption or roulette, cos theta, azimuth); no allocation.
+// slab.hpp; a triangle mesh, render/mesh_boundary.hpp), the light, the phase function, the volume
+// estimator and the weighting (weighting.hpp), so that the loop holds no isotropic/HG branch, no
+// collision/track-length branch, no boundary code where the geometry has no surface and no weight
+// where absorption is analog. One Philox call per event (free path, absorption or roulette, cos
+// theta, azimuth); no allocation.
 //
 // A geometry provides `static constexpr bool has_surface` and `layered`. A homogeneous one with a
 // surface provides
