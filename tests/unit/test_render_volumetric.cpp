@@ -10,7 +10,9 @@
 
 #include "input_error_field.hpp"
 #include "scatterlab/core/constants.hpp"
+#include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
+#include "scatterlab/render/mesh_ray_tracer.hpp"
 #include "scatterlab/render/render_scene.hpp"
 #include "scatterlab/render/single_scatter_renderer.hpp"
 #include "scatterlab/render/volumetric_renderer.hpp"
@@ -60,6 +62,7 @@ void expect_furnace(double eta) {
   const double radiance = 2.5;
   RenderScene scene = sphere_scene(0.0, 2.0, 0.5, eta, radiance, 16, 32);
   scene.environment_radiance = radiance;
+  scene.samples = 2000;
   scene.validate();
   const VolumetricResult result = render_volumetric(scene, volumetric(11));
   EXPECT_GT(result.counters.collisions, result.counters.paths);    // light did scatter
@@ -93,7 +96,7 @@ TEST(RenderVolumetric, AbsorbingSphereFollowsBeerLambert) {
   scene.light.position = Vec3(0.0, 0.0, 40.0);  // far from the image
   scene.width = 10;
   scene.height = 10;
-  scene.samples = 3000;
+  scene.samples = 10000;
   scene.validate();
   double r_in = 1.0;
   for (std::size_t t = 0; t < scene.mesh.triangle_count(); ++t) {
@@ -121,6 +124,79 @@ TEST(RenderVolumetric, AbsorbingSphereFollowsBeerLambert) {
   EXPECT_GT(inside, 40);
 }
 
+// Fresnel reflection at the boundary: an opaque absorber (albedo 0, sigma_t so large that a
+// refracted path dies within 1e-4 of the radius) of eta = 1.5 in a uniform environment L_e. A
+// convex object cannot see itself, so a pixel's radiance is exactly F(cos theta_i, eta) L_e
+// (Born & Wolf §1.5.2), with theta_i the angle between the eye ray and the facet it meets
+// (flat facets: the renderer's normal). Tolerance 4 sigma (a Bernoulli mean of `samples`).
+TEST(RenderVolumetric, OpaqueSphereShowsFresnelReflectance) {
+  const double radiance = 3.0, eta = 1.5;
+  RenderScene scene = sphere_scene(1e4, 0.0, 0.0, eta, radiance, 24, 48);
+  scene.environment_radiance = radiance;
+  scene.width = 9;
+  scene.height = 9;
+  scene.samples = 10000;
+  scene.validate();
+  const VolumetricResult result = render_volumetric(scene, volumetric(6));
+  const MeshRayTracer tracer(scene.mesh);
+  int seen = 0;
+  for (int j = 0; j < scene.height; ++j) {
+    for (int i = 0; i < scene.width; ++i) {
+      const Vec3 d = scene.camera.ray_direction(i, j, scene.width, scene.height);
+      MeshHit hit;
+      double expected = radiance;  // the environment, or the light of the same radiance
+      if (tracer.intersect(scene.camera.position, d, 0.0, 1e300, hit)) {
+        const double cos_i = -d.dot(scene.mesh.geometric_normal(hit.triangle));
+        expected = radiance * fresnel_dielectric_reflectance(cos_i, eta);
+        ++seen;
+      }
+      const double se = result.standard_error.channels[0].at(i, j);
+      EXPECT_NEAR(result.image.channels[0].at(i, j), expected, 4.0 * se + 1e-12)
+          << "pixel " << i << ", " << j;
+    }
+  }
+  EXPECT_GT(seen, 30);
+}
+
+// The floor under the sphere light alone: a Lambertian plane of albedo a lit by a sphere of
+// radiance L_e, radius r, centre at distance D, wholly above the horizon, has the irradiance
+// E = pi L_e (r / D)^2 cos theta_c (the sphere's form factor; cos theta_c the centre's angle
+// from the normal), so its radiance is a E / pi = a L_e (r / D)^2 cos theta_c. Nothing else
+// reaches it: the object is a black absorber (eta = 1, albedo 0) behind the camera, where it
+// blocks no shadow ray, and light from the floor's bounce that goes straight to the light is
+// next-event estimation's (counted twice, the pixel would be too bright). Tolerance 4 sigma.
+TEST(RenderVolumetric, FloorUnderSphereLightFollowsLambert) {
+  const double radiance = 2.0, albedo = 0.7, height = -1.0;
+  RenderScene scene = sphere_scene(50.0, 0.0, 0.0, 1.0, radiance, 12, 24);
+  for (Vec3& p : scene.mesh.positions) p = 0.5 * p + Vec3(0.0, -9.0, 0.0);
+  scene.light.position = Vec3(0.0, 0.0, 3.0);
+  scene.light.radius = 0.6;
+  scene.light.intensity = radiance * pi * 0.6 * 0.6;
+  scene.camera.position = Vec3(0.0, -4.0, 1.0);
+  scene.camera.look_at = Vec3(0.0, 0.0, -1.0);
+  scene.floor = RenderFloor{height, {albedo, albedo, albedo}};
+  scene.width = 8;
+  scene.height = 8;
+  scene.samples = 4000;
+  scene.validate();
+  const VolumetricResult result = render_volumetric(scene, volumetric(12));
+  for (int j = 0; j < scene.height; ++j) {
+    for (int i = 0; i < scene.width; ++i) {
+      const Vec3 d = scene.camera.ray_direction(i, j, scene.width, scene.height);
+      ASSERT_LT(d.z(), 0.0);
+      const Vec3 x = scene.camera.position + (height - scene.camera.position.z()) / d.z() * d;
+      const Vec3 to_light = scene.light.position - x;
+      const double dist = to_light.norm();
+      const double expected =
+          albedo * radiance * std::pow(scene.light.radius / dist, 2) * to_light.z() / dist;
+      const double se = result.standard_error.channels[0].at(i, j);
+      EXPECT_GT(se, 0.0);
+      EXPECT_NEAR(result.image.channels[0].at(i, j), expected, 4.0 * se)
+          << "pixel " << i << ", " << j;
+    }
+  }
+}
+
 // The once-scattered part (scattering_order = 1) equals the single-scatter path tracer where the
 // two estimate the same integral: eta = 1 (pathtrace leaves out the paths that reflect inside),
 // no floor, a black environment. Whole image within 4 sigma of the two errors combined, and the
@@ -132,7 +208,7 @@ TEST(RenderVolumetric, OnceScatteredPartMatchesPathtrace) {
   scene.light.intensity = 1.0;
   scene.width = 6;
   scene.height = 6;
-  scene.samples = 20000;
+  scene.samples = 100000;
   scene.validate();
   RenderSettings traced;
   traced.method = RenderMethod::pathtrace;
