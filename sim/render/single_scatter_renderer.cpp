@@ -467,8 +467,11 @@ std::uint64_t render_evaluations(const RenderScene& scene, const RenderSettings&
 void check_render_work(const RenderScene& scene, const RenderSettings& settings) {
   const std::uint64_t evaluations = render_evaluations(scene, settings);
   if (evaluations <= max_render_evaluations) return;
+  // Volumetric's last factor is its channels, which no key sets.
   throw InputError(
-      "image.width x image.height x image.samples x image.light_samples",
+      settings.method == RenderMethod::volumetric
+          ? "image.width x image.height x image.samples"
+          : "image.width x image.height x image.samples x image.light_samples",
       fmt::format("{} x {} x {} x {} = {:.3g} light evaluations (months on one core)", scene.width,
                   scene.height, scene.samples, light_factor(scene, settings),
                   static_cast<double>(evaluations)),
