@@ -441,17 +441,12 @@ void check_render_memory(const RenderScene& scene, const RenderSettings& setting
 
 namespace {
 
-// Points on the light per sample: one for the Monte Carlo methods; for volumetric, one path per
-// channel.
+// Points on the light per sample: one for the Monte Carlo methods, which find the light by
+// sampling (volumetric: one path carries every channel).
 std::uint64_t light_factor(const RenderScene& scene, const RenderSettings& settings) {
-  switch (settings.method) {
-    case RenderMethod::pathtrace:
-      return 1;
-    case RenderMethod::volumetric:
-      return scene.channel_media.empty() ? 1 : 3;
-    default:
-      return static_cast<std::uint64_t>(scene.light_samples);
-  }
+  const bool monte_carlo =
+      settings.method == RenderMethod::pathtrace || settings.method == RenderMethod::volumetric;
+  return monte_carlo ? 1 : static_cast<std::uint64_t>(scene.light_samples);
 }
 
 }  // namespace
@@ -467,11 +462,12 @@ std::uint64_t render_evaluations(const RenderScene& scene, const RenderSettings&
 void check_render_work(const RenderScene& scene, const RenderSettings& settings) {
   const std::uint64_t evaluations = render_evaluations(scene, settings);
   if (evaluations <= max_render_evaluations) return;
-  // Volumetric's last factor is its channels, which no key sets.
+  // The Monte Carlo methods' light factor is 1, set by no key.
+  const bool monte_carlo =
+      settings.method == RenderMethod::pathtrace || settings.method == RenderMethod::volumetric;
   throw InputError(
-      settings.method == RenderMethod::volumetric
-          ? "image.width x image.height x image.samples"
-          : "image.width x image.height x image.samples x image.light_samples",
+      monte_carlo ? "image.width x image.height x image.samples"
+                  : "image.width x image.height x image.samples x image.light_samples",
       fmt::format("{} x {} x {} x {} = {:.3g} light evaluations (months on one core)", scene.width,
                   scene.height, scene.samples, light_factor(scene, settings),
                   static_cast<double>(evaluations)),

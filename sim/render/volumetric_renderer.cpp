@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -37,11 +38,16 @@ double distance_to_light(const Vec3& p, const Vec3& w, const Vec3& c, double r) 
   return t > 0.0 ? t : infinity;
 }
 
-// One channel's medium and the scene pieces a path needs.
-struct Channel {
-  double sigma_t, albedo;
-  HenyeyGreenstein phase;
-  double floor_albedo;
+// Per-channel values (red, green, blue; only the first `channels` are used).
+using Rgb = std::array<double, 3>;
+
+// The media a path sees, one per channel, and the floor's albedo per channel.
+struct ChannelMedia {
+  int channels = 1;
+  Rgb sigma_t{}, sigma_s{}, albedo{}, floor_albedo{};
+  std::array<HenyeyGreenstein, 3> phase{HenyeyGreenstein{0.0}, HenyeyGreenstein{0.0},
+                                        HenyeyGreenstein{0.0}};
+  bool same_phase = true;
 };
 
 class VolumetricTracer {
@@ -53,21 +59,19 @@ class VolumetricTracer {
         light_radiance_(scene.light.intensity / (pi * scene.light.radius * scene.light.radius)) {}
 
   void render(VolumetricResult& result, const WorkProgress& progress) {
-    const bool colour = !scene_.channel_media.empty();
-    std::vector<Channel> channels;
-    for (std::size_t c = 0; c < (colour ? 3u : 1u); ++c) {
-      const Medium& m = colour ? scene_.channel_media[c] : scene_.medium;
-      channels.push_back({m.sigma_t, m.albedo, HenyeyGreenstein{m.g},
-                          scene_.floor ? scene_.floor->albedo[c] : 0.0});
-    }
-    if (!colour && scene_.floor) {
-      // One medium traced once: the floor's albedo must be one number too, or the channels
-      // would differ after all.
-      const auto& a = scene_.floor->albedo;
-      if (a[0] != a[1] || a[1] != a[2]) {
-        throw InputError("floor.albedo", "one per channel with a single medium",
-                         "one number, or a medium per channel");
-      }
+    // Three channels for a medium per channel or a coloured floor; otherwise one, shown grey.
+    ChannelMedia media;
+    const bool grey_floor = !scene_.floor || (scene_.floor->albedo[0] == scene_.floor->albedo[1] &&
+                                              scene_.floor->albedo[1] == scene_.floor->albedo[2]);
+    media.channels = scene_.channel_media.empty() && grey_floor ? 1 : 3;
+    for (std::size_t c = 0; c < static_cast<std::size_t>(media.channels); ++c) {
+      const Medium& m = scene_.channel_media.empty() ? scene_.medium : scene_.channel_media[c];
+      media.sigma_t[c] = m.sigma_t;
+      media.sigma_s[c] = m.sigma_s();
+      media.albedo[c] = m.albedo;
+      media.phase[c] = HenyeyGreenstein{m.g};
+      media.same_phase = media.same_phase && m.g == media.phase[0].g;
+      media.floor_albedo[c] = scene_.floor ? scene_.floor->albedo[c] : 0.0;
     }
     const int tile = 8;
     const int tiles_x = (scene_.width + tile - 1) / tile;
@@ -85,13 +89,12 @@ class VolumetricTracer {
         for (int i = x0; i < std::min(x0 + tile, scene_.width); ++i) {
           const Vec3 d = scene_.camera.ray_direction(i, j, scene_.width, scene_.height);
           const auto pixel = static_cast<std::uint64_t>(j) * scene_.width + i;
-          for (std::size_t c = 0; c < channels.size(); ++c) {
-            double mean = 0.0, error = 0.0;
-            pixel_value(channels[c], d, pixel, mean, error, count);
-            for (std::size_t k = colour ? c : 0; k < (colour ? c + 1 : 3); ++k) {
-              result.image.channels[k].at(i, j) = mean;
-              result.standard_error.channels[k].at(i, j) = error;
-            }
+          Rgb mean{}, error{};
+          pixel_value(media, d, pixel, mean, error, count);
+          for (std::size_t k = 0; k < 3; ++k) {
+            const std::size_t c = media.channels == 1 ? 0 : k;
+            result.image.channels[k].at(i, j) = mean[c];
+            result.standard_error.channels[k].at(i, j) = error[c];
           }
         }
       }
@@ -111,23 +114,26 @@ class VolumetricTracer {
   }
 
  private:
-  // The mean of `samples` paths from the camera along d, and its standard error.
-  void pixel_value(const Channel& channel, const Vec3& d, std::uint64_t pixel, double& mean,
-                   double& error, VolumetricCounters& count) const {
+  // The mean of `samples` paths from the camera along d, and its standard error, per channel.
+  void pixel_value(const ChannelMedia& media, const Vec3& d, std::uint64_t pixel, Rgb& mean,
+                   Rgb& error, VolumetricCounters& count) const {
     const int n = scene_.samples;
-    double sum = 0.0, sum2 = 0.0;
+    Rgb sum{}, sum2{};
     for (int s = 0; s < n; ++s) {
-      // (seed, pixel, sample): samples <= 2^20 (render_scene.hpp), pixels <= 2^28. The channels
-      // share the stream: their paths part only where their media differ, so the noise of a
-      // pixel is alike in the three (grey grain, not coloured speckle).
+      // (seed, pixel, sample): samples <= 2^20 (render_scene.hpp), pixels <= 2^28.
       PhotonRandom random(settings_.seed, (pixel << 20) | static_cast<std::uint64_t>(s));
-      const double f = trace(channel, scene_.camera.position, d, random, count);
-      sum += f;
-      sum2 += f * f;
+      const Rgb f = trace(media, scene_.camera.position, d, random, count);
+      for (std::size_t c = 0; c < 3; ++c) {
+        sum[c] += f[c];
+        sum2[c] += f[c] * f[c];
+      }
     }
-    mean = sum / n;
-    const double variance = n > 1 ? std::max(0.0, sum2 / n - mean * mean) / (n - 1) : 0.0;
-    error = std::sqrt(variance);
+    for (std::size_t c = 0; c < 3; ++c) {
+      mean[c] = sum[c] / n;
+      const double variance =
+          n > 1 ? std::max(0.0, sum2[c] / n - mean[c] * mean[c]) / (n - 1) : 0.0;
+      error[c] = std::sqrt(variance);
+    }
   }
 
   Vec3 point_at(const MeshHit& hit) const {
@@ -179,11 +185,10 @@ class VolumetricTracer {
   }
 
   // Next-event estimate of the light's direct radiance off the floor point x, per unit of the
-  // path's weight: uniform in the cone of the sphere light (pbrt-v4 §12.2.3), so that
-  //   L_d ~ (a / pi) L_e cos theta / pdf = 2 a L_e cos theta (1 - cos theta_max),
+  // path's weight and of the albedo a: uniform in the cone of the sphere light (pbrt-v4
+  // §12.2.3), so that L_d / a ~ (1 / pi) L_e cos theta / pdf = 2 L_e cos theta (1 - cos theta_max),
   // and 0 when the object blocks the shadow ray.
-  double floor_direct(const Vec3& x, double albedo, PhotonRandom& random,
-                      VolumetricCounters& count) const {
+  double floor_direct(const Vec3& x, PhotonRandom& random, VolumetricCounters& count) const {
     const Vec3 to_centre = scene_.light.position - x;
     const double dist = to_centre.norm();
     const double sin2_max = std::min(1.0, std::pow(scene_.light.radius / dist, 2));
@@ -202,21 +207,59 @@ class VolumetricTracer {
     // Rounding can miss the sphere at the cone's rim; the tangent distance stands in.
     const double t_light = std::isfinite(t) ? t : dist * cos_max;
     if (tracer_.occluded(x, w, 0.0, t_light)) return 0.0;
-    return 2.0 * albedo * light_radiance_ * cos_floor * one_minus_cos_max;
+    return 2.0 * light_radiance_ * cos_floor * one_minus_cos_max;
   }
 
-  // One path from `origin` along `d`: the radiance it carries back, times its weight.
-  double trace(const Channel& channel, Vec3 origin, Vec3 d, PhotonRandom& random,
-               VolumetricCounters& count) const {
+  // Russian roulette on the largest channel weight m < 1: survive with probability m and
+  // divide by it (unbiased; with one channel this is analog absorption, Algorithm 1 line 15).
+  static bool survives(Rgb& weight, int channels, double xi) {
+    const double m = *std::max_element(weight.begin(), weight.begin() + channels);
+    if (m >= 1.0) return true;
+    if (!(xi < m)) return false;
+    for (double& w : weight) w /= m;
+    return true;
+  }
+
+  // One path from `origin` along `d`: the radiance it carries back per channel, times its
+  // weights. All channels follow one path, sampled with the media of one "hero" channel h
+  // chosen at random (Wilkie et al. 2014, "Hero wavelength spectral sampling", §4): free
+  // flights from exp(-sigma_t,h t), directions from HG with g_h. Channel c's weight is the
+  // balance heuristic over the N channels' strategies for the whole path,
+  //   w_c = f_c / ((1/N) sum_k p_k) = A_c / ((1/N) sum_k p_k / p_c),
+  // with p_k the path's density when sampled with channel k (its collision densities
+  // sigma_t,k exp(-sigma_t,k t), boundary transmittances exp(-sigma_t,k t_b) and phase values;
+  // Fresnel choices and the floor's cosine are the same for every channel and cancel) and
+  // A_c = f_c / p_c the product of channel c's albedos (and floor albedos) along the path.
+  // Since p_c <= sum_k p_k, w_c <= N A_c: the weights stay bounded however long the path.
+  // Absorption is a roulette on the largest A_c (with one channel: Algorithm 1's analog
+  // absorption, and w = 1).
+  Rgb trace(const ChannelMedia& media, Vec3 origin, Vec3 d, PhotonRandom& random,
+            VolumetricCounters& count) const {
     ++count.paths;
     const RenderLight& light = scene_.light;
     const int order = settings_.scattering_order;
-    double weight = 1.0, t_near = 0.0, radiance = 0.0;
+    const int n = media.channels;
+    const auto nc = static_cast<std::size_t>(n);
+    const auto start = random.next4();
+    const auto hero = std::min(static_cast<std::size_t>(start[0] * n), nc - 1);
+    Rgb albedos{1.0, 1.0, 1.0};  // A_c, times the roulettes' 1 / q
+    Rgb log_pdf{};               // log p_c of the path so far (one channel: unused)
+    Rgb radiance{};
+    double t_near = 0.0;
     bool inside = false;
     bool after_floor = false;  // nothing but the floor's bounce since the last floor point
     int collisions = 0;
+    // Adds value_c times the path's weight w_c for each channel.
+    const auto add = [&](const Rgb& value) {
+      for (std::size_t c = 0; c < nc; ++c) {
+        double ratio_sum = 0.0;  // sum_k p_k / p_c
+        for (std::size_t k = 0; k < nc; ++k) ratio_sum += std::exp(log_pdf[k] - log_pdf[c]);
+        radiance[c] += value[c] * albedos[c] * n / ratio_sum;
+      }
+    };
+    const auto grey = [](double v) { return Rgb{v, v, v}; };
     // Every branch ends the path or moves it on; a path lives until it leaves, is absorbed or
-    // loses the roulette.
+    // loses a roulette.
     for (;;) {
       const auto u = random.next4();
       MeshHit hit;
@@ -226,25 +269,38 @@ class VolumetricTracer {
           ++count.lost;
           return radiance;
         }
-        const double flight = -std::log(u[0]) / channel.sigma_t;  // Algorithm 1, line 3
+        const double flight = -std::log(u[0]) / media.sigma_t[hero];  // Algorithm 1, line 3
         if (flight < hit.distance) {
-          // A collision: absorbed with probability 1 - albedo (line 15), else scattered
-          // (line 16) by the phase function about the travel direction.
+          // A collision: each channel's density sigma_t,c exp(-sigma_t,c t) and albedo.
           ++count.collisions;
           origin += flight * d;
           t_near = 0.0;
-          if (!(u[1] < channel.albedo)) return radiance;
+          for (std::size_t c = 0; c < nc; ++c) {
+            if (n > 1) log_pdf[c] += std::log(media.sigma_t[c]) - media.sigma_t[c] * flight;
+            albedos[c] *= media.albedo[c];
+          }
+          if (!survives(albedos, n, u[1])) return radiance;  // absorbed (line 15)
           ++collisions;
           if (order > 0 && collisions > order) return radiance;
-          if (collisions > volumetric_roulette_after) {
-            if (!(u[2] < roulette_survival)) return radiance;
-            weight /= roulette_survival;
-          }
           const auto v = random.next4();
-          const double cos_theta = channel.phase.sample_cos_theta(v[0]);
+          if (collisions > volumetric_roulette_after) {
+            if (!(v[3] < roulette_survival)) return radiance;
+            for (double& a : albedos) a /= roulette_survival;
+          }
+          // A new direction (line 16) from the hero's phase function.
+          const double cos_theta = media.phase[hero].sample_cos_theta(v[0]);
           const double phi = 2.0 * pi * v[1];
           d = scatter_direction(d, cos_theta, std::cos(phi), std::sin(phi));
+          if (!media.same_phase) {
+            for (std::size_t c = 0; c < nc; ++c) {
+              log_pdf[c] += std::log(media.phase[c].evaluate(cos_theta));
+            }
+          }
           continue;
+        }
+        // The boundary: each channel's transmittance exp(-sigma_t,c t_b).
+        if (n > 1) {
+          for (std::size_t c = 0; c < nc; ++c) log_pdf[c] -= media.sigma_t[c] * hit.distance;
         }
         ++count.boundary;
         origin = point_at(hit);
@@ -269,7 +325,8 @@ class VolumetricTracer {
         if (after_floor) return radiance;
         if (order > 0 && collisions != order) return radiance;
         ++count.light_hits;
-        return radiance + weight * light_radiance_;
+        add(grey(light_radiance_));
+        return radiance;
       }
       if (t_mesh < t_floor) {
         ++count.boundary;
@@ -287,10 +344,17 @@ class VolumetricTracer {
         origin.z() = scene_.floor->height;
         t_near = 0.0;
         if (order == 0 || collisions == order) {
-          radiance += weight * floor_direct(origin, channel.floor_albedo, random, count);
+          const double direct = floor_direct(origin, random, count);
+          if (direct > 0.0) {
+            Rgb value{};
+            for (std::size_t c = 0; c < nc; ++c) value[c] = media.floor_albedo[c] * direct;
+            add(value);
+          }
         }
-        // The bounce: survival with probability albedo, a cosine-weighted direction (Malley).
-        if (!(u[1] < channel.floor_albedo)) return radiance;
+        // The bounce: the albedo joins A_c, then the roulette; a cosine-weighted direction
+        // (Malley's method), whose pdf cos / pi cancels the BRDF's cos / pi.
+        for (std::size_t c = 0; c < nc; ++c) albedos[c] *= media.floor_albedo[c];
+        if (!survives(albedos, n, u[1])) return radiance;
         const double r = std::sqrt(u[2]);
         const double phi = 2.0 * pi * u[3];
         d = Vec3(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u[2])));
@@ -299,7 +363,8 @@ class VolumetricTracer {
       }
       // Leaves the scene.
       if (order > 0 && collisions != order) return radiance;
-      return radiance + weight * scene_.environment_radiance;
+      add(grey(scene_.environment_radiance));
+      return radiance;
     }
   }
 

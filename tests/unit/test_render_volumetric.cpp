@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "input_error_field.hpp"
 #include "scatterlab/core/constants.hpp"
@@ -277,6 +279,80 @@ TEST(RenderVolumetric, ChannelsFollowTheirMedia) {
   }
   EXPECT_LT(red, 0.9 * green);
   EXPECT_NEAR(green, blue, 1e-9 * green);  // albedo 1 in both: every path returns L_e
+}
+
+// The furnace in colour: three media of albedo 1 with different sigma_t and g share one path,
+// whose channel weights are ratios of densities (not 1), so each channel equals L_e only on
+// average: every pixel within 4 sigma, and each channel's image mean within 4 sigma of it.
+TEST(RenderVolumetric, WhiteFurnaceInColour) {
+  const double radiance = 1.5;
+  RenderScene scene = sphere_scene(0.0, 1.0, 0.0, 1.4, radiance, 16, 32);
+  scene.environment_radiance = radiance;
+  scene.channel_media = {Medium::from_coefficients(0.0, 0.7, 0.0, "mesh units"),
+                         Medium::from_coefficients(0.0, 2.0, 0.5, "mesh units"),
+                         Medium::from_coefficients(0.0, 4.0, 0.8, "mesh units")};
+  scene.medium = scene.channel_media[1];
+  scene.samples = 3000;
+  scene.validate();
+  const VolumetricResult result = render_volumetric(scene, volumetric(13));
+  for (int c = 0; c < 3; ++c) {
+    double sum = 0.0, var = 0.0, spread = 0.0;
+    const auto& values = result.image.channels[c].values;
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      const double se = result.standard_error.channels[c].values[k];
+      EXPECT_NEAR(values[k], radiance, 4.0 * se + 1e-12) << "channel " << c << ", pixel " << k;
+      sum += values[k];
+      var += se * se;
+      spread = std::max(spread, se);
+    }
+    EXPECT_GT(spread, 0.0) << "channel " << c;  // the weights did vary
+    EXPECT_NEAR(sum, radiance * static_cast<double>(values.size()), 4.0 * std::sqrt(var));
+  }
+}
+
+// One path for three media equals three renders of one medium each: per channel, the image sum
+// within 4 sigma (both errors combined) and the mean z^2 over pixels below 2. Absorbing media of
+// different sigma_t and g, a coloured floor, the sphere light and an environment.
+TEST(RenderVolumetric, ChannelsMatchSeparateRenders) {
+  RenderScene scene = sphere_scene(0.0, 1.0, 0.0, 1.3, 1.0, 16, 32);
+  const std::vector<Medium> media = {Medium::from_coefficients(0.02, 0.8, 0.0, "mesh units"),
+                                     Medium::from_coefficients(0.2, 1.6, 0.4, "mesh units"),
+                                     Medium::from_coefficients(0.6, 3.0, 0.7, "mesh units")};
+  const std::array<double, 3> floor_albedo = {0.8, 0.5, 0.3};
+  scene.light.radius = 0.8;
+  scene.light.intensity = 1.0;
+  scene.channel_media = media;
+  scene.medium = media[1];
+  scene.floor = RenderFloor{-1.2, floor_albedo};
+  scene.environment_radiance = 0.5;
+  scene.samples = 4000;
+  scene.validate();
+  const VolumetricResult colour = render_volumetric(scene, volumetric(21));
+  for (std::size_t c = 0; c < 3; ++c) {
+    RenderScene single = scene;
+    single.channel_media.clear();
+    single.medium = media[c];
+    single.floor = RenderFloor{-1.2, {floor_albedo[c], floor_albedo[c], floor_albedo[c]}};
+    const VolumetricResult one = render_volumetric(single, volumetric(22));
+    double a = 0.0, b = 0.0, var = 0.0, z2 = 0.0;
+    int counted = 0;
+    for (std::size_t k = 0; k < one.image.channels[0].values.size(); ++k) {
+      const double x = colour.image.channels[c].values[k], y = one.image.channels[0].values[k];
+      const double v = std::pow(colour.standard_error.channels[c].values[k], 2) +
+                       std::pow(one.standard_error.channels[0].values[k], 2);
+      a += x;
+      b += y;
+      var += v;
+      if (v > 0.0) {
+        z2 += (x - y) * (x - y) / v;
+        ++counted;
+      }
+    }
+    ASSERT_GT(counted, 20);
+    EXPECT_LT(std::sqrt(var), 0.01 * b);  // the comparison has teeth
+    EXPECT_NEAR(a, b, 4.0 * std::sqrt(var)) << "channel " << c;
+    EXPECT_LT(z2 / counted, 2.0) << "channel " << c;
+  }
 }
 
 // The same image for any thread count: streams keyed by (seed, pixel, sample).

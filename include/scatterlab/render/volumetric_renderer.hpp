@@ -14,26 +14,32 @@
 //  inside     a free flight t = -ln(xi) / sigma_t (line 3) against the distance to the boundary
 //             (line 4); at a collision, absorption with probability 1 - albedo (line 15, analog)
 //             and a new direction from the Henyey-Greenstein phase function (line 16).
+//  colour     one path carries every channel. With media per channel, a flight is sampled from
+//             one channel's sigma_t chosen at random and each channel's weight takes its own
+//             density over the mixture of the channels' densities (one-sample MIS over channels,
+//             pbrt-v3 §15.2.2); the same for the phase function. Absorption is then a roulette
+//             on the largest weight (with one channel exactly the analog absorption above). The
+//             three channels share their noise: grey grain, not coloured speckle.
 //  light      a path reaching the sphere light scores its radiance L_e = I / (pi r^2) (a
 //             refractive boundary admits no shadow rays from inside: light reaches the medium
 //             only along refracted paths, which the path finds by hitting the light).
 //  floor      a Lambertian plane, albedo a: next-event estimation to the sphere light (a
 //             direction uniform in the cone the sphere subtends, pdf 1 / (2 pi (1 - cos
 //             theta_max)); the shadow ray is blocked by the object), plus a cosine-weighted
-//             bounce (pdf cos / pi, survival with probability a: the weight a cos / pi / pdf is
-//             a). No double counting, no MIS: light reached by the bounce is scored only when a
-//             mesh event lies between the floor and the light. The direct term of a floor point,
-//             L_d = int_{light} (a / pi) L_e cos dω over the unoccluded part of the cone, is
-//             exactly what next-event estimation estimates; every other path from the floor
-//             (through or off the object, to the light or the environment) is estimated by the
-//             bounce alone. So each path is counted by one estimator, and the sum is unbiased.
+//             bounce (pdf cos / pi: the weight (a / pi) cos / pdf is a, then the roulette). No
+//             double counting, no MIS: light reached by the bounce is scored only when a mesh event
+//             lies between the floor and the light. The direct term of a floor point, L_d =
+//             int_{light} (a / pi) L_e cos dω over the unoccluded part of the cone, is exactly what
+//             next-event estimation estimates; every other path from the floor (through or off the
+//             object, to the light or the environment) is estimated by the bounce alone. So each
+//             path is counted by one estimator, and the sum is unbiased.
 //  roulette   after `roulette_after` collisions a path survives each further collision with
 //             probability 1/10 and its weight grows tenfold (Bitterli §3.2): unbiased, and long
 //             paths in media of albedo near 1 are cut short.
 // The random numbers of a path are a Philox stream keyed by (seed, pixel, sample), so an image is
-// independent of the thread count; the three channels share it. Each channel is traced on its own
-// (a medium given per channel, render_scene.hpp); a single medium is traced once and shown grey.
-// The standard error per pixel and channel is that of the mean of the `samples` paths.
+// independent of the thread count. A scene with a single medium and a grey floor is traced as
+// one channel and shown grey; a medium per channel (render_scene.hpp) or a coloured floor makes
+// three. The standard error per pixel and channel is that of the mean of the `samples` paths.
 
 #include <cstdint>
 
@@ -49,7 +55,7 @@ namespace scatterlab {
 inline constexpr int volumetric_roulette_after = 256;
 
 struct VolumetricCounters {
-  std::uint64_t paths = 0;        // traced, all channels
+  std::uint64_t paths = 0;        // traced (each carries every channel)
   std::uint64_t collisions = 0;   // scattering events in the medium
   std::uint64_t boundary = 0;     // reflections and refractions at the mesh
   std::uint64_t light_hits = 0;   // paths that scored by reaching the light
