@@ -107,8 +107,8 @@ Action add_render_command(CLI::App& app) {
       ->default_str("the scene's");
   render
       ->add_option("--samples", options->samples,
-                   "Samples per eye ray, per interval for holzschuch, paths per pixel and "
-                   "channel for volumetric, in [1, 2^20]")
+                   "Samples per eye ray, per interval for holzschuch, paths per pixel for "
+                   "volumetric, in [1, 2^20]")
       ->default_str("the scene's");
   render
       ->add_option("--light-samples", options->light_samples,
@@ -199,7 +199,7 @@ Action add_render_command(CLI::App& app) {
       write_png(result.image, png, exposure, o.gamma);
       const VolumetricCounters& c = result.counters;
       fmt::print(
-          "volumetric: {}x{}, {} paths per pixel and channel, {:.3f} s, {} paths ({:.3g} "
+          "volumetric: {}x{}, {} paths per pixel, {:.3f} s, {} paths ({:.3g} "
           "paths/s), {} collisions, {} boundary events, {} light hits, {} shadow rays, {} lost; "
           "PNG exposure {:.2f} stops{}\nwrote {} and {}\n",
           scene.width, scene.height, scene.samples, result.seconds, c.paths,

@@ -1,7 +1,7 @@
 #pragma once
 // Volumetric path tracing of the whole light transport through a refractive mesh (method
 // `volumetric`; Bitterli 2013, §3.2, Algorithm 1, extended to the scene around the object).
-// From the camera, one path at a time per pixel centre and channel:
+// From the camera, `samples` paths through each pixel centre:
 //  outside    the nearest of the mesh, the floor and the sphere light (MeshRayTracer for the mesh,
 //             analytic for the plane and the sphere); a path that leaves the scene sees the
 //             environment radiance (0: black).
