@@ -89,7 +89,7 @@ BENCHMARK(BM_RenderTriangles)
     ->Iterations(1);
 
 // Volumetric path tracing of data/scenes/milk-sphere.toml (every order, the floor, three
-// channels) at 32 x 24 pixels and 16 paths per pixel and channel, one thread: paths per second.
+// channels on each path) at 32 x 24 pixels and 16 paths per pixel, one thread: paths per second.
 void BM_RenderVolumetric(benchmark::State& state) {
   RenderScene scene = load_render_scene(std::filesystem::path(SCATTERLAB_SOURCE_DIR) /
                                         "data/scenes/milk-sphere.toml");
