@@ -14,12 +14,12 @@
 //  inside     a free flight t = -ln(xi) / sigma_t (line 3) against the distance to the boundary
 //             (line 4); at a collision, absorption with probability 1 - albedo (line 15, analog)
 //             and a new direction from the Henyey-Greenstein phase function (line 16).
-//  colour     one path carries every channel. With media per channel, a flight is sampled from
-//             one channel's sigma_t chosen at random and each channel's weight takes its own
-//             density over the mixture of the channels' densities (one-sample MIS over channels,
-//             pbrt-v3 §15.2.2); the same for the phase function. Absorption is then a roulette
-//             on the largest weight (with one channel exactly the analog absorption above). The
-//             three channels share their noise: grey grain, not coloured speckle.
+//  colour     one path carries every channel, sampled with the medium of one "hero" channel
+//             chosen at random (Wilkie et al. 2014, §4); channel c's weight is the balance
+//             heuristic over the channels' strategies for the whole path, A_c / ((1/N)
+//             sum_k p_k / p_c), with p_k the path's density under channel k's medium and A_c
+//             the product of c's albedos. It is at most N A_c, however long the path. Absorption
+//             is a roulette on the largest A_c: with one channel, the analog absorption above.
 //  light      a path reaching the sphere light scores its radiance L_e = I / (pi r^2) (a
 //             refractive boundary admits no shadow rays from inside: light reaches the medium
 //             only along refracted paths, which the path finds by hitting the light).
@@ -33,9 +33,9 @@
 //             next-event estimation estimates; every other path from the floor (through or off the
 //             object, to the light or the environment) is estimated by the bounce alone. So each
 //             path is counted by one estimator, and the sum is unbiased.
-//  roulette   after `roulette_after` collisions a path survives each further collision with
-//             probability 1/10 and its weight grows tenfold (Bitterli §3.2): unbiased, and long
-//             paths in media of albedo near 1 are cut short.
+//  roulette   past volumetric_roulette_after collisions a path survives each further one
+//             with probability 1/10 and its weight grows tenfold (Bitterli §3.2): unbiased, and
+//             long paths in media of albedo near 1 are cut short.
 // The random numbers of a path are a Philox stream keyed by (seed, pixel, sample), so an image is
 // independent of the thread count. A scene with a single medium and a grey floor is traced as
 // one channel and shown grey; a medium per channel (render_scene.hpp) or a coloured floor makes
