@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -17,9 +18,11 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/io/plot.hpp"
+#include "scatterlab/render/exposure.hpp"
 #include "scatterlab/render/render_scene.hpp"
 #include "scatterlab/render/render_study.hpp"
 #include "scatterlab/render/single_scatter_renderer.hpp"
+#include "scatterlab/render/volumetric_renderer.hpp"
 
 namespace scatterlab::cli {
 
@@ -76,7 +79,9 @@ int run_study(const RenderOptions& o, const std::filesystem::path& out_dir) {
 
 Action add_render_command(CLI::App& app) {
   auto* render = app.add_subcommand(
-      "render", "Single-scatter image of a refractive mesh (OpenEXR, linear, and a PNG beside it)");
+      "render",
+      "Image of a refractive mesh, single scattering or (volumetric) all of the light transport "
+      "(OpenEXR, linear, and a PNG beside it)");
   auto options = std::make_shared<RenderOptions>();
   render
       ->add_option("SCENE,--scene", options->scenes,
@@ -92,7 +97,9 @@ Action add_render_command(CLI::App& app) {
   render->add_flag("--quick", options->quick, "With --study: tiny images and budgets");
   render->add_option("--method", options->method,
                      "straight (Jensen 2001), walter (sample points), holzschuch (support "
-                     "intervals) or pathtrace (Monte Carlo reference, needs light.radius > 0)");
+                     "intervals), pathtrace (Monte Carlo reference, needs light.radius > 0), "
+                     "or volumetric (volumetric path tracing of every order, the floor and "
+                     "colour; needs light.radius > 0)");
   // These default to the scene's values, which --help cannot know.
   render->add_option("--width", options->width, "Image width in pixels, in [1, 16384]")
       ->default_str("the scene's");
@@ -100,7 +107,8 @@ Action add_render_command(CLI::App& app) {
       ->default_str("the scene's");
   render
       ->add_option("--samples", options->samples,
-                   "Samples per eye ray, per interval for holzschuch, in [1, 2^20]")
+                   "Samples per eye ray, per interval for holzschuch, paths per pixel for "
+                   "volumetric, in [1, 2^20]")
       ->default_str("the scene's");
   render
       ->add_option("--light-samples", options->light_samples,
@@ -108,13 +116,16 @@ Action add_render_command(CLI::App& app) {
       ->default_str("the scene's");
   render->add_option("--threads", options->threads, threads_help());
   add_memory_limit_option(*render);
-  render->add_option("--seed", options->seed, "Random seed (pathtrace), in [0, 2^63 - 1]");
+  render->add_option("--seed", options->seed,
+                     "Random seed (pathtrace, volumetric), in [0, 2^63 - 1]");
   CLI::Option* out_option = render->add_option(
       "--out", options->out,
       "Output OpenEXR file, NAME.exr; the PNG is written beside it as NAME.png "
       "(--study: the output directory, new, empty or one scatterlab wrote, made if "
       "missing; by default render-study)");
-  render->add_option("--exposure", options->exposure, "PNG exposure in stops");
+  CLI::Option* exposure_option =
+      render->add_option("--exposure", options->exposure, "PNG exposure in stops")
+          ->default_str("auto: the 99th percentile of the lit pixels maps to white");
   render->add_option("--gamma", options->gamma, "PNG gamma");
   const auto log_interval = add_log_interval_option(*render);
   // The study chooses its own methods, sizes, budgets and plots: these would be ignored.
@@ -123,7 +134,7 @@ Action add_render_command(CLI::App& app) {
                            "--exposure", "--gamma"}) {
     study->excludes(render->get_option(flag));
   }
-  return [options, out_option, render, log_interval] {
+  return [options, out_option, exposure_option, render, log_interval] {
     const RenderOptions& o = *options;
     if (o.study) return run_study(o, out_option->count() > 0 ? o.out : "render-study");
     if (o.quick) throw InputError("quick", "given without --study", "--quick with --study");
@@ -176,12 +187,32 @@ Action add_render_command(CLI::App& app) {
     { const AtomicOutput exr_check(exr), png_check(png); }
 
     ProgressReporter reporter("render " + o.method, "tiles", *log_interval);
-    const RenderResult result = render_single_scatter(
-        scene, settings,
-        [&reporter](std::uint64_t done, std::uint64_t tiles) { reporter.update(done, tiles); });
+    const WorkProgress progress = [&reporter](std::uint64_t done, std::uint64_t tiles) {
+      reporter.update(done, tiles);
+    };
+    const bool auto_exposed = exposure_option->count() == 0;
+    if (settings.method == RenderMethod::volumetric) {
+      const VolumetricResult result = render_volumetric(scene, settings, progress);
+      reporter.finish();
+      const double exposure = auto_exposed ? auto_exposure(result.image) : o.exposure;
+      write_exr(result.image, exr);
+      write_png(result.image, png, exposure, o.gamma);
+      const VolumetricCounters& c = result.counters;
+      fmt::print(
+          "volumetric: {}x{}, {} paths per pixel, {:.3f} s, {} paths ({:.3g} "
+          "paths/s), {} collisions, {} boundary events, {} light hits, {} shadow rays, {} lost; "
+          "PNG exposure {:.2f} stops{}\nwrote {} and {}\n",
+          scene.width, scene.height, scene.samples, result.seconds, c.paths,
+          static_cast<double>(c.paths) / std::max(result.seconds, 1e-9), c.collisions, c.boundary,
+          c.light_hits, c.shadow_rays, c.lost, exposure, auto_exposed ? " (auto)" : "",
+          exr.string(), png.string());
+      return 0;
+    }
+    const RenderResult result = render_single_scatter(scene, settings, progress);
     reporter.finish();
+    const double exposure = auto_exposed ? auto_exposure(result.image) : o.exposure;
     write_exr(result.image, exr);
-    write_png(result.image, png, o.exposure, o.gamma);
+    write_png(result.image, png, exposure, o.gamma);
     double total = 0.0, peak = 0.0;
     for (const double v : result.image.values) {
       total += v;
@@ -189,10 +220,11 @@ Action add_render_command(CLI::App& app) {
     }
     fmt::print(
         "{}: {}x{}, {} samples/ray, {:.3f} s, {} eye rays, {} queries, {} paths, "
-        "mean radiance {:.6g}, peak {:.6g}\nwrote {} and {}\n",
+        "mean radiance {:.6g}, peak {:.6g}; PNG exposure {:.2f} stops{}\nwrote {} and {}\n",
         o.method, scene.width, scene.height, scene.samples, result.seconds,
         result.counters.eye_rays, result.counters.point_queries, result.counters.paths,
-        total / static_cast<double>(result.image.values.size()), peak, exr.string(), png.string());
+        total / static_cast<double>(result.image.values.size()), peak, exposure,
+        auto_exposed ? " (auto)" : "", exr.string(), png.string());
     return 0;
   };
 }

@@ -7,6 +7,7 @@
 
 #include "scatterlab/core/constants.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
+#include "scatterlab/io/material_presets.hpp"
 #include "scatterlab/io/toml_reader.hpp"
 #include "scatterlab/render/mesh_ray_tracer.hpp"
 #include "scatterlab/render/obj_mesh.hpp"
@@ -22,7 +23,7 @@ class RenderSceneReader : public TomlReader {
       : TomlReader(origin), base_(std::move(base)) {}
 
   RenderScene read(const toml::table& root) const {
-    check_keys(root, "", {"mesh", "medium", "light", "camera", "image"});
+    check_keys(root, "", {"mesh", "medium", "light", "camera", "image", "floor"});
     RenderScene scene;
     const toml::table* mesh = subtable(root, "mesh", "");
     if (mesh == nullptr) {
@@ -35,6 +36,7 @@ class RenderSceneReader : public TomlReader {
     if (const auto* light = subtable(root, "light", "")) read_light(*light, scene.light);
     if (const auto* camera = subtable(root, "camera", "")) read_camera(*camera, scene.camera);
     if (const auto* image = subtable(root, "image", "")) read_image(*image, scene);
+    if (const auto* floor = subtable(root, "floor", "")) scene.floor = read_floor(*floor);
     scene.validate();
     return scene;
   }
@@ -151,12 +153,100 @@ class RenderSceneReader : public TomlReader {
 
   void read_medium(const toml::table& table, RenderScene& scene) const {
     const std::string path = "medium";
-    check_keys(table, path, {"sigma_s", "sigma_a", "g", "eta"});
-    const double sigma_s = number(table, "sigma_s", path, "a finite number >= 0").value_or(1.0);
-    const double sigma_a = number(table, "sigma_a", path, "a finite number >= 0").value_or(0.0);
-    const double g = number(table, "g", path, "a number with |g| < 1").value_or(0.0);
-    scene.medium = Medium::from_coefficients(sigma_a, sigma_s, g, "mesh units");
+    check_keys(table, path, {"sigma_s", "sigma_a", "g", "eta", "material", "length_unit"});
+    if (table.get("material") != nullptr) {
+      read_material(table, scene);
+      return;
+    }
+    if (table.get("length_unit") != nullptr) {
+      throw InputError("medium.length_unit", "given without material",
+                       "length_unit with material = \"NAME\" (coefficients are in the unit of "
+                       "the scene's lengths)");
+    }
+    const auto sigma_s = per_channel(table, "sigma_s", path, 1.0);
+    const auto sigma_a = per_channel(table, "sigma_a", path, 0.0);
+    const auto g = per_channel(table, "g", path, 0.0);
     scene.eta = positive(table, "eta", path, scene.eta);
+    if (sigma_s.size() == 1 && sigma_a.size() == 1 && g.size() == 1) {
+      scene.medium = Medium::from_coefficients(sigma_a[0], sigma_s[0], g[0], "mesh units");
+      return;
+    }
+    // One of them per channel: all three channels, a single number standing for all.
+    const auto channel = [](const std::vector<double>& v, std::size_t c) {
+      return v.size() == 1 ? v[0] : v[c];
+    };
+    scene.channel_media.clear();
+    for (std::size_t c = 0; c < 3; ++c) {
+      scene.channel_media.push_back(Medium::from_coefficients(
+          channel(sigma_a, c), channel(sigma_s, c), channel(g, c), "mesh units"));
+    }
+    scene.medium = scene.channel_media[1];
+  }
+
+  // A number, or [red, green, blue]: one value or three.
+  std::vector<double> per_channel(const toml::table& table, std::string_view key,
+                                  const std::string& path, double fallback) const {
+    const toml::node* node = table.get(key);
+    if (node == nullptr) return {fallback};
+    const std::string_view accepted = "a finite number, or [red, green, blue]";
+    if (node->as_array() == nullptr) {
+      const double value = *number(table, key, path, accepted);
+      if (!std::isfinite(value)) wrong_type(*node, dotted(path, key), accepted);
+      return {value};
+    }
+    const auto values = vector3(table, key, path, accepted);
+    for (const double v : *values) {
+      if (!std::isfinite(v)) wrong_type(*node, dotted(path, key), accepted);
+    }
+    return {values->begin(), values->end()};
+  }
+
+  // material = "NAME": the table's three channels (io/material_presets.hpp), in length_unit.
+  void read_material(const toml::table& table, RenderScene& scene) const {
+    const std::string path = "medium";
+    for (const char* key : {"sigma_s", "sigma_a"}) {
+      if (table.get(key) != nullptr) {
+        throw InputError(dotted(path, key), "given with material",
+                         "either material = \"NAME\" or the coefficients, not both");
+      }
+    }
+    MaterialRequest request;
+    request.name = *string(table, "material", path, "a material name (data/materials/)");
+    request.length_unit = string(table, "length_unit", path, "\"um\", \"mm\", \"cm\" or \"m\"");
+    request.g = number(table, "g", path, "a number with |g| < 1");
+    const MaterialFields fields{"medium.material", "medium.channel", "medium.length_unit",
+                                "medium.g"};
+    scene.channel_media.clear();
+    double eta = 1.0;
+    for (const char* channel : {"red", "green", "blue"}) {
+      request.channel = channel;
+      const ResolvedMaterial resolved = resolve_material(request, fields);
+      scene.channel_media.push_back(resolved.medium);
+      eta = resolved.eta;
+    }
+    scene.medium = scene.channel_media[1];
+    scene.eta = positive(table, "eta", path, eta);
+  }
+
+  RenderFloor read_floor(const toml::table& table) const {
+    const std::string path = "floor";
+    check_keys(table, path, {"height", "albedo"});
+    RenderFloor floor;
+    const auto height = number(table, "height", path, "a finite number (z of the plane)");
+    if (!height || !std::isfinite(*height)) {
+      throw InputError("floor.height", height ? fmt::format("got {}", *height) : "missing",
+                       "a finite number (z of the plane)");
+    }
+    floor.height = *height;
+    const auto albedo = per_channel(table, "albedo", path, 0.5);
+    for (std::size_t c = 0; c < 3; ++c) {
+      floor.albedo[c] = albedo.size() == 1 ? albedo[0] : albedo[c];
+      if (!(floor.albedo[c] >= 0.0 && floor.albedo[c] <= 1.0)) {
+        throw InputError("floor.albedo", fmt::format("got {}", floor.albedo[c]),
+                         "a number in [0, 1], or [red, green, blue] each in [0, 1]");
+      }
+    }
+    return floor;
   }
 
   void read_light(const toml::table& table, RenderLight& light) const {
@@ -332,6 +422,20 @@ void RenderScene::validate() const {
   }
   if (tracer.count_crossings(camera.position, probe) % 2 == 1) {
     throw InputError("camera.position", "inside the object", "a point outside the mesh");
+  }
+  for (const Medium& m : channel_media) m.validate();
+  if (floor) {
+    // Everything above the plane: light reaching the floor comes from above it.
+    const double lowest = mesh.bounds().lo.z();
+    const auto below = [&](const char* what, double z) {
+      throw InputError("floor.height",
+                       fmt::format("{} is above the {} (z = {})", floor->height, what, z),
+                       "a height below the mesh, the light sphere and the camera");
+    };
+    if (!std::isfinite(floor->height)) below("mesh", lowest);
+    if (floor->height > lowest) below("mesh's lowest point", lowest);
+    if (floor->height >= light.position.z() - light.radius) below("light", light.position.z());
+    if (floor->height >= camera.position.z()) below("camera", camera.position.z());
   }
 }
 

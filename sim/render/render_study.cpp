@@ -74,6 +74,8 @@ std::string method_name(RenderMethod method) {
       return "support intervals (Holzschuch 2013)";
     case RenderMethod::pathtrace:
       return "path tracing (Monte Carlo)";
+    case RenderMethod::volumetric:  // not in the study: it renders more than single scattering
+      return "volumetric path tracing (every order)";
   }
   return to_string(method);
 }

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include "scatterlab/core/constants.hpp"
@@ -26,8 +27,9 @@ RenderMethod parse_render_method(const std::string& name) {
   if (name == "walter") return RenderMethod::walter;
   if (name == "holzschuch") return RenderMethod::holzschuch;
   if (name == "pathtrace") return RenderMethod::pathtrace;
+  if (name == "volumetric") return RenderMethod::volumetric;
   throw InputError("method", "got \"" + name + "\"",
-                   "\"straight\", \"walter\", \"holzschuch\" or \"pathtrace\"");
+                   "\"straight\", \"walter\", \"holzschuch\", \"pathtrace\" or \"volumetric\"");
 }
 
 std::string to_string(RenderMethod method) {
@@ -40,6 +42,8 @@ std::string to_string(RenderMethod method) {
       return "holzschuch";
     case RenderMethod::pathtrace:
       return "pathtrace";
+    case RenderMethod::volumetric:
+      return "volumetric";
   }
   return "?";
 }
@@ -140,6 +144,8 @@ class Renderer {
             case RenderMethod::pathtrace:
               value = pathtrace<Smooth>(
                   eye.segment, static_cast<std::uint64_t>(j) * scene_.width + i, error, count);
+              break;
+            case RenderMethod::volumetric:  // refused by render_single_scatter
               break;
           }
           result.image.at(i, j) = eye.weight * value;
@@ -411,8 +417,10 @@ MemoryEstimate render_memory(const RenderScene& scene, const RenderSettings& set
   const auto lights =
       static_cast<std::uint64_t>(scene.light.radius == 0.0 ? 1 : scene.light_samples);
   MemoryEstimate need;
-  // The image and its standard error, and the PNG's and OpenEXR's copies when written.
-  need.add_doubles(fmt::format("images of {} x {} pixels", scene.width, scene.height), pixels, 4);
+  // The image and its standard error, and the PNG's and OpenEXR's copies when written; three
+  // channels of each for volumetric.
+  need.add_doubles(fmt::format("images of {} x {} pixels", scene.width, scene.height), pixels,
+                   settings.method == RenderMethod::volumetric ? 12 : 4);
   need.add(fmt::format("{} light points", lights), saturating_product(lights, sizeof(LightPoint)));
   if (settings.method == RenderMethod::holzschuch) {
     const std::size_t triangles = scene.mesh.triangle_count();
@@ -431,10 +439,20 @@ void check_render_memory(const RenderScene& scene, const RenderSettings& setting
                "a smaller image, fewer light samples or a coarser mesh");
 }
 
+namespace {
+
+// Points on the light per sample: one for the Monte Carlo methods, which find the light by
+// sampling (volumetric: one path carries every channel).
+std::uint64_t light_factor(const RenderScene& scene, const RenderSettings& settings) {
+  const bool monte_carlo =
+      settings.method == RenderMethod::pathtrace || settings.method == RenderMethod::volumetric;
+  return monte_carlo ? 1 : static_cast<std::uint64_t>(scene.light_samples);
+}
+
+}  // namespace
+
 std::uint64_t render_evaluations(const RenderScene& scene, const RenderSettings& settings) {
-  const std::uint64_t lights = settings.method == RenderMethod::pathtrace
-                                   ? 1
-                                   : static_cast<std::uint64_t>(scene.light_samples);
+  const std::uint64_t lights = light_factor(scene, settings);
   return saturating_product(saturating_product(static_cast<std::uint64_t>(scene.width) *
                                                    static_cast<std::uint64_t>(scene.height),
                                                static_cast<std::uint64_t>(scene.samples)),
@@ -444,11 +462,14 @@ std::uint64_t render_evaluations(const RenderScene& scene, const RenderSettings&
 void check_render_work(const RenderScene& scene, const RenderSettings& settings) {
   const std::uint64_t evaluations = render_evaluations(scene, settings);
   if (evaluations <= max_render_evaluations) return;
+  // The Monte Carlo methods' light factor is 1, set by no key.
+  const bool monte_carlo =
+      settings.method == RenderMethod::pathtrace || settings.method == RenderMethod::volumetric;
   throw InputError(
-      "image.width x image.height x image.samples x image.light_samples",
+      monte_carlo ? "image.width x image.height x image.samples"
+                  : "image.width x image.height x image.samples x image.light_samples",
       fmt::format("{} x {} x {} x {} = {:.3g} light evaluations (months on one core)", scene.width,
-                  scene.height, scene.samples,
-                  settings.method == RenderMethod::pathtrace ? 1 : scene.light_samples,
+                  scene.height, scene.samples, light_factor(scene, settings),
                   static_cast<double>(evaluations)),
       fmt::format("at most 2^42 = {:.3g}: a smaller image, fewer samples or fewer light samples",
                   static_cast<double>(max_render_evaluations)));
@@ -456,6 +477,18 @@ void check_render_work(const RenderScene& scene, const RenderSettings& settings)
 
 RenderResult render_single_scatter(const RenderScene& scene, const RenderSettings& settings,
                                    const WorkProgress& progress) {
+  if (settings.method == RenderMethod::volumetric) {
+    throw std::invalid_argument("render_single_scatter: volumetric is render_volumetric's");
+  }
+  // What the single-scatter methods do not model is refused, not silently left out.
+  if (!scene.channel_media.empty()) {
+    throw InputError("medium", "a medium per channel with method " + to_string(settings.method),
+                     "one medium (numbers, not [red, green, blue]), or method volumetric");
+  }
+  if (scene.floor) {
+    throw InputError("floor", "a floor with method " + to_string(settings.method),
+                     "no [floor] table, or method volumetric");
+  }
   if (settings.method == RenderMethod::pathtrace && !(scene.light.radius > 0.0)) {
     throw InputError("light.radius", "0 (a point light) with method pathtrace",
                      "a sphere light of radius > 0 for the path-traced reference");

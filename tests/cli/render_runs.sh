@@ -8,7 +8,7 @@ source_dir=$2
 source "$(dirname "$0")/harness.sh"
 scene="$source_dir/data/scenes/tile.toml"
 
-for method in straight walter holzschuch pathtrace; do
+for method in straight walter holzschuch pathtrace volumetric; do
   if "$exe" render "$scene" --method "$method" --width 8 --height 8 --samples 4 \
        --light-samples 1 --out "$work/$method.exr" >stdout 2>stderr \
      && [ -s "$work/$method.exr" ] && [ -s "$work/$method.png" ] \
@@ -19,6 +19,17 @@ for method in straight walter holzschuch pathtrace; do
     fail "$method: $(cat stderr)"
   fi
 done
+
+# The milk sphere in colour: an RGB PNG (colour type 2 in the IHDR chunk, byte 26).
+milk="$source_dir/data/scenes/milk-sphere.toml"
+if "$exe" render "$milk" --method volumetric --width 8 --height 6 --samples 2 \
+     --out "$work/milk.exr" >stdout 2>stderr \
+   && [ "$(od -An -tu1 -j25 -N1 "$work/milk.png" | tr -d ' ')" = 2 ] \
+   && grep -q "exposure .* (auto)" stdout; then
+  pass
+else
+  fail "milk sphere: $(cat stderr)"
+fi
 
 # expect_error NAME FIELD ARGS...
 expect_error() {
@@ -42,6 +53,15 @@ printf '[medium]\neta = 1.5\n' >nomesh.toml
 expect_error bad-method method "$scene" --method jensen
 expect_error light-inside light.position inside.toml
 expect_error no-mesh mesh nomesh.toml
+printf '[mesh]\nshape = "sphere"\n[light]\nposition = [0, 0, 4]\n' >pointlight.toml
+expect_error volumetric-point-light light.radius pointlight.toml --method volumetric
+expect_error colour-single-scatter medium "$milk" --method holzschuch
+printf '[mesh]\nshape = "sphere"\n[floor]\nheight = -2\n' >floor.toml
+expect_error floor-single-scatter floor floor.toml --method walter
+printf '[mesh]\nshape = "sphere"\n[floor]\nheight = 0.5\n' >highfloor.toml
+expect_error floor-above floor.height highfloor.toml --method volumetric
+printf '[mesh]\nshape = "sphere"\n[camera]\nposition = [0.2, 0.1, 0.0]\n' >camera.toml
+expect_error camera-inside camera.position camera.toml --method volumetric
 expect_error missing-scene scene "$work/none.toml"
 if "$exe" render "$scene" --width 4 --height 4 --out "$work/no/such/dir/x.exr" >stdout 2>stderr; then
   fail "bad-dir: exited 0"

@@ -9,21 +9,38 @@
 //             normals = "interpolated" | "flat"
 //             radius, amplitude, frequency, rings, segments   (sphere, bumpy_sphere)
 //             half_size = [x, y, z], exponent, rings, segments (rounded_tile; box: half_size)
-//   [medium]  sigma_s, sigma_a (1/length), g (HG), eta (n_inside / n_outside)
+//   [medium]  sigma_s, sigma_a (1/length), g (HG), eta (n_inside / n_outside); sigma_s,
+//             sigma_a and g may each be [red, green, blue] (one medium per channel: three
+//             channels, rendered by method volumetric only), or
+//             material = "NAME" (a measured medium of data/materials/, io/material_presets.hpp:
+//             all three channels) with length_unit = "um" | "mm" | "cm" | "m" (the unit of the
+//             scene's lengths; the table's by default), optional g and eta (the table's)
+//   [floor]   height (z of a horizontal plane below everything), albedo (Lambertian: a number or
+//             [red, green, blue] in [0, 1]); seen by method volumetric only
 //   [light]   position = [x, y, z], intensity (W/sr), radius (0: a point light)
 //   [camera]  position, look_at, up = [x, y, z], fov (vertical, degrees)
 //   [image]   width, height, samples (per eye ray), light_samples (area light points)
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "scatterlab/core/frame.hpp"
 #include "scatterlab/core/medium.hpp"
 #include "scatterlab/core/triangle_mesh.hpp"
 
 namespace scatterlab {
+
+// A diffuse (Lambertian) floor: the plane z = height, facing up, reflecting albedo / pi per
+// steradian of the irradiance it receives, per channel.
+struct RenderFloor {
+  double height = -1.0;
+  std::array<double, 3> albedo = {0.5, 0.5, 0.5};  // red, green, blue in [0, 1]
+};
 
 struct RenderLight {
   Vec3 position = Vec3(0.0, 0.0, 4.0);
@@ -53,7 +70,14 @@ struct RenderScene {
   TriangleMesh mesh;                // closed, consistently oriented, validated
   std::filesystem::path mesh_file;  // the OBJ file it was read from; empty for a built-in shape
   Medium medium;                    // sigma_t, albedo, g (length unit: that of the mesh)
-  double eta = 1.5;                 // n_inside / n_outside
+  // Empty: one channel, `medium`. Otherwise the red, green and blue media (`medium` is then the
+  // green one), rendered by method volumetric as three channels.
+  std::vector<Medium> channel_media;
+  double eta = 1.5;  // n_inside / n_outside
+  std::optional<RenderFloor> floor;
+  // Radiance arriving from every direction that leaves the scene (method volumetric; 0: black).
+  // Set in code only (the furnace tests), not read from scene files.
+  double environment_radiance = 0.0;
   RenderLight light;
   PinholeCamera camera;
   int width = 64, height = 64;
@@ -62,7 +86,8 @@ struct RenderScene {
 
   // Checks what the mesh alone cannot: a closed mesh (every edge shared by exactly two triangles
   // in opposite directions) with no triangle of zero area that encloses a positive volume, the
-  // light and the camera outside it, sizes within their ranges. Throws InputError.
+  // light and the camera outside it, sizes within their ranges; a floor below the mesh, the
+  // light and the camera. Throws InputError.
   void validate() const;
 };
 

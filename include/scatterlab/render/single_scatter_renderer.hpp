@@ -44,17 +44,24 @@
 
 namespace scatterlab {
 
-enum class RenderMethod { straight, walter, holzschuch, pathtrace };
+//  volumetric  not a single-scatter method: every order of scattering, the floor and colour
+//              (render/volumetric_renderer.hpp, render_volumetric); render_single_scatter
+//              refuses it.
+enum class RenderMethod { straight, walter, holzschuch, pathtrace, volumetric };
 
-// "straight", "walter", "holzschuch", "pathtrace"; InputError("method", ...) otherwise.
+// "straight", "walter", "holzschuch", "pathtrace", "volumetric"; InputError("method", ...)
+// otherwise.
 RenderMethod parse_render_method(const std::string& name);
 std::string to_string(RenderMethod method);
 
 struct RenderSettings {
   RenderMethod method = RenderMethod::holzschuch;
   bool shared_points = false;  // holzschuch: walter's sample points (see above)
-  std::uint64_t seed = 1;      // pathtrace
+  std::uint64_t seed = 1;      // pathtrace, volumetric
   int threads = 0;             // 0: all
+  // volumetric: 0 renders every order; n > 0 only the paths scattered exactly n times in the
+  // medium (n = 1 with eta = 1 is what pathtrace estimates).
+  int scattering_order = 0;
   // Tests only: take the general path (refraction, shading normals) even where the scene does
   // not need it, to check that the specialised one gives the same image.
   bool force_general = false;
@@ -76,10 +83,10 @@ struct RenderResult {
 };
 
 // A render's work in point-light evaluations: pixels x samples per eye ray x light points (one
-// point for pathtrace, which samples the light once per path). Past max_render_evaluations a
-// render takes months on one core (a microsecond or more per evaluation) and is refused before it
-// starts, as simulate refuses more than 2^53 events: each size is in its range, their product is
-// not.
+// point for pathtrace, which samples the light once per path; volumetric: a path per channel). Past
+// max_render_evaluations a render takes months on one core (a microsecond or more per evaluation)
+// and is refused before it starts, as simulate refuses more than 2^53 events: each size is in its
+// range, their product is not.
 inline constexpr std::uint64_t max_render_evaluations = std::uint64_t{1} << 42;
 std::uint64_t render_evaluations(const RenderScene& scene, const RenderSettings& settings);
 // Throws InputError naming the fields whose product is over max_render_evaluations.
@@ -93,7 +100,9 @@ void check_render_memory(const RenderScene& scene, const RenderSettings& setting
 
 // progress(tiles done, tiles) is called from one thread as tiles finish. Throws InputError for a
 // pathtrace run with a point light (radius 0), and for one whose render_memory does not fit
-// (core/memory_budget.hpp), before anything is allocated.
+// (core/memory_budget.hpp), before anything is allocated; std::invalid_argument for
+// volumetric, and InputError for a scene with a medium per channel or a floor, which only
+// volumetric renders.
 RenderResult render_single_scatter(const RenderScene& scene, const RenderSettings& settings,
                                    const WorkProgress& progress = {});
 
