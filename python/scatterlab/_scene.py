@@ -46,8 +46,8 @@ KEY_TABLES: dict[str, dict[str, str]] = {
         "eta": "geometry",
         **dict.fromkeys(_MEDIUM, "medium"),
         "incidence_deg": "source",
-        **dict.fromkeys(("r", "z", "theta_o"), "grid"),
-        "fluence": "tallies",
+        **dict.fromkeys(("r", "z", "theta_o", "x", "y"), "grid"),
+        **dict.fromkeys(("fluence", "exitance_map"), "tallies"),
         **dict.fromkeys(_RUN, "run"),
     },
     "sphere": {

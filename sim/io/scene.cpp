@@ -33,9 +33,10 @@ class SceneReader : public TomlReader {
     SimulationSpec& spec = scene.spec;
     if (const auto* geometry = subtable(root, "geometry", "")) {
       check_keys(*geometry, "geometry", {"type"});
-      read_geometry_type(*geometry, "infinite",
-                         "\"infinite\", \"sphere\", \"mesh\" or \"slab\" (a half-space scene runs with "
-                         "scatterlab searchlight)");
+      read_geometry_type(
+          *geometry, "infinite",
+          "\"infinite\", \"sphere\", \"mesh\" or \"slab\" (a half-space scene runs with "
+          "scatterlab searchlight)");
     }
     if (const auto* medium = subtable(root, "medium", "")) {
       scene.material = read_medium(*medium, spec.medium, spec.material, nullptr);
@@ -93,14 +94,19 @@ class SceneReader : public TomlReader {
       if (angle) spec.incidence_deg = *angle;
     }
     if (const auto* grid = subtable(root, "grid", "")) {
-      check_keys(*grid, "grid", {"r", "z", "theta_o"});
+      check_keys(*grid, "grid", {"r", "z", "theta_o", "x", "y"});
       read_axis(*grid, "r", {"max", "bins"}, spec.grid.r);
       read_axis(*grid, "z", {"max", "bins"}, spec.grid.z);
       read_axis(*grid, "theta_o", {"bins"}, spec.grid.theta_o);
+      read_axis(*grid, "x", {"min", "max", "bins"}, spec.grid.x);
+      read_axis(*grid, "y", {"min", "max", "bins"}, spec.grid.y);
     }
     if (const auto* tallies = subtable(root, "tallies", "")) {
-      check_keys(*tallies, "tallies", {"fluence"});
+      check_keys(*tallies, "tallies", {"fluence", "exitance_map"});
       if (const auto on = boolean(*tallies, "fluence", "tallies")) spec.tallies.fluence = *on;
+      if (const auto on = boolean(*tallies, "exitance_map", "tallies")) {
+        spec.tallies.exitance_map = *on;
+      }
     }
     if (const auto* run = subtable(root, "run", "")) read_run(*run, spec.run);
     scene.output_path = read_output(root);

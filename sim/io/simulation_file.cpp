@@ -264,6 +264,10 @@ void write_searchlight_grid(hdf5::Group& root, const SearchlightSpec& spec) {
   write_axis(grid, "r", spec.grid.r, length);
   if (spec.tallies.fluence) write_axis(grid, "z", spec.grid.z, length);
   write_axis(grid, "theta_o", spec.grid.theta_o, "rad");
+  if (spec.tallies.exitance_map) {
+    write_axis(grid, "x", spec.grid.x, length);
+    write_axis(grid, "y", spec.grid.y, length);
+  }
 }
 
 void write_tallies(hdf5::Group& root, const std::vector<TallyResult>& tallies) {

@@ -85,6 +85,7 @@ Scorer::Scorer(const TallyAxes& axes, const TallyBook& book)
                    book.offset(Score::transmitted_by_radius_angle)},
       exit_by_polar_angle_(book.offset(Score::exit_by_polar_angle)),
       exit_by_triangle_(book.offset(Score::exit_by_triangle)),
+      exit_by_position_(book.offset(Score::exit_by_position)),
       reflected_at_entry_(book.offset(Score::reflected_at_entry)),
       absorbed_(book.offset(Score::absorbed)),
       absorbed_in_grid_(book.offset(Score::absorbed_in_grid)),
@@ -119,6 +120,7 @@ Scorer::Scorer(const TallyAxes& axes, const TallyBook& book)
       exit_binning_ = CosineBinning(axes.theta_o);
     }
   }
+  y_bins_ = static_cast<std::size_t>(std::max(axes.y.bins, 1));
   if (exit_by_polar_angle_ != absent) {
     polar_binning_ = CosineBinning(axes.psi);
     azimuth_bins_ = static_cast<std::size_t>(std::max(axes.azimuth.bins, 1));

@@ -30,6 +30,22 @@ void check_grid(const SearchlightGrid& grid, const Medium& medium) {
   check_bins(grid.theta_o, "theta_o");
 }
 
+void check_map(const SearchlightGrid& grid, const Medium& medium) {
+  for (const auto& [axis, name] : {std::pair{&grid.x, "x"}, std::pair{&grid.y, "y"}}) {
+    if (!(axis->min < axis->max)) {
+      throw InputError(std::string("grid.") + name,
+                       fmt::format("spans [{}, {}]", axis->min, axis->max),
+                       "min < max (in medium.length_unit, about the entry point)");
+    }
+    check_length_axis_span(*axis, name, medium);
+    check_bins(*axis, name);
+  }
+  if (static_cast<double>(grid.x.bins) * grid.y.bins > 1e7) {
+    throw InputError("grid.y.bins", fmt::format("makes {} x {} bins", grid.x.bins, grid.y.bins),
+                     "grid.x.bins x grid.y.bins at most 1e7");
+  }
+}
+
 void check_run(const RunSettings& run, const Medium& medium) {
   check_run_settings(run);
   check_escape_radius_span(run.escape_radius, medium);
@@ -81,6 +97,15 @@ std::vector<TallyDeclaration> declare_tallies(const SearchlightSpec& spec, doubl
                        "fluence phi(r, z) inside the medium, bin average, collision estimator",
                        true});
   }
+  if (spec.tallies.exitance_map) {
+    tallies.push_back({"exitance_map",
+                       Score::exit_by_position,
+                       {length_filter("x", grid.x), length_filter("y", grid.y)},
+                       "W mfp^-2 per W incident",
+                       "radiant exitance M(x, y) of the surface about the entry point: power "
+                       "leaving per unit area, cell average (the beam arrives in the x-z plane)",
+                       true});
+  }
   tallies.push_back({"diffuse_reflectance",
                      Score::exit,
                      {},
@@ -125,6 +150,7 @@ void SearchlightSpec::validate() const {
                      "an angle in [0, 90) degrees from the surface normal");
   }
   check_grid(grid, medium);
+  if (tallies.exitance_map) check_map(grid, medium);
   check_run(run, medium);
 }
 
@@ -133,12 +159,16 @@ std::string fingerprint(const SearchlightSpec& spec) {
     return fmt::format("{:a},{:a},{};", a.min, a.max, a.bins);
   };
   const Medium& m = spec.medium;
-  return fingerprint_of(fmt::format(
-      "half_space|medium {:a} {:a} {:a} {}|eta {:a}|incidence {:a}|grid {}{}{}|fluence {}|run {} "
-      "{} {} {:a}",
-      m.albedo, m.g, m.sigma_t, m.length_unit, spec.eta, spec.incidence_deg, axis(spec.grid.r),
-      axis(spec.grid.z), axis(spec.grid.theta_o), spec.tallies.fluence, spec.run.photons,
-      spec.run.batches, spec.run.seed, spec.run.escape_radius));
+  return fingerprint_of(fmt::format("half_space|medium {:a} {:a} {:a} {}|eta {:a}|incidence "
+                                    "{:a}|grid {}{}{}|fluence {}|run {} "
+                                    "{} {} {:a}",
+                                    m.albedo, m.g, m.sigma_t, m.length_unit, spec.eta,
+                                    spec.incidence_deg, axis(spec.grid.r), axis(spec.grid.z),
+                                    axis(spec.grid.theta_o), spec.tallies.fluence, spec.run.photons,
+                                    spec.run.batches, spec.run.seed, spec.run.escape_radius) +
+                        (spec.tallies.exitance_map
+                             ? fmt::format("|map {}{}", axis(spec.grid.x), axis(spec.grid.y))
+                             : std::string()));
 }
 
 TransportProblem transport_problem(const SearchlightSpec& given) {
@@ -148,6 +178,8 @@ TransportProblem transport_problem(const SearchlightSpec& given) {
     const double mfp_per_unit = mfp_per_length_unit(given.medium);
     spec.grid.r = length_axis_in_mfp(given.grid.r, mfp_per_unit);
     spec.grid.z = length_axis_in_mfp(given.grid.z, mfp_per_unit);
+    spec.grid.x = length_axis_in_mfp(given.grid.x, mfp_per_unit);
+    spec.grid.y = length_axis_in_mfp(given.grid.y, mfp_per_unit);
     spec.run.escape_radius = given.run.escape_radius * mfp_per_unit;
   }
   // Entry (Bitterli §2.3): the specular part F(theta_i) is reflected, 1 - F enters along the
@@ -165,6 +197,10 @@ TransportProblem transport_problem(const SearchlightSpec& given) {
   problem.axes.r = spec.grid.r;
   problem.axes.z = spec.grid.z;
   problem.axes.theta_o = spec.grid.theta_o;
+  if (spec.tallies.exitance_map) {
+    problem.axes.x = spec.grid.x;
+    problem.axes.y = spec.grid.y;
+  }
   problem.tallies = declare_tallies(spec, specular);
   problem.split_by_order = true;
   problem.estimator = Estimator::collision;

@@ -33,6 +33,13 @@ mkdir -p "$data/render-study"
   --batches 16 --out "$data/lit-sphere.h5" >/dev/null
 "$exe" simulate "$source_dir/data/scenes/lit-mesh.toml" --photons 2e5 --batches 16 \
   --out "$data/lit-mesh.h5" >/dev/null
+for material in regular_milk orange_juice_powder; do
+  for channel in red green blue; do
+    "$exe" searchlight "$source_dir/data/scenes/oblique-beam.toml" --material "$material" \
+      --channel "$channel" --photons 1e5 --batches 16 \
+      --out "$data/oblique-$material-$channel.h5" >/dev/null
+  done
+done
 for albedo in 0.3 0.9; do
   "$exe" simulate --source point --albedo "$albedo" --g 0 --photons 5e4 --batches 16 \
     --out "$data/point-$albedo.h5" >/dev/null

@@ -254,6 +254,59 @@ TEST(Searchlight, AbsorptionFromTheFluenceMatchesTheAbsorbedPower) {
   EXPECT_NEAR(direct_collisions, transmitted * (1.0 - std::exp(-20.0)), 4.0 * direct_bound);
 }
 
+TEST(Searchlight, ExitanceMapIsTheSurfaceSeenFromAbove) {
+  // One cell holding the whole surface: the map times its area is the diffuse reflectance, photon
+  // for photon.
+  SearchlightSpec whole = scene(0.9, 0.5, 1.3, 20'000);
+  whole.tallies.exitance_map = true;
+  whole.grid.x = {-1e4, 1e4, 1};
+  whole.grid.y = {-1e4, 1e4, 1};
+  const SearchlightOutput all = run_searchlight(whole);
+  EXPECT_NEAR(find(all, "exitance_map").mean.at(0) * 4e8, value(all, "diffuse_reflectance"), 1e-12);
+
+  // Sums of the map over parts of the surface, with the sum of the cells' variances (an upper
+  // bound on the variance of a sum of counts that exclude each other photon by photon).
+  const auto part = [](const TallyResult& map, int bins, auto&& in) {
+    double sum = 0.0, variance = 0.0;
+    for (int i = 0; i < bins; ++i) {
+      for (int j = 0; j < bins; ++j) {
+        if (!in(i, j)) continue;
+        const auto k = static_cast<std::size_t>(i * bins + j);
+        sum += map.mean[k];
+        variance += map.stderr_of_mean[k] * map.stderr_of_mean[k];
+      }
+    }
+    return std::pair{sum, std::sqrt(variance)};
+  };
+  const int bins = 8;
+  // Normal incidence: the four quadrants about the entry point hold the same light.
+  SearchlightSpec normal = scene(0.9, 0.5, 1.3, 200'000);
+  normal.tallies.exitance_map = true;
+  normal.grid.x = {-2.0, 2.0, bins};
+  normal.grid.y = {-2.0, 2.0, bins};
+  const SearchlightOutput normal_out = run_searchlight(normal);
+  const TallyResult& square = find(normal_out, "exitance_map");
+  const auto q1 = part(square, bins, [](int i, int j) { return i >= 4 && j >= 4; });
+  for (const auto& [name, quadrant] :
+       {std::pair{"-x +y", part(square, bins, [](int i, int j) { return i < 4 && j >= 4; })},
+        std::pair{"-x -y", part(square, bins, [](int i, int j) { return i < 4 && j < 4; })},
+        std::pair{"+x -y", part(square, bins, [](int i, int j) { return i >= 4 && j < 4; })}}) {
+    EXPECT_NEAR(quadrant.first, q1.first, 4.0 * std::hypot(quadrant.second, q1.second)) << name;
+  }
+  // A beam at 60 degrees in the x-z plane: mirror images about y = 0, and more light on the side
+  // it travels towards (+x) than behind it.
+  SearchlightSpec oblique = normal;
+  oblique.incidence_deg = 60.0;
+  const SearchlightOutput oblique_out = run_searchlight(oblique);
+  const TallyResult& halo = find(oblique_out, "exitance_map");
+  const auto above = part(halo, bins, [](int, int j) { return j >= 4; });
+  const auto below = part(halo, bins, [](int, int j) { return j < 4; });
+  EXPECT_NEAR(above.first, below.first, 4.0 * std::hypot(above.second, below.second));
+  const auto ahead = part(halo, bins, [](int i, int) { return i >= 4; });
+  const auto behind = part(halo, bins, [](int i, int) { return i < 4; });
+  EXPECT_GT(ahead.first - behind.first, 10.0 * std::hypot(ahead.second, behind.second));
+}
+
 TEST(Searchlight, SameResultForAnyThreadCount) {
   SearchlightSpec spec = scene(0.9, 0.3, 1.33, 20000);
   spec.tallies.fluence = true;

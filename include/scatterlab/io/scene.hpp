@@ -92,8 +92,9 @@ std::vector<SweepPoint> load_sweep(const std::filesystem::path& path,
 //              or material, channel (g, length_unit): the material's eta too, unless given
 //   [surface]  eta                                         (the same eta, as older files say)
 //   [source]   incidence_deg
-//   [grid]     r = { max, bins }, z = { max, bins }, theta_o = { bins }
-//   [tallies]  fluence = bool
+//   [grid]     r = { max, bins }, z = { max, bins }, theta_o = { bins },
+//              x = { min, max, bins }, y = { min, max, bins }   (the exitance map's cells)
+//   [tallies]  fluence = bool, exitance_map = bool
 //   [run]      as above;  [output] path
 struct SearchlightScene {
   SearchlightSpec spec;                     // validated unless read with Validation::by_caller

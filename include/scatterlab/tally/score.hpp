@@ -20,6 +20,7 @@ enum class Score : std::size_t {
   exit_radiance,        // r, exit angle theta_o
   exit_by_polar_angle,  // on a sphere: psi (the angle from the lit pole) and the azimuth
   exit_by_triangle,     // on a triangle mesh: the triangle it leaves through
+  exit_by_position,     // on a plane: x, y (about the entry point)
   exit_by_angle,        // exit angle theta_o, wherever on the surface
   // Where a photon leaves a slab through its far side (transmitted), a count; the side it
   // entered is the exit scores above:

@@ -55,6 +55,15 @@ class Scorer {
       }
     }
     if (exit_by_triangle_ != absent) add(buffer, exit_by_triangle_ + where.triangle, block, weight);
+    if (exit_by_position_ != absent) {
+      const int ix = axes_.x.index(where.x), iy = axes_.y.index(where.y);
+      if (ix >= 0 && iy >= 0) {
+        add(buffer,
+            exit_by_position_ + static_cast<std::size_t>(ix) * y_bins_ +
+                static_cast<std::size_t>(iy),
+            block, weight);
+      }
+    }
     const double cos_outside = where.cos_outside;
     if (side.by_angle != absent) {
       add(buffer, side.by_angle + static_cast<std::size_t>(exit_binning_.bin(cos_outside)), block,
@@ -194,7 +203,7 @@ class Scorer {
     std::size_t total, by_radius, by_angle, by_radius_angle;
   };
   SideScores exited_, transmitted_;
-  std::size_t exit_by_polar_angle_, exit_by_triangle_, reflected_at_entry_;
+  std::size_t exit_by_polar_angle_, exit_by_triangle_, exit_by_position_, reflected_at_entry_;
   std::size_t absorbed_, absorbed_in_grid_, absorbed_outside_grid_, absorption_depth_, escaped_;
   std::size_t absorbed_by_layer_, absorbed_by_depth_, absorbed_by_radius_depth_;
   // Strides of the row-major arrays [r][z][theta][phi] and [r][theta_o].
@@ -204,6 +213,7 @@ class Scorer {
   CosineBinning phi_binning_;  // over [0, pi]
   CosineBinning exit_binning_;
   CosineBinning polar_binning_;         // psi on a sphere
+  std::size_t y_bins_ = 1;              // exit points on a plane
   std::size_t azimuth_bins_ = 1;        // about z, on a sphere
   std::vector<double> phi_cotangents_;  // cot of the interior edges of the [0, pi] phi axis
 };

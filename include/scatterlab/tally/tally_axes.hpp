@@ -21,6 +21,7 @@ struct TallyAxes {
   UniformAxis theta_o;  // exit angle, outside the medium
   UniformAxis psi;      // on a sphere: the exit point's polar angle from the lit pole
   UniformAxis azimuth;  // on a sphere: the exit point's azimuth about z, from +x, over [0, 2 pi)
+  UniformAxis x, y;     // on a plane: the exit point about the entry point
 };
 
 }  // namespace scatterlab

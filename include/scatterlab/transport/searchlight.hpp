@@ -25,12 +25,19 @@ struct SearchlightGrid {
   UniformAxis z{0.0, 10.0, 100};  // depth below the surface
   UniformAxis theta_o{0.0, 0.5 * std::numbers::pi,
                       18};  // exit angle from the outward normal, outside
+  // The surface about the entry point, for the exitance map M(x, y) (tallies.exitance_map): the
+  // beam arrives in the x-z plane, so an oblique beam's halo is off centre along +x.
+  UniformAxis x{-5.0, 5.0, 100};
+  UniformAxis y{-5.0, 5.0, 100};
 };
 
 struct SearchlightTallies {
   // phi(r, z) by the collision estimator costs a bin lookup per event; the surface tallies
   // (R_d(r), exitant radiance, totals) cost one per exit and are always on.
   bool fluence = true;
+  // M(x, y) on grid.x x grid.y: what an oblique beam's halo looks like from above (Vavassori
+  // §4.3, Fig. 4.11), which the radial tallies average away. One bin lookup per exit.
+  bool exitance_map = false;
 };
 
 // The relative indices a searchlight accepts (SearchlightSpec::validate).
