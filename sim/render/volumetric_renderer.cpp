@@ -258,6 +258,18 @@ class VolumetricTracer {
       }
     };
     const auto grey = [](double v) { return Rgb{v, v, v}; };
+    // Reflected or refracted where the path meets the mesh; false when it is lost there.
+    const auto meet_boundary = [&](const MeshHit& hit, double xi) {
+      ++count.boundary;
+      origin = point_at(hit);
+      t_near = tracer_.epsilon();
+      if (!cross_boundary(hit, d, inside, xi)) {
+        ++count.lost;
+        return false;
+      }
+      after_floor = false;
+      return true;
+    };
     // Every branch ends the path or moves it on; a path lives until it leaves, is absorbed or
     // loses a roulette.
     for (;;) {
@@ -302,14 +314,7 @@ class VolumetricTracer {
         if (n > 1) {
           for (std::size_t c = 0; c < nc; ++c) log_pdf[c] -= media.sigma_t[c] * hit.distance;
         }
-        ++count.boundary;
-        origin = point_at(hit);
-        t_near = tracer_.epsilon();
-        if (!cross_boundary(hit, d, inside, u[1])) {
-          ++count.lost;
-          return radiance;
-        }
-        after_floor = false;
+        if (!meet_boundary(hit, u[1])) return radiance;
         continue;
       }
       // Outside: the nearest of the mesh, the floor and the light.
@@ -329,14 +334,7 @@ class VolumetricTracer {
         return radiance;
       }
       if (t_mesh < t_floor) {
-        ++count.boundary;
-        origin = point_at(hit);
-        t_near = tracer_.epsilon();
-        if (!cross_boundary(hit, d, inside, u[1])) {
-          ++count.lost;
-          return radiance;
-        }
-        after_floor = false;
+        if (!meet_boundary(hit, u[1])) return radiance;
         continue;
       }
       if (std::isfinite(t_floor)) {

@@ -87,13 +87,8 @@ class MeshBoundary {
   // `t_near`: skip the surface the ray starts on.
   bool enter(Vec3& position, Vec3& direction, PhotonRandom& random, double t_near) const {
     MeshCrossing at;
-    while (next_crossing(*tracer_, *mesh_, position, direction, t_near, infinity, at)) {
-      const double cos_outside = -direction.dot(at.normal);
-      // A facet seen from behind is the one the ray starts on (round-off): not a way in.
-      if (!(cos_outside > 0.0)) {
-        t_near = at.distance + epsilon_;
-        continue;
-      }
+    double cos_outside = 0.0;
+    while (next_facing(true, position, direction, t_near, infinity, at, cos_outside)) {
       t_near = epsilon_;
       const Vec3& normal = at.normal;
       position = at.point;
@@ -118,13 +113,8 @@ class MeshBoundary {
     if (flight < clearance_->at(position)) return false;
     double t_near = 0.0;
     MeshCrossing at;
-    while (next_crossing(*tracer_, *mesh_, position, direction, t_near, flight, at)) {
-      const double cos_inside = direction.dot(at.normal);
-      // A facet that faces the ray is the one the photon came in through: not a way out.
-      if (!(cos_inside > 0.0)) {
-        t_near = at.distance + epsilon_;
-        continue;
-      }
+    double cos_inside = 0.0;
+    while (next_facing(false, position, direction, t_near, flight, at, cos_inside)) {
       t_near = epsilon_;
       const Vec3& normal = at.normal;
       position = at.point;
@@ -155,6 +145,19 @@ class MeshBoundary {
   }
 
  private:
+  // The next crossing in (t_near, t_far) met from outside (`from_outside`) or from inside, and
+  // the cosine of incidence on that side. A facet met from the other side is the one the ray
+  // starts on (round-off: the point of entry or of exit), and is passed.
+  bool next_facing(bool from_outside, const Vec3& position, const Vec3& direction, double t_near,
+                   double t_far, MeshCrossing& at, double& cos_incidence) const {
+    while (next_crossing(*tracer_, *mesh_, position, direction, t_near, t_far, at)) {
+      cos_incidence = from_outside ? -direction.dot(at.normal) : direction.dot(at.normal);
+      if (cos_incidence > 0.0) return true;
+      t_near = at.distance + epsilon_;
+    }
+    return false;
+  }
+
   static constexpr double infinity = std::numeric_limits<double>::infinity();
   const MeshRayTracer* tracer_;
   const TriangleMesh* mesh_;
