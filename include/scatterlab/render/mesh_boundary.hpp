@@ -18,7 +18,8 @@
 // through for good): light that leaves and comes back is not counted where it left.
 //
 // Most flights of a large object end far from its surface: one whose length is under the
-// clearance of its start (surface_clearance.hpp) cannot reach it and needs no ray query.
+// clearance of its start (surface_clearance.hpp) cannot reach it and needs no ray query. Nor
+// does a photon leaving a convex object (convex_mesh.hpp) look for its way back in.
 //
 // `fresnel` = false is the index-matched object (eta = 1): light crosses without reflection or
 // bending, and no random number is drawn at the surface but the fresh flight after a re-entry.
@@ -32,6 +33,7 @@
 #include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/core/random.hpp"
 #include "scatterlab/core/triangle_mesh.hpp"
+#include "scatterlab/render/convex_mesh.hpp"
 #include "scatterlab/render/mesh_ray_tracer.hpp"
 #include "scatterlab/render/surface_clearance.hpp"
 #include "scatterlab/tally/surface_exit.hpp"
@@ -76,7 +78,8 @@ class MeshBoundary {
         mesh_(&mesh),
         eta_(eta),
         epsilon_(tracer.epsilon()),
-        clearance_(std::make_shared<const SurfaceClearance>(mesh)) {}
+        clearance_(std::make_shared<const SurfaceClearance>(mesh)),
+        convex_(bounds_convex_solid(mesh)) {}
 
   const MeshRayTracer& tracer() const { return *tracer_; }
   const TriangleMesh& mesh() const { return *mesh_; }
@@ -84,11 +87,14 @@ class MeshBoundary {
   // The light outside at `position`, travelling along `direction`, meets the mesh (or not):
   // reflected off it with probability F and followed on, or refracted in. True when it enters
   // (position and direction then inside, at the surface); false when it goes off to infinity.
-  // `t_near`: skip the surface the ray starts on.
-  bool enter(Vec3& position, Vec3& direction, PhotonRandom& random, double t_near) const {
+  // `t_near`: skip the surface the ray starts on. `met`, when given, says whether the light met
+  // the mesh at all.
+  bool enter(Vec3& position, Vec3& direction, PhotonRandom& random, double t_near,
+             bool* met = nullptr) const {
     MeshCrossing at;
     double cos_outside = 0.0;
     while (next_facing(true, position, direction, t_near, infinity, at, cos_outside)) {
+      if (met != nullptr) *met = true;
       t_near = epsilon_;
       const Vec3& normal = at.normal;
       position = at.point;
@@ -136,7 +142,7 @@ class MeshBoundary {
       exit.y = position.y();
       const double distance = position.norm();
       exit.cos_polar = distance > 0.0 ? -position.z() / distance : 1.0;
-      if (!enter(position, direction, random, epsilon_)) return true;
+      if (convex_ || !enter(position, direction, random, epsilon_)) return true;
       // Back inside: a fresh flight from the point of entry.
       flight = -std::log(random.next4()[0]);
       next = position + flight * direction;
@@ -164,6 +170,7 @@ class MeshBoundary {
   double eta_;
   double epsilon_;
   std::shared_ptr<const SurfaceClearance> clearance_;  // shared by the walk's copies
+  bool convex_;
 };
 
 }  // namespace scatterlab

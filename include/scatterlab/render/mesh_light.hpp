@@ -20,7 +20,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <limits>
 
 #include "scatterlab/core/azimuth.hpp"
 #include "scatterlab/core/frame.hpp"
@@ -61,12 +60,9 @@ class MeshLight {
         const UnitCircle phi = azimuth(u[3]);
         start = origin_ + radius_ * normal;
         heading = Frame(normal).to_world(sin_theta * phi.cos, sin_theta * phi.sin, cos_theta);
-        MeshCrossing first;
-        if (!next_crossing(boundary_.tracer(), boundary_.mesh(), start, heading, 0.0,
-                           std::numeric_limits<double>::infinity(), first)) {
-          continue;
-        }
-        return boundary_.enter(start, heading, random, 0.0);
+        bool met = false;  // a line that misses the object is drawn again
+        if (boundary_.enter(start, heading, random, 0.0, &met)) return true;
+        if (met) return false;
       }
     }
     // Uniform over the disc: r = R sqrt(u), on a plane a radius behind the centre. A closed mesh
@@ -78,13 +74,10 @@ class MeshLight {
       const double r = radius_ * std::sqrt(u[0]);
       start =
           center_ - 1.5 * radius_ * direction_ + across_.to_world(r * phi.cos, r * phi.sin, 0.0);
-      MeshCrossing first;
-      if (!next_crossing(boundary_.tracer(), boundary_.mesh(), start, direction_, 0.0,
-                         3.0 * radius_, first)) {
-        continue;
-      }
       heading = direction_;
-      return boundary_.enter(start, heading, random, 0.0);
+      bool met = false;  // a line that misses the object is drawn again
+      if (boundary_.enter(start, heading, random, 0.0, &met)) return true;
+      if (met) return false;
     }
   }
 

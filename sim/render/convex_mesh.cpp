@@ -1,0 +1,57 @@
+#include "scatterlab/render/convex_mesh.hpp"
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <numeric>
+#include <utility>
+#include <vector>
+
+namespace scatterlab {
+
+bool bounds_convex_solid(const TriangleMesh& mesh) {
+  if (mesh.triangle_count() == 0) return false;
+  // Vertices by position, so that OBJ seams where normals split still join (as
+  // require_closed_mesh matches them).
+  std::map<std::array<double, 3>, std::uint32_t> id_of;
+  std::vector<std::uint32_t> id(mesh.positions.size());
+  for (std::size_t k = 0; k < mesh.positions.size(); ++k) {
+    const Vec3& p = mesh.positions[k];
+    id[k] = id_of.try_emplace({p.x(), p.y(), p.z()}, static_cast<std::uint32_t>(id_of.size()))
+                .first->second;
+  }
+  const auto corner = [&](std::size_t t, int c) {
+    return id[mesh.triangles[t][static_cast<std::size_t>(c)]];
+  };
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> owner;  // directed edge
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    for (int c = 0; c < 3; ++c) owner[{corner(t, c), corner(t, (c + 1) % 3)}] = t;
+  }
+  // Pieces by union-find over triangles that share an edge.
+  std::vector<std::size_t> parent(mesh.triangle_count());
+  std::iota(parent.begin(), parent.end(), std::size_t{0});
+  const auto root = [&parent](std::size_t t) {
+    while (parent[t] != t) t = parent[t] = parent[parent[t]];
+    return t;
+  };
+  const double tolerance = 1e-9 * mesh.bounds().diagonal();
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const Vec3 normal = mesh.geometric_normal(t);
+    const Vec3& origin = mesh.vertex(t, 0);
+    for (int c = 0; c < 3; ++c) {
+      const auto across = owner.find({corner(t, (c + 1) % 3), corner(t, c)});
+      if (across == owner.end()) return false;  // open: not a solid
+      const std::size_t u = across->second;
+      for (int k = 0; k < 3; ++k) {
+        if (normal.dot(mesh.vertex(u, k) - origin) > tolerance) return false;
+      }
+      parent[root(t)] = root(u);
+    }
+  }
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    if (root(t) != root(0)) return false;
+  }
+  return true;
+}
+
+}  // namespace scatterlab
