@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
+#include <map>
 
 #include "scatterlab/core/error.hpp"
 
@@ -65,6 +67,17 @@ void TriangleMesh::validate() const {
       }
     }
   }
+}
+
+std::vector<std::uint32_t> vertex_ids_by_position(const TriangleMesh& mesh) {
+  std::map<std::array<double, 3>, std::uint32_t> id_of;
+  std::vector<std::uint32_t> id(mesh.positions.size());
+  for (std::size_t k = 0; k < mesh.positions.size(); ++k) {
+    const Vec3& p = mesh.positions[k];
+    id[k] = id_of.try_emplace({p.x(), p.y(), p.z()}, static_cast<std::uint32_t>(id_of.size()))
+                .first->second;
+  }
+  return id;
 }
 
 std::vector<Vec3> area_weighted_vertex_normals(const TriangleMesh& mesh) {

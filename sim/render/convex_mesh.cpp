@@ -1,6 +1,5 @@
 #include "scatterlab/render/convex_mesh.hpp"
 
-#include <array>
 #include <cstdint>
 #include <map>
 #include <numeric>
@@ -13,13 +12,7 @@ bool bounds_convex_solid(const TriangleMesh& mesh) {
   if (mesh.triangle_count() == 0) return false;
   // Vertices by position, so that OBJ seams where normals split still join (as
   // require_closed_mesh matches them).
-  std::map<std::array<double, 3>, std::uint32_t> id_of;
-  std::vector<std::uint32_t> id(mesh.positions.size());
-  for (std::size_t k = 0; k < mesh.positions.size(); ++k) {
-    const Vec3& p = mesh.positions[k];
-    id[k] = id_of.try_emplace({p.x(), p.y(), p.z()}, static_cast<std::uint32_t>(id_of.size()))
-                .first->second;
-  }
+  const std::vector<std::uint32_t> id = vertex_ids_by_position(mesh);
   const auto corner = [&](std::size_t t, int c) {
     return id[mesh.triangles[t][static_cast<std::size_t>(c)]];
   };

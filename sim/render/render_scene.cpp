@@ -305,13 +305,7 @@ Vec3 PinholeCamera::ray_direction(int i, int j, int width, int height) const {
 
 void require_closed_mesh(const TriangleMesh& mesh) {
   // Vertices are matched by position, so that OBJ seams where normals split still close.
-  std::map<std::array<double, 3>, std::uint32_t> id_of;
-  std::vector<std::uint32_t> id(mesh.positions.size());
-  for (std::size_t k = 0; k < mesh.positions.size(); ++k) {
-    const Vec3& p = mesh.positions[k];
-    id[k] = id_of.try_emplace({p.x(), p.y(), p.z()}, static_cast<std::uint32_t>(id_of.size()))
-                .first->second;
-  }
+  const std::vector<std::uint32_t> id = vertex_ids_by_position(mesh);
   // Each directed edge once, and its reverse once: closed, manifold, consistently oriented.
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
   for (const auto& t : mesh.triangles) {

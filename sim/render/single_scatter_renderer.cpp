@@ -1,10 +1,8 @@
 #include "scatterlab/render/single_scatter_renderer.hpp"
 
 #include <fmt/format.h>
-#include <omp.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -18,6 +16,7 @@
 #include "scatterlab/refract/path_contribution.hpp"
 #include "scatterlab/refract/refractive_solver.hpp"
 #include "scatterlab/refract/support_interval.hpp"
+#include "scatterlab/render/image_tiles.hpp"
 #include "scatterlab/render/mesh_ray_tracer.hpp"
 
 namespace scatterlab {
@@ -109,22 +108,11 @@ class Renderer {
   // Compile-time specialised once per run: refraction at the boundary, and shading normals.
   template <bool Refracting, bool Smooth>
   void render(RenderResult& result, const WorkProgress& progress) {
-    const int tile = 8;
-    const int tiles_x = (scene_.width + tile - 1) / tile;
-    const int tiles_y = (scene_.height + tile - 1) / tile;
-    const int tiles = tiles_x * tiles_y;
-    std::atomic<int> done{0};
-    std::vector<RenderCounters> counters(static_cast<std::size_t>(omp_get_max_threads()));
-    const int threads = settings_.threads > 0 ? settings_.threads : omp_get_max_threads();
-    counters.resize(static_cast<std::size_t>(std::max(threads, omp_get_max_threads())));
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-    for (int t = 0; t < tiles; ++t) {
-      RenderCounters& count = counters[static_cast<std::size_t>(omp_get_thread_num())];
+    const auto pixels = [&](int x0, int x1, int y0, int y1, RenderCounters& count) {
       std::vector<RefractionPath> paths;
       std::vector<TriangleSupport> supports;
-      const int x0 = (t % tiles_x) * tile, y0 = (t / tiles_x) * tile;
-      for (int j = y0; j < std::min(y0 + tile, scene_.height); ++j) {
-        for (int i = x0; i < std::min(x0 + tile, scene_.width); ++i) {
+      for (int j = y0; j < y1; ++j) {
+        for (int i = x0; i < x1; ++i) {
           EyeSegmentInside eye;
           if (!enter<Refracting, Smooth>(i, j, eye)) continue;
           ++count.eye_rays;
@@ -152,12 +140,9 @@ class Renderer {
           result.standard_error.at(i, j) = eye.weight * error;
         }
       }
-      const int finished = ++done;
-      if (progress && omp_get_thread_num() == 0) {
-        progress(static_cast<std::uint64_t>(finished), static_cast<std::uint64_t>(tiles));
-      }
-    }
-    for (const auto& c : counters) {
+    };
+    for (const auto& c : render_tiles<RenderCounters>(scene_.width, scene_.height,
+                                                      settings_.threads, progress, pixels)) {
       result.counters.eye_rays += c.eye_rays;
       result.counters.point_queries += c.point_queries;
       result.counters.triangle_searches += c.triangle_searches;

@@ -1,10 +1,7 @@
 #include "scatterlab/render/volumetric_renderer.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -16,6 +13,7 @@
 #include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/core/phase_function.hpp"
 #include "scatterlab/core/random.hpp"
+#include "scatterlab/render/image_tiles.hpp"
 #include "scatterlab/render/mesh_ray_tracer.hpp"
 
 namespace scatterlab {
@@ -73,20 +71,9 @@ class VolumetricTracer {
       media.same_phase = media.same_phase && m.g == media.phase[0].g;
       media.floor_albedo[c] = scene_.floor ? scene_.floor->albedo[c] : 0.0;
     }
-    const int tile = 8;
-    const int tiles_x = (scene_.width + tile - 1) / tile;
-    const int tiles_y = (scene_.height + tile - 1) / tile;
-    const int tiles = tiles_x * tiles_y;
-    const int threads = settings_.threads > 0 ? settings_.threads : omp_get_max_threads();
-    std::vector<VolumetricCounters> counters(
-        static_cast<std::size_t>(std::max(threads, omp_get_max_threads())));
-    std::atomic<int> done{0};
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-    for (int t = 0; t < tiles; ++t) {
-      VolumetricCounters& count = counters[static_cast<std::size_t>(omp_get_thread_num())];
-      const int x0 = (t % tiles_x) * tile, y0 = (t / tiles_x) * tile;
-      for (int j = y0; j < std::min(y0 + tile, scene_.height); ++j) {
-        for (int i = x0; i < std::min(x0 + tile, scene_.width); ++i) {
+    const auto pixels = [&](int x0, int x1, int y0, int y1, VolumetricCounters& count) {
+      for (int j = y0; j < y1; ++j) {
+        for (int i = x0; i < x1; ++i) {
           const Vec3 d = scene_.camera.ray_direction(i, j, scene_.width, scene_.height);
           const auto pixel = static_cast<std::uint64_t>(j) * scene_.width + i;
           Rgb mean{}, error{};
@@ -98,12 +85,9 @@ class VolumetricTracer {
           }
         }
       }
-      const int finished = ++done;
-      if (progress && omp_get_thread_num() == 0) {
-        progress(static_cast<std::uint64_t>(finished), static_cast<std::uint64_t>(tiles));
-      }
-    }
-    for (const auto& c : counters) {
+    };
+    for (const auto& c : render_tiles<VolumetricCounters>(scene_.width, scene_.height,
+                                                          settings_.threads, progress, pixels)) {
       result.counters.paths += c.paths;
       result.counters.collisions += c.collisions;
       result.counters.boundary += c.boundary;

@@ -57,7 +57,8 @@ inline fit::LobeParameters parameters(const Eigen::Vector3d& axis, std::array<do
 
 inline std::vector<double> uniform_edges(double max, std::size_t bins) {
   std::vector<double> edges;
-  for (std::size_t i = 0; i <= bins; ++i) edges.push_back(max * static_cast<double>(i) / static_cast<double>(bins));
+  for (std::size_t i = 0; i <= bins; ++i)
+    edges.push_back(max * static_cast<double>(i) / static_cast<double>(bins));
   return edges;
 }
 

@@ -27,6 +27,20 @@ inline double scalar_error(const SimulationOutput& output, const std::string& na
   return find_tally(output, name).stderr_of_mean.at(0);
 }
 
+// A lit object's totals (the sphere's or a mesh's): reflected at entry, exited and absorbed sum
+// to 1 photon by photon, and the orders of exited and absorbed to their totals.
+inline void expect_lit_object_balance(const SimulationOutput& out, const std::string& label) {
+  EXPECT_NEAR(scalar(out, "reflected_at_entry") + scalar(out, "exited") + scalar(out, "absorbed"),
+              1.0, 1e-12)
+      << label;
+  for (const std::string total : {"exited", "absorbed"}) {
+    EXPECT_NEAR(scalar(out, total + "_unscattered") + scalar(out, total + "_single") +
+                    scalar(out, total + "_multiple"),
+                scalar(out, total), 1e-12)
+        << label << " " << total;
+  }
+}
+
 // A small beam scene on the paper's grid, coarse in angle so tests run fast.
 inline SimulationSpec small_beam(double albedo, double g, std::uint64_t photons) {
   SimulationSpec spec;

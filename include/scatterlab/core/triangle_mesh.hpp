@@ -48,6 +48,10 @@ struct TriangleMesh {
   void validate() const;
 };
 
+// One id per distinct position, for every vertex: vertices at the same place (an OBJ seam where
+// normals split) share it, so that edges can be matched across the seam.
+std::vector<std::uint32_t> vertex_ids_by_position(const TriangleMesh& mesh);
+
 // Area-weighted average of the facet normals around each vertex, normalised: smooth shading
 // normals for a mesh that has none.
 std::vector<Vec3> area_weighted_vertex_normals(const TriangleMesh& mesh);

@@ -140,8 +140,6 @@ class MeshBoundary {
       exit.triangle = at.triangle;
       exit.x = position.x();
       exit.y = position.y();
-      const double distance = position.norm();
-      exit.cos_polar = distance > 0.0 ? -position.z() / distance : 1.0;
       if (convex_ || !enter(position, direction, random, epsilon_)) return true;
       // Back inside: a fresh flight from the point of entry.
       flight = -std::log(random.next4()[0]);
