@@ -1,0 +1,76 @@
+#pragma once
+// A radial profile R_d(r) of the searchlight problem (Bitterli §2.3, eq. 2.15): the exitance at
+// distance r from where a unit power enters a half-space, for each published diffusion model
+// (classical dipole, better dipole: dipole.hpp; quantized diffusion: quantized_diffusion.hpp),
+// held behind one type so that a BSSRDF (bssrdf.hpp) or a renderer can take any of them.
+//
+// Units: r in the medium's length unit, R_d in 1 / length^2 per unit power that entered the
+// medium (the entry Fresnel loss is not in it; the BSSRDF's F_t(omega_i) is).
+//
+// RadialProfileSampler draws r with a density that follows 2 pi r R_d(r) on [0, r_max]: the
+// importance sampling of the surface integrals of a BSSRDF (the lit sphere, lit_sphere_exitance.hpp),
+// unbiased for any profile because it returns the exact density of what it draws.
+
+#include <span>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "scatterlab/models/dipole.hpp"
+#include "scatterlab/models/half_space_medium.hpp"
+#include "scatterlab/models/quantized_diffusion.hpp"
+
+namespace scatterlab {
+
+enum class ProfileModel { dipole, better_dipole, quantized_diffusion };
+
+// "dipole", "better_dipole", "quantized_diffusion"; parse_profile_model throws InputError naming
+// `field` and the accepted names.
+std::string to_string(ProfileModel model);
+ProfileModel parse_profile_model(std::string_view name, std::string_view field);
+inline constexpr ProfileModel all_profile_models[] = {
+    ProfileModel::dipole, ProfileModel::better_dipole, ProfileModel::quantized_diffusion};
+
+class DiffusionProfile {
+ public:
+  // medium.validate() first (InputError naming the field: eta in [0.5, 2.5], ...).
+  DiffusionProfile(ProfileModel model, const HalfSpaceMedium& medium);
+
+  ProfileModel model() const { return model_; }
+  const HalfSpaceMedium& medium() const { return medium_; }
+  // R_d(r), r >= 0; quantized diffusion is +infinity at r = 0 (its cell averages are finite).
+  double reflectance(double r) const;
+  // R_dr = int_0^inf R_d(r) 2 pi r dr, in closed form.
+  double total_reflectance() const;
+  // Averages of R_d over the annuli between consecutive edges, in closed form (edges finite,
+  // >= 0 and increasing; InputError "r_edges" otherwise).
+  std::vector<double> annulus_averages(std::span<const double> r_edges) const;
+
+ private:
+  ProfileModel model_;
+  HalfSpaceMedium medium_;
+  std::variant<DipoleModel, QuantizedDiffusion> model_terms_;
+};
+
+// Draws r in [0, r_max] with a piecewise-constant density in r whose cell weights are the cell
+// integrals of 2 pi r R_d(r) (closed form), on cells geometric from 1e-6 r_max to r_max, plus
+// [0, 1e-6 r_max]. The density of a drawn r is exact for the piecewise-
+// constant law, so f(r) / density(r) is an unbiased weight for any integrand f.
+class RadialProfileSampler {
+ public:
+  RadialProfileSampler(const DiffusionProfile& profile, double r_max, int cells = 256);
+  // r from one uniform u in (0, 1), and the density of r there (per unit length).
+  double sample(double u, double& density) const;
+  double density(double r) const;
+  double r_max() const { return edges_.back(); }
+  // int_0^r_max 2 pi r R_d dr, the sum of the cell weights.
+  double integral() const { return total_; }
+
+ private:
+  std::vector<double> edges_;  // cells [edges_[i], edges_[i+1])
+  std::vector<double> cdf_;    // cumulative weight at each edge, normalised to 1 at the end
+  double total_ = 0.0;
+};
+
+}  // namespace scatterlab
