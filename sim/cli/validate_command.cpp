@@ -20,6 +20,7 @@
 #include "scatterlab/tally/scalar_estimate.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/validate/half_space_comparison.hpp"
+#include "scatterlab/validate/lit_sphere_comparison.hpp"
 #include "scatterlab/validate/point_source_comparison.hpp"
 #include "scatterlab/validate/validation_report.hpp"
 
@@ -168,6 +169,57 @@ int run_searchlight_validation(const SearchlightValidateOptions& o) {
   return 0;
 }
 
+struct LitSphereValidateOptions {
+  std::string out = "validate-litsphere";
+  // At these defaults the two sides' standard errors are alike, ~1 % per psi bin on the lit side.
+  double photons = 1e6;  // per case
+  int samples = 4'000;   // per psi bin and model
+  bool quick = false;
+  int threads = 0;
+  std::uint64_t seed = 1;
+  double log_interval = 60.0;
+};
+
+// The lit sphere, like with like (validate/lit_sphere_comparison.hpp): each diffusion BSSRDF
+// integrated over the sphere against the path-traced sphere's multiply-scattered exitance.
+int run_lit_sphere_validation(const LitSphereValidateOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  LitSphereSettings settings;
+  settings.photons = o.quick ? 10'000 : photon_count(o.photons);
+  settings.integration_samples = o.quick ? 500 : o.samples;
+  settings.threads = o.threads;
+  const std::vector<LitSphereCase> cases = lit_sphere_cases();
+  std::vector<LitSphereComparison> comparisons;
+  ProgressReporter reporter("validate litsphere", "cases", o.log_interval);
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    settings.seed = o.seed + i;  // a seed per case, as validate deon's per albedo
+    comparisons.push_back(compare_lit_sphere(cases[i], settings));
+    reporter.update(i + 1, cases.size());
+  }
+  reporter.finish();
+  const auto files = write_lit_sphere_report(comparisons, o.out);
+  fmt::print(
+      "scatterlab validate litsphere: directional light, {} photons per case, {} samples per psi "
+      "bin and model\n",
+      settings.photons, settings.integration_samples);
+  fmt::print(
+      "  each diffusion BSSRDF (Bitterli eq. 2.16) integrated over the lit sphere against the path-"
+      "traced exitance of light scattered at least twice; mean |model - MC| / MC over resolved psi "
+      "bins: lit side (psi < 80 deg), terminator (80-100), shadow side (> 100)\n");
+  fmt::print("{}", lit_sphere_error_table(comparisons));
+  double transport = 0.0, integration = 0.0;
+  for (const LitSphereComparison& c : comparisons) {
+    transport += c.transport_seconds;
+    integration += c.integration_seconds;
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  fmt::print(
+      "  {:.2f} s ({:.2f} s path tracing, {:.2f} s BSSRDF integration); wrote {} files to {}\n",
+      seconds, transport, integration, files.size(), o.out);
+  return 0;
+}
+
 }  // namespace
 
 Action add_validate_command(CLI::App& app) {
@@ -213,21 +265,60 @@ Action add_validate_command(CLI::App& app) {
   add_memory_limit_option(*searchlight);
   const auto searchlight_log_interval = add_log_interval_option(*searchlight);
   searchlight->add_option("--seed", half_space->seed, "Random seed, in [0, 2^63 - 1]");
-  return [options, deon, half_space, searchlight, deon_log_interval, searchlight_log_interval] {
+  auto sphere = std::make_shared<LitSphereValidateOptions>();
+  CLI::App* litsphere = validate->add_subcommand(
+      "litsphere",
+      "Lit sphere, like with like: the dipole, better dipole and quantized diffusion BSSRDFs "
+      "integrated over a sphere under a directional light against the path-traced sphere's "
+      "multiply-scattered exitance M(psi), for Jensen et al. 2001's marble and skin1 (each "
+      "channel) and three media in mfp; error table (lit side, terminator, shadow side), CSV and "
+      "PNG plots");
+  litsphere->add_option(
+      "--out", sphere->out,
+      "Directory for the CSV and PNG files: new, empty or one scatterlab wrote (made if missing)");
+  CLI::Option* litsphere_photons =
+      litsphere->add_option("--photons", sphere->photons, "Photons per case");
+  CLI::Option* litsphere_samples = litsphere->add_option(
+      "--samples", sphere->samples, "BSSRDF integration samples per psi bin and model, >= 2");
+  litsphere
+      ->add_flag("--quick", sphere->quick,
+                 "1e4 photons and 500 samples per case, for tests; not with --photons or --samples")
+      ->excludes(litsphere_photons)
+      ->excludes(litsphere_samples);
+  litsphere->add_option("--threads", sphere->threads, threads_help());
+  add_memory_limit_option(*litsphere);
+  const auto litsphere_log_interval = add_log_interval_option(*litsphere);
+  litsphere->add_option("--seed", sphere->seed,
+                        "Random seed of the first case (the next take the next seeds), in "
+                        "[0, 2^63 - 10]");
+  return [options, deon, half_space, searchlight, sphere, litsphere, deon_log_interval,
+          searchlight_log_interval, litsphere_log_interval] {
     options->log_interval = *deon_log_interval;
     half_space->log_interval = *searchlight_log_interval;
-    check_threads(deon->parsed() ? options->threads : half_space->threads, "--threads");
+    sphere->log_interval = *litsphere_log_interval;
+    std::string out;
     if (deon->parsed()) {
+      check_threads(options->threads, "--threads");
       check_seed(options->seed, "--seed", deon_albedos.size());  // a seed per albedo
-    } else {
+      out = options->out;
+    } else if (searchlight->parsed()) {
+      check_threads(half_space->threads, "--threads");
       check_seed(half_space->seed, "--seed");
+      out = half_space->out;
+    } else {
+      check_threads(sphere->threads, "--threads");
+      check_seed(sphere->seed, "--seed", lit_sphere_cases().size());  // a seed per case
+      if (sphere->samples < 2)
+        throw InputError("--samples", fmt::format("got {}", sphere->samples), "an integer >= 2");
+      out = sphere->out;
     }
     OutputPlan plan;
-    plan.output_directory("--out", deon->parsed() ? options->out : half_space->out);
+    plan.output_directory("--out", out);
     prepare_outputs(plan);
     require_plotting();  // before the runs, not after them
     if (deon->parsed()) return run_deon(*options);
     if (searchlight->parsed()) return run_searchlight_validation(*half_space);
+    if (litsphere->parsed()) return run_lit_sphere_validation(*sphere);
     return 1;
   };
 }

@@ -50,6 +50,7 @@ STYLES = {
     "monte_carlo": (OKABE_ITO["blue"], "-", "o", 4),
     "collision": (OKABE_ITO["blue"], "-", "o", 4),
     "track_length": (OKABE_ITO["sky_blue"], "-", "s", 4),
+    "monte_carlo_all_orders": (OKABE_ITO["sky_blue"], "-", "s", 4),
     "standard_error": ("#777777", ":", None, 3),
     # diffusion models; a model plus the exact single scattering keeps the model's style
     "diffusion": (OKABE_ITO["vermillion"], "-", None, 2),

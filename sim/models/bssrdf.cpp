@@ -13,7 +13,9 @@ namespace scatterlab {
 namespace {
 
 // 4 C_phi(1/eta) = 1 - 2 C_1(1/eta) (boundary_reflection.hpp: C_phi = (1 - 2 C_1) / 4).
-double exit_normalisation(double eta) { return 4.0 * exitance_fluence_weight(1.0 / eta); }
+double exit_normalisation(double eta) {
+  return 4.0 * exitance_fluence_weight(1.0 / eta);
+}
 
 }  // namespace
 

@@ -14,9 +14,12 @@ std::variant<DipoleModel, QuantizedDiffusion> model_terms(ProfileModel model,
                                                           const HalfSpaceMedium& medium) {
   medium.validate();
   switch (model) {
-    case ProfileModel::dipole: return classical_dipole(medium);
-    case ProfileModel::better_dipole: return better_dipole(medium);
-    case ProfileModel::quantized_diffusion: return quantized_diffusion(medium);
+    case ProfileModel::dipole:
+      return classical_dipole(medium);
+    case ProfileModel::better_dipole:
+      return better_dipole(medium);
+    case ProfileModel::quantized_diffusion:
+      return quantized_diffusion(medium);
   }
   throw std::logic_error("unknown profile model");
 }
@@ -25,9 +28,12 @@ std::variant<DipoleModel, QuantizedDiffusion> model_terms(ProfileModel model,
 
 std::string to_string(ProfileModel model) {
   switch (model) {
-    case ProfileModel::dipole: return "dipole";
-    case ProfileModel::better_dipole: return "better_dipole";
-    case ProfileModel::quantized_diffusion: return "quantized_diffusion";
+    case ProfileModel::dipole:
+      return "dipole";
+    case ProfileModel::better_dipole:
+      return "better_dipole";
+    case ProfileModel::quantized_diffusion:
+      return "quantized_diffusion";
   }
   throw std::logic_error("unknown profile model");
 }
@@ -57,8 +63,8 @@ double DiffusionProfile::total_reflectance() const {
 std::vector<double> DiffusionProfile::annulus_averages(std::span<const double> r_edges) const {
   if (const auto* dipole = std::get_if<DipoleModel>(&model_terms_))
     return dipole_reflectance_annulus_average(*dipole, r_edges);
-  return quantized_diffusion_reflectance_annulus_average(
-      std::get<QuantizedDiffusion>(model_terms_), r_edges);
+  return quantized_diffusion_reflectance_annulus_average(std::get<QuantizedDiffusion>(model_terms_),
+                                                         r_edges);
 }
 
 RadialProfileSampler::RadialProfileSampler(const DiffusionProfile& profile, double r_max,

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 
 #include "scatterlab/core/error.hpp"
@@ -54,6 +55,13 @@ std::string style_key(const std::string& model) {
 }
 
 constexpr const char* monte_carlo_name = "Monte Carlo ±1σ";
+constexpr double degree_in_radians = std::numbers::pi / 180.0;
+
+// A medium of the transport specs, in its own length unit, for a plot title.
+std::string medium_text(const Medium& m) {
+  return fmt::format("albedo {:.5g}, $\\sigma_t$ = {:.4g} {}$^{{-1}}$, $g$ = {:.4g}", m.albedo,
+                     m.sigma_t, m.length_unit, m.g);
+}
 
 // The medium, short enough for a plot title's line (matplotlib mathtext), its values rounded:
 // 1 - 0.99 is 0.010000000000000009 in binary.
@@ -375,6 +383,87 @@ std::vector<std::filesystem::path> write_single_scatter_report(
   const auto png = directory / fmt::format("{}_single_scatter_log.png", stem);
   write_png(plot, png);
   return {csv, png};
+}
+
+std::vector<std::filesystem::path> write_lit_sphere_report(
+    const std::vector<LitSphereComparison>& comparisons, const std::filesystem::path& directory) {
+  make_output_directory(directory, "--out");
+  std::vector<std::filesystem::path> written;
+  const auto exitance_csv = directory / "litsphere_exitance.csv";
+  write_text_file(exitance_csv, [&](std::ostream& out) {
+    out << "case,length_unit,psi_lo_deg,psi_hi_deg,mc_all,mc_all_stderr,mc_multiple,"
+           "mc_multiple_stderr";
+    for (const ProfileModel model : all_profile_models)
+      out << ',' << to_string(model) << ',' << to_string(model) << "_stderr";
+    out << '\n';
+    for (const LitSphereComparison& c : comparisons) {
+      for (std::size_t b = 0; b + 1 < c.psi_edges.size(); ++b) {
+        out << fmt::format("{},{},{:.6g},{:.6g},{},{},{},{}", c.lit_case.slug,
+                           c.lit_case.medium.length_unit, c.psi_edges[b] / degree_in_radians,
+                           c.psi_edges[b + 1] / degree_in_radians, nan_or(c.all.mean[b]),
+                           nan_or(c.all.stderr_of_mean[b]), nan_or(c.multiple.mean[b]),
+                           nan_or(c.multiple.stderr_of_mean[b]));
+        for (const LitSphereModelCurve& m : c.models)
+          out << ',' << nan_or(m.exitance.mean[b]) << ',' << nan_or(m.exitance.stderr_of_mean[b]);
+        out << '\n';
+      }
+    }
+  });
+  written.push_back(exitance_csv);
+
+  const auto errors_csv = directory / "litsphere_errors.csv";
+  write_text_file(errors_csv, [&](std::ostream& out) {
+    out << "case,model,lit_error,terminator_error,shadow_error\n";
+    for (const LitSphereComparison& c : comparisons)
+      for (const LitSphereModelCurve& m : c.models)
+        out << fmt::format("{},{},{},{},{}\n", c.lit_case.slug, to_string(m.model),
+                           nan_or(m.lit_error), nan_or(m.terminator_error), nan_or(m.shadow_error));
+  });
+  written.push_back(errors_csv);
+
+  std::vector<PlotFile> figures;
+  for (const LitSphereComparison& c : comparisons) {
+    std::vector<double> psi(c.psi_edges.size() - 1);
+    for (std::size_t b = 0; b < psi.size(); ++b)
+      psi[b] = 0.5 * (c.psi_edges[b] + c.psi_edges[b + 1]) / degree_in_radians;
+    const std::string unit = c.lit_case.medium.length_unit;
+    LinePlot plot;
+    plot.title = fmt::format("Lit sphere under a directional light: {}\n{}, $\\eta$ = {:g}",
+                             c.lit_case.name, medium_text(c.lit_case.medium), c.lit_case.eta);
+    plot.x_label = "angle from the lit pole $\\psi$ (degrees; terminator at 90)";
+    plot.y_label =
+        fmt::format("exitance $M(\\psi)$ ({}$^{{-2}}$ per unit power meeting the sphere)", unit);
+    plot.y_scale = AxisScale::log;
+    plot.series.push_back({"Monte Carlo, scattered at least twice ±1σ", psi, c.multiple.mean,
+                           c.multiple.stderr_of_mean, true, "monte_carlo"});
+    plot.series.push_back({"Monte Carlo, every order ±1σ", psi, c.all.mean, c.all.stderr_of_mean,
+                           true, "monte_carlo_all_orders"});
+    for (const LitSphereModelCurve& m : c.models)
+      plot.series.push_back({display_name(to_string(m.model)),
+                             psi,
+                             m.exitance.mean,
+                             {},
+                             false,
+                             style_key(to_string(m.model))});
+    figures.push_back({plot, directory / fmt::format("litsphere_{}.png", c.lit_case.slug)});
+  }
+  write_pngs(figures);
+  for (const PlotFile& f : figures) written.push_back(f.path);
+  return written;
+}
+
+std::string lit_sphere_error_table(const std::vector<LitSphereComparison>& comparisons) {
+  std::string table = fmt::format("  {:<52} {:<22} {:>9} {:>11} {:>9}\n", "case", "model", "lit",
+                                  "terminator", "shadow");
+  const auto percent = [](double v) {
+    return std::isnan(v) ? std::string("—") : fmt::format("{:.1f}%", 100.0 * v);
+  };
+  for (const LitSphereComparison& c : comparisons)
+    for (const LitSphereModelCurve& m : c.models)
+      table +=
+          fmt::format("  {:<52} {:<22} {:>9} {:>11} {:>9}\n", c.lit_case.name, to_string(m.model),
+                      percent(m.lit_error), percent(m.terminator_error), percent(m.shadow_error));
+  return table;
 }
 
 }  // namespace scatterlab

@@ -15,7 +15,8 @@ same_tallies=$(realpath "$3")
 source "$(dirname "$0")/harness.sh"
 
 # --- 1. defaults in --help -----------------------------------------------------------------------
-commands=(simulate searchlight fit render report "validate deon" "validate searchlight" merge
+commands=(simulate searchlight fit render report "validate deon" "validate searchlight"
+  "validate litsphere" merge
   info invert)
 for command in "${commands[@]}"; do
   # shellcheck disable=SC2086 # "validate deon" is two words

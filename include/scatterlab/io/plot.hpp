@@ -26,10 +26,10 @@ struct PlotSeries {
   std::vector<double> y_error;  // empty, or one standard error per point (drawn as +-1)
   bool markers = false;         // points (with error bars) instead of a line
   // The model's style key: the same colour, line style and marker in every figure. Known keys
-  // (plot_figure.py): exact, single_scatter, monte_carlo, collision, track_length,
-  // standard_error, diffusion, dipole, better_dipole, quantized_diffusion, grosjean,
-  // grosjean_beam, straight, walter, holzschuch, pathtrace, and "<key>+single_scatter" (drawn as
-  // <key>). Empty or unknown: the next free colour.
+  // (plot_figure.py): exact, single_scatter, monte_carlo, monte_carlo_all_orders, collision,
+  // track_length, standard_error, diffusion, dipole, better_dipole, quantized_diffusion,
+  // grosjean, grosjean_beam, straight, walter, holzschuch, pathtrace, and "<key>+single_scatter"
+  // (drawn as <key>). Empty or unknown: the next free colour.
   std::string model = {};
 };
 

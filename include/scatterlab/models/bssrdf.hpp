@@ -1,7 +1,8 @@
 #pragma once
 // The diffusion BSSRDF from a radial profile (Bitterli eq. 2.16; Jensen et al. 2001):
 //
-//   S_d(x_i, w_i; x_o, w_o) = (1 / pi) F_t(eta, w_i) R_d(|x_o - x_i|) F_t(eta, w_o) / (4 C_phi(1/eta))
+//   S_d(x_i, w_i; x_o, w_o) = (1 / pi) F_t(eta, w_i) R_d(|x_o - x_i|) F_t(eta, w_o) / (4
+//   C_phi(1/eta))
 //
 // F_t is the exact dielectric Fresnel transmittance (core/fresnel.hpp) at the angle outside the
 // medium; 4 C_phi(1/eta) = 1 - 2 C_1(1/eta) is the published normalisation (d'Eon & Irving's

@@ -8,8 +8,9 @@
 // medium (the entry Fresnel loss is not in it; the BSSRDF's F_t(omega_i) is).
 //
 // RadialProfileSampler draws r with a density that follows 2 pi r R_d(r) on [0, r_max]: the
-// importance sampling of the surface integrals of a BSSRDF (the lit sphere, lit_sphere_exitance.hpp),
-// unbiased for any profile because it returns the exact density of what it draws.
+// importance sampling of the surface integrals of a BSSRDF (the lit sphere,
+// lit_sphere_exitance.hpp), unbiased for any profile because it returns the exact density of what
+// it draws.
 
 #include <span>
 #include <string>

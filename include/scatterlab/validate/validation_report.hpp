@@ -8,6 +8,7 @@
 
 #include "scatterlab/refract/half_space_single_scatter.hpp"
 #include "scatterlab/validate/half_space_comparison.hpp"
+#include "scatterlab/validate/lit_sphere_comparison.hpp"
 #include "scatterlab/validate/point_source_comparison.hpp"
 
 namespace scatterlab {
@@ -49,5 +50,15 @@ std::vector<std::filesystem::path> write_single_scatter_report(
     const std::vector<double>& r_edges, const MonteCarloCurve& monte_carlo,
     const SingleScatterReflectance& exact, const HalfSpaceMedium& medium,
     const std::filesystem::path& directory, const std::string& stem);
+
+// litsphere_exitance.csv (M(psi) of every case: Monte Carlo all orders and multiply scattered,
+// each model, with standard errors), litsphere_errors.csv (the region errors) and one log plot
+// per case, litsphere_<slug>.png. Returns the paths.
+std::vector<std::filesystem::path> write_lit_sphere_report(
+    const std::vector<LitSphereComparison>& comparisons, const std::filesystem::path& directory);
+
+// One row per case and model: mean relative error on the lit side, at the terminator and on
+// the shadow side (lit_sphere_comparison.hpp).
+std::string lit_sphere_error_table(const std::vector<LitSphereComparison>& comparisons);
 
 }  // namespace scatterlab

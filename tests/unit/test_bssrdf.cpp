@@ -1,0 +1,154 @@
+// The diffusion BSSRDF on surfaces: the profile sampler is unbiased, the BSSRDF's exitance is its
+// profile (Bitterli eq. 2.16's normalisation), and the lit sphere's Monte Carlo integral
+// (models/lit_sphere_exitance.hpp) converges to an independent nested quadrature of the same
+// double integral and, on a very large sphere, to the half-space's R_dr at the lit pole.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "input_error_field.hpp"
+#include "scatterlab/core/fresnel.hpp"
+#include "scatterlab/core/quadrature.hpp"
+#include "scatterlab/core/random.hpp"
+#include "scatterlab/models/bssrdf.hpp"
+#include "scatterlab/models/diffusion_profile.hpp"
+#include "scatterlab/models/lit_sphere_exitance.hpp"
+
+namespace scatterlab {
+namespace {
+
+using test_support::field_of;
+constexpr double pi = std::numbers::pi;
+
+HalfSpaceMedium medium(double albedo, double eta) {
+  return HalfSpaceMedium::from_albedo(albedo, 0.0, eta);
+}
+
+TEST(RadialProfileSampler, ItsWeightsAreAnUnbiasedEstimateOfTheProfilesIntegral) {
+  for (const ProfileModel model : all_profile_models) {
+    const DiffusionProfile profile(model, medium(0.9, 1.3));
+    const RadialProfileSampler sampler(profile, 1e3);
+    // Out to 1000 mfp the profile (decaying as exp(-sigma_tr r), sigma_tr ~ 0.5) is all there.
+    EXPECT_NEAR(sampler.integral() / profile.total_reflectance(), 1.0, 1e-9) << to_string(model);
+    PhotonRandom random(7, 0);
+    const int n = 100'000;
+    double sum = 0.0, sum_sq = 0.0;
+    for (int i = 0; i < n; ++i) {
+      double density = 0.0;
+      const double r = sampler.sample(random.next(), density);
+      ASSERT_NEAR(density, sampler.density(r), 1e-12 * density);
+      const double w = 2.0 * pi * r * profile.reflectance(r) / density;
+      sum += w;
+      sum_sq += w * w;
+    }
+    const double mean = sum / n;
+    const double sigma = std::sqrt((sum_sq / n - mean * mean) / n);
+    EXPECT_LT(std::abs(mean - sampler.integral()), 4.0 * sigma) << to_string(model);
+    EXPECT_LT(sigma, 0.01 * mean) << to_string(model);  // the draw follows the profile
+  }
+}
+
+TEST(Bssrdf, ItsExitanceIsTheProfileTimesTheNormalisationsFit) {
+  const GaussLegendre rule = gauss_legendre(64);
+  for (const double eta : {0.7, 1.0, 1.3, 2.0}) {
+    const DiffusionProfile profile(ProfileModel::better_dipole, medium(0.9, eta));
+    const double ratio = exit_transmittance_ratio(eta);
+    // d'Eon & Irving's C_1 fit is within 0.006 of the quadrature (boundary_reflection.hpp).
+    EXPECT_NEAR(ratio, 1.0, 0.006) << eta;
+    // int S cos(theta_o) dw_o over the hemisphere, for normal entry at r = 1: by Gauss-Legendre
+    // in mu_o on each side of the kink (total reflection from outside for eta < 1).
+    const double kink = eta < 1.0 ? std::sqrt(1.0 - eta * eta) : 0.0;
+    double exitance = 0.0;
+    for (const auto& [a, b] : {std::pair{0.0, kink}, std::pair{kink, 1.0}}) {
+      for (std::size_t k = 0; k < rule.nodes.size(); ++k) {
+        const double mu = a + 0.5 * (b - a) * (rule.nodes[k] + 1.0);
+        exitance += 0.5 * (b - a) * rule.weights[k] * 2.0 * pi * mu * bssrdf(profile, 1.0, 1.0, mu);
+      }
+    }
+    const double expected =
+        fresnel_dielectric_transmittance(1.0, eta) * profile.reflectance(1.0) * ratio;
+    // F_t has a square-root edge at the kink, which Gauss-Legendre resolves to ~1e-6.
+    EXPECT_NEAR(exitance / expected, 1.0, 1e-5) << eta;
+  }
+}
+
+// M(psi_o) averaged over a psi bin, by nested adaptive quadrature of Bitterli eq. 2.14 with
+// eq. 2.16 over the lit hemisphere, in spherical coordinates about the sphere's centre: an
+// evaluation that shares nothing with the sampling but the profile and the Fresnel term.
+double quadrature_bin(const DiffusionProfile& profile, double radius, double psi_lo,
+                      double psi_hi) {
+  const double eta = profile.medium().eta;
+  const GaussLegendre rule = gauss_legendre(8);
+  const double c_lo = std::cos(psi_hi), c_hi = std::cos(psi_lo);
+  const QuadratureOptions tight{0.0, 1e-8, 2000};
+  double average = 0.0;
+  for (std::size_t k = 0; k < rule.nodes.size(); ++k) {
+    const double cos_o = c_lo + 0.5 * (c_hi - c_lo) * (rule.nodes[k] + 1.0);
+    const double sin_o = std::sqrt(1.0 - cos_o * cos_o);
+    const double psi_o = std::acos(cos_o);
+    const auto over_psi_i = [&](double psi_i) {
+      const double ci = std::cos(psi_i), si = std::sin(psi_i);
+      const auto over_phi = [&](double phi) {
+        const double cos_gamma = si * sin_o * std::cos(phi) + ci * cos_o;
+        const double chord = radius * std::sqrt(std::max(0.0, 2.0 * (1.0 - cos_gamma)));
+        return profile.reflectance(chord);
+      };
+      // Symmetric in phi: twice [0, pi]; the peak (x_i = x_o) sits at phi = 0.
+      const double ring = 2.0 * integrate_adaptive(over_phi, 0.0, pi, tight).value;
+      return radius * radius * si * ci * fresnel_dielectric_transmittance(ci, eta) * ring;
+    };
+    std::vector<double> breaks{0.0, pi / 2.0};
+    if (psi_o < pi / 2.0) breaks.insert(breaks.begin() + 1, psi_o);
+    const double m = integrate_adaptive(over_psi_i, breaks, tight).value;
+    average += 0.5 * rule.weights[k] * m;  // weights sum to 2 on [-1, 1]
+  }
+  return exit_transmittance_ratio(eta) * average / (pi * radius * radius);
+}
+
+TEST(LitSphereExitance, ConvergesToTheDoubleIntegral) {
+  const double radius = 2.0;  // a coarse sphere: 2 mfp
+  const std::vector<double> edges{0.0, pi / 4.0, pi / 2.0, 3.0 * pi / 4.0, pi};
+  for (const ProfileModel model : {ProfileModel::dipole, ProfileModel::better_dipole}) {
+    const DiffusionProfile profile(model, medium(0.9, 1.3));
+    const LitSphereExitance mc = lit_sphere_exitance(profile, radius, edges, 40'000, 3);
+    for (std::size_t b = 0; b + 1 < edges.size(); ++b) {
+      const double exact = quadrature_bin(profile, radius, edges[b], edges[b + 1]);
+      EXPECT_LT(std::abs(mc.mean[b] - exact), 4.0 * mc.stderr_of_mean[b])
+          << to_string(model) << " bin " << b << ": " << mc.mean[b] << " +- "
+          << mc.stderr_of_mean[b] << " against " << exact;
+      EXPECT_LT(mc.stderr_of_mean[b], 0.01 * exact) << to_string(model) << " bin " << b;
+    }
+  }
+}
+
+TEST(LitSphereExitance, AtTheLitPoleOfAVeryLargeSphereIsTheHalfSpace) {
+  // R = 1000 mfp: over the profile's reach (tens of mfp) the surface is flat and lit at normal
+  // incidence, so M pi R^2 -> F_t(1) R_dr (the exitance of S_d per unit R_d included).
+  const double radius = 1000.0;
+  const DiffusionProfile profile(ProfileModel::quantized_diffusion, medium(0.95, 1.3));
+  const std::vector<double> edges{0.0, 0.01};
+  const LitSphereExitance mc = lit_sphere_exitance(profile, radius, edges, 20'000, 5);
+  const double flat = fresnel_dielectric_transmittance(1.0, 1.3) * profile.total_reflectance() *
+                      exit_transmittance_ratio(1.3);
+  const double scale = pi * radius * radius;
+  EXPECT_LT(std::abs(mc.mean[0] * scale - flat), 4.0 * mc.stderr_of_mean[0] * scale + 1e-3 * flat)
+      << mc.mean[0] * scale << " +- " << mc.stderr_of_mean[0] * scale << " against " << flat;
+}
+
+TEST(LitSphereExitance, RefusesBadInputNamingTheField) {
+  const DiffusionProfile profile(ProfileModel::dipole, medium(0.9, 1.3));
+  const std::vector<double> good{0.0, pi};
+  EXPECT_EQ(field_of([&] { lit_sphere_exitance(profile, 0.0, good, 10, 1); }), "radius");
+  EXPECT_EQ(field_of([&] { lit_sphere_exitance(profile, 1.0, good, 1, 1); }), "samples");
+  const std::vector<double> beyond{0.0, 4.0};
+  EXPECT_EQ(field_of([&] { lit_sphere_exitance(profile, 1.0, beyond, 10, 1); }), "psi");
+  const std::vector<double> backwards{1.0, 0.5};
+  EXPECT_EQ(field_of([&] { lit_sphere_exitance(profile, 1.0, backwards, 10, 1); }), "psi");
+  EXPECT_EQ(field_of([] { parse_profile_model("jensen", "--model"); }), "--model");
+  EXPECT_EQ(field_of([] { DiffusionProfile(ProfileModel::dipole, medium(0.9, 3.0)); }), "eta");
+}
+
+}  // namespace
+}  // namespace scatterlab
