@@ -204,8 +204,10 @@ int run_lit_sphere_validation(const LitSphereValidateOptions& o) {
       settings.photons, settings.integration_samples);
   fmt::print(
       "  each diffusion BSSRDF (Bitterli eq. 2.16) integrated over the lit sphere against the path-"
-      "traced exitance of light scattered at least twice; mean |model - MC| / MC over resolved psi "
-      "bins: lit side (psi < 80 deg), terminator (80-100), shadow side (> 100)\n");
+      "traced exitance of light scattered at least twice; 'measured' is the same BSSRDF on the "
+      "half-space Monte Carlo's own multiply-scattered R_d(r) (the BSSRDF's error alone); mean "
+      "|model - MC| / MC over resolved psi bins: lit side (psi < 80 deg), terminator (80-100), "
+      "shadow side (> 100)\n");
   fmt::print("{}", lit_sphere_error_table(comparisons));
   double transport = 0.0, integration = 0.0;
   for (const LitSphereComparison& c : comparisons) {
@@ -271,7 +273,8 @@ Action add_validate_command(CLI::App& app) {
       "Lit sphere, like with like: the dipole, better dipole and quantized diffusion BSSRDFs "
       "integrated over a sphere under a directional light against the path-traced sphere's "
       "multiply-scattered exitance M(psi), for Jensen et al. 2001's marble and skin1 (each "
-      "channel) and three media in mfp; error table (lit side, terminator, shadow side), CSV and "
+      "channel) and three media in mfp, and the same BSSRDF on the half-space Monte Carlo's own "
+      "profile; error table (lit side, terminator, shadow side), CSV and "
       "PNG plots");
   litsphere->add_option(
       "--out", sphere->out,

@@ -10,8 +10,8 @@
 namespace scatterlab {
 namespace {
 
-std::variant<DipoleModel, QuantizedDiffusion> model_terms(ProfileModel model,
-                                                          const HalfSpaceMedium& medium) {
+std::variant<DipoleModel, QuantizedDiffusion, RingProfile> model_terms(
+    ProfileModel model, const HalfSpaceMedium& medium) {
   medium.validate();
   switch (model) {
     case ProfileModel::dipole:
@@ -20,8 +20,25 @@ std::variant<DipoleModel, QuantizedDiffusion> model_terms(ProfileModel model,
       return better_dipole(medium);
     case ProfileModel::quantized_diffusion:
       return quantized_diffusion(medium);
+    case ProfileModel::measured:
+      break;
   }
-  throw std::logic_error("unknown profile model");
+  throw std::logic_error("a measured profile is made from its rings");
+}
+
+RingProfile checked(RingProfile rings, const HalfSpaceMedium& medium) {
+  medium.validate();
+  const std::size_t n = rings.mean.size();
+  bool ok = n >= 1 && rings.r_edges.size() == n + 1 && rings.stderr_of_mean.size() == n &&
+            rings.r_edges.front() == 0.0;
+  for (std::size_t i = 0; ok && i < n; ++i)
+    ok = std::isfinite(rings.r_edges[i + 1]) && rings.r_edges[i + 1] > rings.r_edges[i] &&
+         std::isfinite(rings.mean[i]) && std::isfinite(rings.stderr_of_mean[i]);
+  if (!ok)
+    throw InputError("rings", "not a ring profile",
+                     "edges from 0, increasing and finite, one finite mean and standard error "
+                     "per ring");
+  return rings;
 }
 
 }  // namespace
@@ -34,8 +51,16 @@ std::string to_string(ProfileModel model) {
       return "better_dipole";
     case ProfileModel::quantized_diffusion:
       return "quantized_diffusion";
+    case ProfileModel::measured:
+      return "measured";
   }
   throw std::logic_error("unknown profile model");
+}
+
+int RingProfile::ring_of(double r) const {
+  if (!(r >= 0.0) || r >= r_edges.back()) return -1;
+  const auto upper = std::upper_bound(r_edges.begin() + 1, r_edges.end(), r);
+  return static_cast<int>(upper - r_edges.begin()) - 1;
 }
 
 ProfileModel parse_profile_model(std::string_view name, std::string_view field) {
@@ -48,19 +73,50 @@ ProfileModel parse_profile_model(std::string_view name, std::string_view field) 
 DiffusionProfile::DiffusionProfile(ProfileModel model, const HalfSpaceMedium& medium)
     : model_(model), medium_(medium), model_terms_(model_terms(model, medium)) {}
 
+DiffusionProfile::DiffusionProfile(RingProfile rings, const HalfSpaceMedium& medium)
+    : model_(ProfileModel::measured),
+      medium_(medium),
+      model_terms_(checked(std::move(rings), medium)) {}
+
 double DiffusionProfile::reflectance(double r) const {
+  if (const RingProfile* measured = rings()) {
+    const int ring = measured->ring_of(r);
+    return ring < 0 ? 0.0 : measured->mean[ring];
+  }
   if (const auto* dipole = std::get_if<DipoleModel>(&model_terms_))
     return dipole_reflectance(*dipole, r);
   return quantized_diffusion_reflectance(std::get<QuantizedDiffusion>(model_terms_), r);
 }
 
 double DiffusionProfile::total_reflectance() const {
+  if (const RingProfile* measured = rings()) {
+    const std::vector<double>& e = measured->r_edges;
+    double total = 0.0;
+    for (std::size_t i = 0; i < measured->mean.size(); ++i)
+      total += measured->mean[i] * std::numbers::pi * (e[i + 1] * e[i + 1] - e[i] * e[i]);
+    return total;
+  }
   if (const auto* dipole = std::get_if<DipoleModel>(&model_terms_))
     return dipole_total_reflectance(*dipole);
   return quantized_diffusion_total_reflectance(std::get<QuantizedDiffusion>(model_terms_));
 }
 
 std::vector<double> DiffusionProfile::annulus_averages(std::span<const double> r_edges) const {
+  if (const RingProfile* measured = rings()) {
+    // Constant on each ring: the average over an annulus is the rings' area-weighted mean.
+    const std::vector<double>& e = measured->r_edges;
+    std::vector<double> averages(r_edges.size() - 1, 0.0);
+    for (std::size_t a = 0; a + 1 < r_edges.size(); ++a) {
+      double sum = 0.0;
+      for (std::size_t i = 0; i < measured->mean.size(); ++i) {
+        const double lo = std::max(e[i], r_edges[a]), hi = std::min(e[i + 1], r_edges[a + 1]);
+        if (hi > lo) sum += measured->mean[i] * (hi * hi - lo * lo);
+      }
+      const double area = r_edges[a + 1] * r_edges[a + 1] - r_edges[a] * r_edges[a];
+      averages[a] = area > 0.0 ? sum / area : 0.0;
+    }
+    return averages;
+  }
   if (const auto* dipole = std::get_if<DipoleModel>(&model_terms_))
     return dipole_reflectance_annulus_average(*dipole, r_edges);
   return quantized_diffusion_reflectance_annulus_average(std::get<QuantizedDiffusion>(model_terms_),

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/frame.hpp"
@@ -37,8 +38,13 @@ LitSphereExitance lit_sphere_exitance(const DiffusionProfile& profile, double ra
   LitSphereExitance result;
   result.mean.resize(bins);
   result.stderr_of_mean.resize(bins);
+  // A measured profile's own noise: the integral is linear in the rings' means, M = sum_k W_k
+  // R_k, so its variance from them is sum_k (W_k sigma_k)^2, W_k estimated with the same samples.
+  const RingProfile* rings = profile.rings();
+  std::vector<double> ring_weight(rings != nullptr ? rings->mean.size() : 0);
   for (std::size_t b = 0; b < bins; ++b) {
     PhotonRandom random(seed, b);
+    std::fill(ring_weight.begin(), ring_weight.end(), 0.0);
     const double cos_hi = std::cos(psi_edges[b]), cos_lo = std::cos(psi_edges[b + 1]);
     double sum = 0.0, sum_sq = 0.0;
     for (int s = 0; s < samples; ++s) {
@@ -73,8 +79,13 @@ LitSphereExitance lit_sphere_exitance(const DiffusionProfile& profile, double ra
         const double p_profile =
             chord > 0.0 ? sampler.density(chord) / (2.0 * std::numbers::pi * chord) : 0.0;
         const double p_light = cos_in / (std::numbers::pi * radius * radius);
-        value += cos_in * fresnel_dielectric_transmittance(cos_in, eta) *
-                 profile.reflectance(chord) / (p_profile + p_light);
+        const double weight =
+            cos_in * fresnel_dielectric_transmittance(cos_in, eta) / (p_profile + p_light);
+        value += weight * profile.reflectance(chord);
+        if (rings != nullptr) {
+          const int ring = rings->ring_of(chord);
+          if (ring >= 0) ring_weight[ring] += weight / samples;
+        }
       }
       sum += value;
       sum_sq += value * value;
@@ -82,8 +93,11 @@ LitSphereExitance lit_sphere_exitance(const DiffusionProfile& profile, double ra
     const double n = samples;
     const double mean = sum / n;
     const double variance = std::max(0.0, (sum_sq - n * mean * mean) / (n - 1.0));
+    double profile_variance = 0.0;
+    for (std::size_t k = 0; k < ring_weight.size(); ++k)
+      profile_variance += std::pow(ring_weight[k] * rings->stderr_of_mean[k], 2);
     result.mean[b] = scale * mean;
-    result.stderr_of_mean[b] = scale * std::sqrt(variance / n);
+    result.stderr_of_mean[b] = scale * std::sqrt(variance / n + profile_variance);
   }
   return result;
 }

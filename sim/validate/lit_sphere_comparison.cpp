@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -9,16 +10,18 @@
 #include <stdexcept>
 
 #include "scatterlab/io/material_presets.hpp"
+#include "scatterlab/tally/scalar_estimate.hpp"
 #include "scatterlab/tally/tally_result.hpp"
+#include "scatterlab/transport/searchlight.hpp"
 
 namespace scatterlab {
 namespace {
 
 constexpr double degree = std::numbers::pi / 180.0;
 
-MonteCarloCurve exitance_curve(const std::vector<TallyResult>& tallies, const std::string& name) {
+MonteCarloCurve tally_curve(const std::vector<TallyResult>& tallies, const std::string& name) {
   const TallyResult* t = find_tally(tallies, name);
-  if (t == nullptr) throw std::logic_error("lit sphere run has no tally " + name);
+  if (t == nullptr) throw std::logic_error("run has no tally " + name);
   return {t->mean, t->stderr_of_mean};
 }
 
@@ -85,16 +88,41 @@ LitSphereComparison compare_lit_sphere(const LitSphereCase& lit_case,
   result.psi_edges = spec.psi.edges();
   const TransportOutput out = run_lit_sphere(spec, progress);
   result.transport_seconds = out.wall_seconds;
-  result.all = exitance_curve(out.tallies, "exitance");
-  result.multiple = exitance_curve(out.tallies, "exitance_multiple");
+  result.all = tally_curve(out.tallies, "exitance");
+  result.multiple = tally_curve(out.tallies, "exitance_multiple");
+
+  // The half-space's own multiply-scattered R_d(r), out to the sphere's diameter, by the same
+  // Monte Carlo: a BSSRDF built on it carries the BSSRDF's error alone.
+  SearchlightSpec half;
+  half.medium = lit_case.medium;
+  half.eta = lit_case.eta;
+  half.grid.r = UniformAxis{0.0, 2.0 * lit_case.radius, settings.profile_rings};
+  half.tallies.fluence = false;
+  half.run = spec.run;
+  // Deep photons wander long in a half-space of low absorption (marble: ~50 times the sphere's
+  // cost per photon), so the profile takes a tenth of the photons; its noise is carried into the
+  // BSSRDF's error bars (lit_sphere_exitance.hpp).
+  half.run.photons = std::max<std::uint64_t>(settings.photons / 10, 10'000);
+  half.validate();
+  const TransportOutput profile_run = run_searchlight(half);
+  result.transport_seconds += profile_run.wall_seconds;
+  const double entered = 1.0 - scalar_estimate(profile_run.tallies, "specular_reflectance").mean;
+  MonteCarloCurve measured = tally_curve(profile_run.tallies, "reflectance_multiple");
+  for (double& v : measured.mean) v /= entered;  // per unit power entering, as every profile
+  for (double& v : measured.stderr_of_mean) v /= entered;
 
   const auto start = std::chrono::steady_clock::now();
   const Medium& m = lit_case.medium;
   const HalfSpaceMedium half_space{m.sigma_a(), m.sigma_s(), m.g, lit_case.eta};
-  for (const ProfileModel model : all_profile_models) {
-    LitSphereModelCurve curve{
-        model, lit_sphere_exitance(DiffusionProfile(model, half_space), lit_case.radius,
-                                   result.psi_edges, settings.integration_samples, settings.seed)};
+  std::vector<DiffusionProfile> profiles;
+  for (const ProfileModel model : all_profile_models) profiles.emplace_back(model, half_space);
+  profiles.emplace_back(RingProfile{half.grid.r.edges(), std::move(measured.mean),
+                                    std::move(measured.stderr_of_mean)},
+                        half_space);
+  for (const DiffusionProfile& profile : profiles) {
+    LitSphereModelCurve curve{profile.model(),
+                              lit_sphere_exitance(profile, lit_case.radius, result.psi_edges,
+                                                  settings.integration_samples, settings.seed)};
     set_region_errors(curve, result.multiple, result.psi_edges);
     result.models.push_back(std::move(curve));
   }

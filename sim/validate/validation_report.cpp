@@ -45,6 +45,7 @@ std::string display_name(const std::string& model) {
   if (model == "quantized_diffusion") return "quantized diffusion (d'Eon & Irving 2011)";
   if (model == "scatterlab_grosjean_beam") return "Grosjean beam (scatterlab)";
   if (model == "single_scatter") return "exact single scattering";
+  if (model == "measured") return "on the half-space Monte Carlo's own R_d(r)";
   return model;
 }
 
@@ -387,14 +388,15 @@ std::vector<std::filesystem::path> write_single_scatter_report(
 
 std::vector<std::filesystem::path> write_lit_sphere_report(
     const std::vector<LitSphereComparison>& comparisons, const std::filesystem::path& directory) {
+  if (comparisons.empty()) throw std::logic_error("no lit sphere comparison to write");
   make_output_directory(directory, "--out");
   std::vector<std::filesystem::path> written;
   const auto exitance_csv = directory / "litsphere_exitance.csv";
   write_text_file(exitance_csv, [&](std::ostream& out) {
     out << "case,length_unit,psi_lo_deg,psi_hi_deg,mc_all,mc_all_stderr,mc_multiple,"
            "mc_multiple_stderr";
-    for (const ProfileModel model : all_profile_models)
-      out << ',' << to_string(model) << ',' << to_string(model) << "_stderr";
+    for (const LitSphereModelCurve& m : comparisons.front().models)
+      out << ',' << to_string(m.model) << ',' << to_string(m.model) << "_stderr";
     out << '\n';
     for (const LitSphereComparison& c : comparisons) {
       for (std::size_t b = 0; b + 1 < c.psi_edges.size(); ++b) {

@@ -137,6 +137,53 @@ TEST(LitSphereExitance, AtTheLitPoleOfAVeryLargeSphereIsTheHalfSpace) {
       << mc.mean[0] * scale << " +- " << mc.stderr_of_mean[0] * scale << " against " << flat;
 }
 
+TEST(MeasuredProfile, OnFineRingsOfAModelGivesTheModelsLitSphere) {
+  // A measured profile holding the better dipole's exact ring averages on 0.02-mfp rings: its
+  // annulus averages and total are the rings' own, and on the lit sphere it gives what the
+  // model gives (the same samples: the difference is the rings' discretisation alone).
+  const HalfSpaceMedium m = medium(0.9, 1.3);
+  const DiffusionProfile model(ProfileModel::better_dipole, m);
+  const double radius = 2.0;
+  RingProfile rings;
+  for (int i = 0; i <= 200; ++i) rings.r_edges.push_back(0.02 * i);
+  rings.mean = model.annulus_averages(rings.r_edges);
+  rings.stderr_of_mean.assign(rings.mean.size(), 0.0);
+  const DiffusionProfile measured(rings, m);
+  EXPECT_EQ(measured.model(), ProfileModel::measured);
+  const std::vector<double> back = measured.annulus_averages(rings.r_edges);
+  for (std::size_t i = 0; i < back.size(); ++i)
+    EXPECT_NEAR(back[i], rings.mean[i], 1e-12 * rings.mean[i]);
+  // Its total is the model's light within the last ring, in closed form.
+  const double within =
+      model.total_reflectance() -
+      model.annulus_averages(std::vector<double>{4.0, 1e4})[0] * pi * (1e8 - 16.0);
+  EXPECT_NEAR(measured.total_reflectance() / within, 1.0, 1e-9);
+  const std::vector<double> edges{0.0, pi / 3.0, 2.0 * pi / 3.0, pi};
+  const LitSphereExitance a = lit_sphere_exitance(model, radius, edges, 20'000, 9);
+  const LitSphereExitance b = lit_sphere_exitance(measured, radius, edges, 20'000, 9);
+  for (std::size_t k = 0; k < a.mean.size(); ++k) {
+    EXPECT_NEAR(b.mean[k] / a.mean[k], 1.0, 0.01) << k;
+    EXPECT_NEAR(b.stderr_of_mean[k] / a.stderr_of_mean[k], 1.0, 0.2) << k;
+  }
+  // The rings' own standard errors widen the error bars, by no more than their relative size.
+  RingProfile noisy = rings;
+  for (std::size_t i = 0; i < noisy.mean.size(); ++i)
+    noisy.stderr_of_mean[i] = 0.05 * noisy.mean[i];
+  const LitSphereExitance c =
+      lit_sphere_exitance(DiffusionProfile(noisy, m), radius, edges, 20'000, 9);
+  for (std::size_t k = 0; k < c.mean.size(); ++k) {
+    EXPECT_EQ(c.mean[k], b.mean[k]);
+    EXPECT_GT(c.stderr_of_mean[k], b.stderr_of_mean[k]);
+    EXPECT_LT(c.stderr_of_mean[k], std::hypot(b.stderr_of_mean[k], 0.05 * b.mean[k]));
+  }
+  RingProfile bad = rings;
+  bad.r_edges[0] = 0.1;
+  EXPECT_EQ(field_of([&] { DiffusionProfile(bad, m); }), "rings");
+  bad = rings;
+  bad.stderr_of_mean.pop_back();
+  EXPECT_EQ(field_of([&] { DiffusionProfile(bad, m); }), "rings");
+}
+
 TEST(LitSphereExitance, RefusesBadInputNamingTheField) {
   const DiffusionProfile profile(ProfileModel::dipole, medium(0.9, 1.3));
   const std::vector<double> good{0.0, pi};

@@ -28,8 +28,8 @@ struct PlotSeries {
   // The model's style key: the same colour, line style and marker in every figure. Known keys
   // (plot_figure.py): exact, single_scatter, monte_carlo, monte_carlo_all_orders, collision,
   // track_length, standard_error, diffusion, dipole, better_dipole, quantized_diffusion,
-  // grosjean, grosjean_beam, straight, walter, holzschuch, pathtrace, and "<key>+single_scatter"
-  // (drawn as <key>). Empty or unknown: the next free colour.
+  // grosjean, grosjean_beam, measured, straight, walter, holzschuch, pathtrace, and
+  // "<key>+single_scatter" (drawn as <key>). Empty or unknown: the next free colour.
   std::string model = {};
 };
 

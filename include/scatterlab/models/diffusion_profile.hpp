@@ -4,6 +4,11 @@
 // (classical dipole, better dipole: dipole.hpp; quantized diffusion: quantized_diffusion.hpp),
 // held behind one type so that a BSSRDF (bssrdf.hpp) or a renderer can take any of them.
 //
+// Besides the models, a profile can be measured: R_d averaged over rings (the searchlight Monte
+// Carlo's multiply-scattered part, per unit power entering), constant on each ring and 0 beyond
+// the last. A BSSRDF built on it carries no diffusion-theory error, only the BSSRDF's own (the
+// planar profile used on another surface, the direction of entry ignored).
+//
 // Units: r in the medium's length unit, R_d in 1 / length^2 per unit power that entered the
 // medium (the entry Fresnel loss is not in it; the BSSRDF's F_t(omega_i) is).
 //
@@ -24,25 +29,39 @@
 
 namespace scatterlab {
 
-enum class ProfileModel { dipole, better_dipole, quantized_diffusion };
+enum class ProfileModel { dipole, better_dipole, quantized_diffusion, measured };
 
-// "dipole", "better_dipole", "quantized_diffusion"; parse_profile_model throws InputError naming
-// `field` and the accepted names.
+// "dipole", "better_dipole", "quantized_diffusion", "measured"; parse_profile_model accepts the
+// published models only, and throws InputError naming `field` and them otherwise.
 std::string to_string(ProfileModel model);
 ProfileModel parse_profile_model(std::string_view name, std::string_view field);
 inline constexpr ProfileModel all_profile_models[] = {
     ProfileModel::dipole, ProfileModel::better_dipole, ProfileModel::quantized_diffusion};
 
+// A measured profile: mean and standard error of R_d on the rings between consecutive edges.
+struct RingProfile {
+  std::vector<double> r_edges;               // finite, >= 0, increasing; from 0
+  std::vector<double> mean, stderr_of_mean;  // per ring, 1 / length^2 per unit power entering
+
+  // The ring holding r, or -1 beyond the last edge.
+  int ring_of(double r) const;
+};
+
 class DiffusionProfile {
  public:
-  // medium.validate() first (InputError naming the field: eta in [0.5, 2.5], ...).
+  // medium.validate() first (InputError naming the field: eta in [0.5, 2.5], ...). `model` is a
+  // published one (not measured).
   DiffusionProfile(ProfileModel model, const HalfSpaceMedium& medium);
+  // A measured profile (InputError "rings" when its sizes or edges are not as RingProfile says).
+  DiffusionProfile(RingProfile rings, const HalfSpaceMedium& medium);
 
   ProfileModel model() const { return model_; }
   const HalfSpaceMedium& medium() const { return medium_; }
+  // The rings of a measured profile; nullptr for a model.
+  const RingProfile* rings() const { return std::get_if<RingProfile>(&model_terms_); }
   // R_d(r), r >= 0; quantized diffusion is +infinity at r = 0 (its cell averages are finite).
   double reflectance(double r) const;
-  // R_dr = int_0^inf R_d(r) 2 pi r dr, in closed form.
+  // R_dr = int_0^inf R_d(r) 2 pi r dr, in closed form (a measured profile: its rings' sum).
   double total_reflectance() const;
   // Averages of R_d over the annuli between consecutive edges, in closed form (edges finite,
   // >= 0 and increasing; InputError "r_edges" otherwise).
@@ -51,7 +70,7 @@ class DiffusionProfile {
  private:
   ProfileModel model_;
   HalfSpaceMedium medium_;
-  std::variant<DipoleModel, QuantizedDiffusion> model_terms_;
+  std::variant<DipoleModel, QuantizedDiffusion, RingProfile> model_terms_;
 };
 
 // Draws r in [0, r_max] with a piecewise-constant density in r whose cell weights are the cell

@@ -27,7 +27,8 @@
 // average, as the tally's is.
 //
 // Each bin's standard error is the sample standard deviation over sqrt(samples), from one
-// Philox stream per bin keyed by (seed, bin).
+// Philox stream per bin keyed by (seed, bin); for a measured profile (diffusion_profile.hpp) the
+// rings' own standard errors are carried through the integral, which is linear in them.
 
 #include <cstdint>
 #include <span>

@@ -5,7 +5,11 @@
 // M(psi) against the angle psi from the lit pole. The diffusion models describe the light
 // scattered at least twice (validate/half_space_comparison.hpp), so each is held against the
 // Monte Carlo's _multiple part; the total (every order) is kept beside it, to show what the
-// once-scattered and unscattered light add.
+// once-scattered and unscattered light add. Beside the models, the same BSSRDF is built on the
+// half-space's own multiply-scattered R_d(r), run by Monte Carlo in the same medium at normal
+// incidence (models/diffusion_profile.hpp, a measured profile): what remains of its error is the
+// BSSRDF construction's (a planar profile on a sphere, the chord for the distance, the direction
+// of entry ignored), not diffusion theory's.
 //
 // Errors are mean |model - MC| / MC over the psi bins where the Monte Carlo part is resolved
 // (mean > 3 standard errors), in three regions: the lit side (psi < 80 degrees), the
@@ -41,10 +45,11 @@ struct LitSphereSettings {
   std::uint64_t seed = 1;
   int integration_samples = 4'000;  // per psi bin and model
   int psi_bins = 36;
+  int profile_rings = 400;  // of the half-space profile, out to the sphere's diameter
 };
 
 struct LitSphereModelCurve {
-  ProfileModel model;
+  ProfileModel model;  // measured: the half-space Monte Carlo's profile
   LitSphereExitance exitance;
   double lit_error = 0.0, terminator_error = 0.0, shadow_error = 0.0;
 };
