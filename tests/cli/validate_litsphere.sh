@@ -8,11 +8,11 @@ exe=$1
 source_dir=$2
 source "$source_dir/tests/cli/harness.sh"
 
-cases=9 bins=36 models=3
+cases=9 bins=36 models=4  # three diffusion models and the measured profile
 if "$exe" validate litsphere --quick --threads 2 --out "$work/ls" >"$work/stdout" \
   2>"$work/stderr"; then
   pass
-  rows=$(grep -cE " (dipole|better_dipole|quantized_diffusion) " "$work/stdout")
+  rows=$(grep -cE " (dipole|better_dipole|quantized_diffusion|measured) " "$work/stdout")
   if [ "$rows" -eq $((cases * models)) ]; then pass; else
     fail "error table: $rows rows of $((cases * models)): $(cat "$work/stdout")"; fi
   lines=$(wc -l <"$work/ls/litsphere_exitance.csv")
