@@ -137,6 +137,35 @@ TEST(LitSphereExitance, AtTheLitPoleOfAVeryLargeSphereIsTheHalfSpace) {
       << mc.mean[0] * scale << " +- " << mc.stderr_of_mean[0] * scale << " against " << flat;
 }
 
+TEST(LitSphereExitance, ItsPowerIsThePowerEnteredTimesTheProfilesTotal) {
+  // Energy: on a sphere the area at chord d from any point is the plane's (d dd dbeta), so the
+  // power a BSSRDF sends out of the whole sphere is the power that entered times R_d integrated
+  // over [0, 2R], times the exit factor. The power entering per unit power meeting the sphere is
+  // 2 int_0^1 F_t(mu) mu dmu: the shadow disc seen at angle theta_i has cos(theta_i) dA.
+  const double radius = 3.0, eta = 1.3;
+  const DiffusionProfile profile(ProfileModel::better_dipole, medium(0.8, eta));
+  std::vector<double> edges;
+  for (int i = 0; i <= 18; ++i) edges.push_back(pi * i / 18.0);
+  const LitSphereExitance mc = lit_sphere_exitance(profile, radius, edges, 20'000, 11);
+  double power = 0.0, variance = 0.0;
+  for (std::size_t b = 0; b + 1 < edges.size(); ++b) {
+    const double area = 2.0 * pi * radius * radius * (std::cos(edges[b]) - std::cos(edges[b + 1]));
+    power += mc.mean[b] * area;
+    variance += std::pow(mc.stderr_of_mean[b] * area, 2);
+  }
+  const double entered =
+      integrate_adaptive(
+          [&](double mu) { return 2.0 * fresnel_dielectric_transmittance(mu, eta) * mu; }, 0.0, 1.0)
+          .value;
+  const double within = profile.total_reflectance() -
+                        profile.annulus_averages(std::vector<double>{2.0 * radius, 1e4})[0] * pi *
+                            (1e8 - 4.0 * radius * radius);
+  const double expected = entered * within * exit_transmittance_ratio(eta);
+  EXPECT_LT(std::abs(power - expected), 4.0 * std::sqrt(variance))
+      << power << " against " << expected;
+  EXPECT_LT(std::sqrt(variance), 0.003 * expected);
+}
+
 TEST(MeasuredProfile, OnFineRingsOfAModelGivesTheModelsLitSphere) {
   // A measured profile holding the better dipole's exact ring averages on 0.02-mfp rings: its
   // annulus averages and total are the rings' own, and on the lit sphere it gives what the
