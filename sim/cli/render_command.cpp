@@ -18,6 +18,8 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/io/plot.hpp"
+#include "scatterlab/models/diffusion_profile.hpp"
+#include "scatterlab/render/bssrdf_renderer.hpp"
 #include "scatterlab/render/exposure.hpp"
 #include "scatterlab/render/render_scene.hpp"
 #include "scatterlab/render/render_study.hpp"
@@ -37,7 +39,85 @@ struct RenderOptions {
   std::string out = "render.exr";
   double exposure = 0.0;
   double gamma = 2.2;
+  // --method bssrdf
+  std::string model = "better_dipole";
+  int points = BssrdfSettings{}.cloud.points;
+  int relaxation = BssrdfSettings{}.cloud.relaxation;
+  double cluster_angle = BssrdfSettings{}.cluster_angle;
+  bool no_occlusion = false;
 };
+
+// The flags of method bssrdf alone.
+constexpr const char* bssrdf_flags[] = {"--model", "--points", "--relaxation", "--cluster-angle",
+                                        "--no-occlusion"};
+
+// `render --method bssrdf`: the point cloud, its octree and the image, and the per-point file.
+int run_bssrdf(const RenderOptions& o, const RenderScene& scene, const std::filesystem::path& exr,
+               const std::filesystem::path& png, bool auto_exposed, double log_interval) {
+  BssrdfSettings settings;
+  settings.model = parse_profile_model(o.model, "--model");
+  for (const auto& [flag, value, lowest, highest] :
+       {std::tuple{"--points", o.points, 1, max_cloud_points},
+        std::tuple{"--relaxation", o.relaxation, 0, max_relaxation}}) {
+    if (value < lowest || value > highest) {
+      throw InputError(flag, fmt::format("got {}", value),
+                       fmt::format("an integer in [{}, {}]", lowest, highest));
+    }
+  }
+  if (!(o.cluster_angle >= 0.0) || !std::isfinite(o.cluster_angle)) {
+    throw InputError("--cluster-angle", fmt::format("got {}", o.cluster_angle),
+                     "a solid angle >= 0 in sr (0: every point summed, no clustering)");
+  }
+  settings.cloud.points = o.points;
+  settings.cloud.relaxation = o.relaxation;
+  settings.cloud.seed = o.seed;
+  settings.cluster_angle = o.cluster_angle;
+  settings.occlusion = !o.no_occlusion;
+  settings.threads = o.threads;
+  std::filesystem::path h5 = exr;
+  h5.replace_extension(".h5");
+
+  OutputPlan plan;
+  plan.input("SCENE", o.scenes.front());
+  if (!scene.mesh_file.empty()) plan.input("mesh.path", scene.mesh_file);
+  plan.output_file("--out", exr);
+  plan.output_file("--out", png);
+  plan.output_file("--out", h5);  // the per-point exitance beside the images
+  prepare_outputs(plan);
+  if (exr.extension() != ".exr") {
+    throw InputError("--out", fmt::format("got '{}'", o.out),
+                     "a file name ending in .exr (NAME.png and NAME.h5 are written beside it)");
+  }
+  { const AtomicOutput exr_check(exr), png_check(png), h5_check(h5); }
+
+  ProgressReporter reporter("render bssrdf", "tiles", log_interval);
+  const WorkProgress progress = [&reporter](std::uint64_t done, std::uint64_t tiles) {
+    reporter.update(done, tiles);
+  };
+  const BssrdfResult result = render_bssrdf(scene, settings, progress);
+  reporter.finish();
+  const double exposure = auto_exposed ? auto_exposure(result.image) : o.exposure;
+  write_exr(result.image, exr);
+  write_png(result.image, png, exposure, o.gamma);
+  write_point_cloud_file(h5, scene, settings, result);
+  const BssrdfCounters& c = result.counters;
+  fmt::print(
+      "bssrdf {}: {}x{}, {} channel(s), {} points ({} relaxation iterations, {} lit), cluster "
+      "angle {} sr, occlusion {}; octree {} nodes, depth {}\n"
+      "seconds: point cloud {:.3f}, irradiance {:.3f}, octree {:.3f}, point exitance {:.3f}, "
+      "image {:.3f}; {} eye rays, {:.1f} evaluations per pixel ({} clusters), {:.3g} "
+      "evaluations/s; PNG exposure {:.2f} stops{}\nwrote {}, {} and {}\n",
+      to_string(settings.model), scene.width, scene.height, result.channels, result.cloud.size(),
+      settings.cloud.relaxation, c.lit_points, settings.cluster_angle,
+      settings.occlusion ? "on" : "off", result.octree_nodes, result.octree_depth,
+      result.seconds_cloud, result.seconds_irradiance, result.seconds_octree, result.seconds_points,
+      result.seconds_image, c.eye_rays,
+      static_cast<double>(c.evaluations) /
+          static_cast<double>(std::max<std::uint64_t>(c.eye_rays, 1)),
+      c.clusters, static_cast<double>(c.evaluations) / std::max(result.seconds_image, 1e-9),
+      exposure, auto_exposed ? " (auto)" : "", exr.string(), png.string(), h5.string());
+  return 0;
+}
 
 // `render --study`: the study itself lives in sim/render/render_study.cpp.
 int run_study(const RenderOptions& o, const std::filesystem::path& out_dir) {
@@ -98,8 +178,22 @@ Action add_render_command(CLI::App& app) {
   render->add_option("--method", options->method,
                      "straight (Jensen 2001), walter (sample points), holzschuch (support "
                      "intervals), pathtrace (Monte Carlo reference, needs light.radius > 0), "
-                     "or volumetric (volumetric path tracing of every order, the floor and "
-                     "colour; needs light.radius > 0)");
+                     "volumetric (volumetric path tracing of every order, the floor and "
+                     "colour; needs light.radius > 0), or bssrdf (multiple scattering of a "
+                     "diffusion BSSRDF on a point cloud; writes NAME.h5 of the per-point "
+                     "exitance too)");
+  render->add_option("--model", options->model,
+                     "With --method bssrdf: the diffusion profile, dipole, better_dipole or "
+                     "quantized_diffusion");
+  render->add_option("--points", options->points,
+                     "With --method bssrdf: points on the mesh, in [1, 2^22]");
+  render->add_option("--relaxation", options->relaxation,
+                     "With --method bssrdf: point repulsion iterations (Turk), in [0, 100000]");
+  render->add_option("--cluster-angle", options->cluster_angle,
+                     "With --method bssrdf: octree nodes subtending less than this solid angle "
+                     "(sr) are evaluated as one point; 0 sums every point");
+  render->add_flag("--no-occlusion", options->no_occlusion,
+                   "With --method bssrdf: no shadow rays (every point sees the light)");
   // These default to the scene's values, which --help cannot know.
   render->add_option("--width", options->width, "Image width in pixels, in [1, 16384]")
       ->default_str("the scene's");
@@ -134,10 +228,19 @@ Action add_render_command(CLI::App& app) {
                            "--exposure", "--gamma"}) {
     study->excludes(render->get_option(flag));
   }
+  for (const char* flag : bssrdf_flags) study->excludes(render->get_option(flag));
   return [options, out_option, exposure_option, render, log_interval] {
     const RenderOptions& o = *options;
     if (o.study) return run_study(o, out_option->count() > 0 ? o.out : "render-study");
     if (o.quick) throw InputError("quick", "given without --study", "--quick with --study");
+    if (o.method != "bssrdf") {
+      for (const char* flag : bssrdf_flags) {
+        if (render->get_option(flag)->count() > 0) {
+          throw InputError(flag, "given without --method bssrdf",
+                           std::string(flag) + " with --method bssrdf");
+        }
+      }
+    }
     if (o.scenes.size() != 1) {
       throw InputError("SCENE", fmt::format("{} scene files", o.scenes.size()),
                        "exactly one scene file (several only with --study)");
@@ -164,12 +267,17 @@ Action add_render_command(CLI::App& app) {
     if (!(o.gamma > 0.0)) throw InputError("gamma", fmt::format("got {}", o.gamma), "a number > 0");
     settings.threads = o.threads;
     settings.seed = o.seed;
-    check_render_work(scene, settings);
-    check_render_memory(scene, settings);
     const std::filesystem::path exr(o.out);
     std::filesystem::path png = exr;
     png.replace_extension(".png");
     if (png == exr) png += ".png";
+    const bool auto_exposed = exposure_option->count() == 0;
+    if (settings.method == RenderMethod::bssrdf) {
+      check_render_memory(scene, settings);  // the image
+      return run_bssrdf(o, scene, exr, png, auto_exposed, *log_interval);
+    }
+    check_render_work(scene, settings);
+    check_render_memory(scene, settings);
 
     // Fail before the work, not after it.
     OutputPlan plan;
@@ -190,7 +298,6 @@ Action add_render_command(CLI::App& app) {
     const WorkProgress progress = [&reporter](std::uint64_t done, std::uint64_t tiles) {
       reporter.update(done, tiles);
     };
-    const bool auto_exposed = exposure_option->count() == 0;
     if (settings.method == RenderMethod::volumetric) {
       const VolumetricResult result = render_volumetric(scene, settings, progress);
       reporter.finish();

@@ -76,6 +76,8 @@ std::string method_name(RenderMethod method) {
       return "path tracing (Monte Carlo)";
     case RenderMethod::volumetric:  // not in the study: it renders more than single scattering
       return "volumetric path tracing (every order)";
+    case RenderMethod::bssrdf:  // not in the study either: multiple scattering only
+      return "diffusion BSSRDF on a point cloud";
   }
   return to_string(method);
 }

@@ -27,8 +27,10 @@ RenderMethod parse_render_method(const std::string& name) {
   if (name == "holzschuch") return RenderMethod::holzschuch;
   if (name == "pathtrace") return RenderMethod::pathtrace;
   if (name == "volumetric") return RenderMethod::volumetric;
-  throw InputError("method", "got \"" + name + "\"",
-                   "\"straight\", \"walter\", \"holzschuch\", \"pathtrace\" or \"volumetric\"");
+  if (name == "bssrdf") return RenderMethod::bssrdf;
+  throw InputError(
+      "method", "got \"" + name + "\"",
+      "\"straight\", \"walter\", \"holzschuch\", \"pathtrace\", \"volumetric\" or \"bssrdf\"");
 }
 
 std::string to_string(RenderMethod method) {
@@ -43,21 +45,16 @@ std::string to_string(RenderMethod method) {
       return "pathtrace";
     case RenderMethod::volumetric:
       return "volumetric";
+    case RenderMethod::bssrdf:
+      return "bssrdf";
   }
   return "?";
 }
-
-namespace {
 
 // Points standing for the light (see the header): a point light is itself; a sphere light is
 // the disc it shows the object, centred on the light and facing `target`, cut into M cells of
 // equal area (Vogel's spiral: radius r sqrt((k + 1/2) / M), golden-angle turns), each an
 // isotropic point of intensity I / M.
-struct LightPoint {
-  Vec3 position;
-  double intensity;
-};
-
 std::vector<LightPoint> light_points(const RenderLight& light, int count, const Vec3& target) {
   if (light.radius == 0.0) return {{light.position, light.intensity}};
   const Frame frame(Vec3(target - light.position).normalized());
@@ -71,6 +68,8 @@ std::vector<LightPoint> light_points(const RenderLight& light, int count, const 
   }
   return points;
 }
+
+namespace {
 
 // Distances along [a, b] with density proportional to exp(-sigma_t x): x(u) inverts the CDF.
 struct TransmittanceSampler {
@@ -134,6 +133,7 @@ class Renderer {
                   eye.segment, static_cast<std::uint64_t>(j) * scene_.width + i, error, count);
               break;
             case RenderMethod::volumetric:  // refused by render_single_scatter
+            case RenderMethod::bssrdf:
               break;
           }
           result.image.at(i, j) = eye.weight * value;
@@ -462,8 +462,9 @@ void check_render_work(const RenderScene& scene, const RenderSettings& settings)
 
 RenderResult render_single_scatter(const RenderScene& scene, const RenderSettings& settings,
                                    const WorkProgress& progress) {
-  if (settings.method == RenderMethod::volumetric) {
-    throw std::invalid_argument("render_single_scatter: volumetric is render_volumetric's");
+  if (settings.method == RenderMethod::volumetric || settings.method == RenderMethod::bssrdf) {
+    throw std::invalid_argument("render_single_scatter: " + to_string(settings.method) +
+                                " is render_volumetric's or render_bssrdf's");
   }
   // What the single-scatter methods do not model is refused, not silently left out.
   if (!scene.channel_media.empty()) {

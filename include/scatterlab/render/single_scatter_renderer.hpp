@@ -36,6 +36,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "scatterlab/core/memory_budget.hpp"
 #include "scatterlab/core/work_pace.hpp"
@@ -47,10 +48,13 @@ namespace scatterlab {
 //  volumetric  not a single-scatter method: every order of scattering, the floor and colour
 //              (render/volumetric_renderer.hpp, render_volumetric); render_single_scatter
 //              refuses it.
-enum class RenderMethod { straight, walter, holzschuch, pathtrace, volumetric };
+//  bssrdf      not a single-scatter method either: the multiple scattering of an analytic
+//              diffusion BSSRDF, evaluated on a point cloud (render/bssrdf_renderer.hpp,
+//              render_bssrdf); render_single_scatter refuses it.
+enum class RenderMethod { straight, walter, holzschuch, pathtrace, volumetric, bssrdf };
 
-// "straight", "walter", "holzschuch", "pathtrace", "volumetric"; InputError("method", ...)
-// otherwise.
+// "straight", "walter", "holzschuch", "pathtrace", "volumetric", "bssrdf"; InputError("method",
+// ...) otherwise.
 RenderMethod parse_render_method(const std::string& name);
 std::string to_string(RenderMethod method);
 
@@ -66,6 +70,15 @@ struct RenderSettings {
   // not need it, to check that the specialised one gives the same image.
   bool force_general = false;
 };
+
+// The points standing for the scene's light in the deterministic methods (see above): a point
+// light is itself; a sphere light is the disc it shows `target`, cut into `count` cells of equal
+// area (Vogel's spiral), each an isotropic point of intensity I / count.
+struct LightPoint {
+  Vec3 position;
+  double intensity;  // W/sr
+};
+std::vector<LightPoint> light_points(const RenderLight& light, int count, const Vec3& target);
 
 struct RenderCounters {
   std::uint64_t eye_rays = 0;       // pixels whose ray entered the object
