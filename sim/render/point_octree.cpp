@@ -110,14 +110,27 @@ void PointOctree::sum_points(const Vec3& x, std::uint32_t begin, std::uint32_t e
                              std::span<double> exitance) const {
   const std::size_t channels = kernels.size();
   for (std::uint32_t i = begin; i < end; ++i) {
-    const double r = (x - positions_[i]).norm();
+    const RadialKernel::Place place = kernels[0].locate((x - positions_[i]).norm());
     const double power = power_[i];
-    for (std::size_t c = 0; c < channels; ++c) exitance[c] += power * kernels[c](r);
+    for (std::size_t c = 0; c < channels; ++c) exitance[c] += power * kernels[c].at(place);
   }
 }
 
+namespace {
+
+void check_kernels(std::span<const RadialKernel> kernels, std::span<double> exitance) {
+  if (kernels.empty() || kernels.size() > max_kernel_channels || exitance.size() < kernels.size() ||
+      !std::all_of(kernels.begin(), kernels.end(),
+                   [&](const RadialKernel& k) { return k.same_grid(kernels[0]); })) {
+    throw std::invalid_argument("PointOctree: 1 to 3 kernels on one grid, an output for each");
+  }
+}
+
+}  // namespace
+
 void PointOctree::exitance(const Vec3& x, double epsilon, std::span<const RadialKernel> kernels,
                            std::span<double> exitance, OctreeQuery& query) const {
+  check_kernels(kernels, exitance);
   const std::size_t channels = kernels.size();
   for (std::size_t c = 0; c < channels; ++c) exitance[c] = 0.0;
   // Depth first, children in order (pushed last to first), so that the leaves are summed in the
@@ -133,8 +146,8 @@ void PointOctree::exitance(const Vec3& x, double epsilon, std::span<const Radial
         (node.box.lo - x).cwiseMax(Vec3::Zero()) + (x - node.box.hi).cwiseMax(Vec3::Zero());
     const double d2 = outside.squaredNorm();
     if (node.area < epsilon * d2) {  // Delta omega = A_v / d^2 < epsilon (eq. 2.40, box distance)
-      const double r = (x - node.mean).norm();
-      for (std::size_t c = 0; c < channels; ++c) exitance[c] += node.power * kernels[c](r);
+      const RadialKernel::Place place = kernels[0].locate((x - node.mean).norm());
+      for (std::size_t c = 0; c < channels; ++c) exitance[c] += node.power * kernels[c].at(place);
       ++query.evaluations;
       ++query.clusters;
     } else if (node.leaf) {
@@ -148,6 +161,7 @@ void PointOctree::exitance(const Vec3& x, double epsilon, std::span<const Radial
 
 void PointOctree::unclustered_exitance(const Vec3& x, std::span<const RadialKernel> kernels,
                                        std::span<double> exitance, OctreeQuery& query) const {
+  check_kernels(kernels, exitance);
   for (std::size_t c = 0; c < kernels.size(); ++c) exitance[c] = 0.0;
   sum_points(x, 0, static_cast<std::uint32_t>(positions_.size()), kernels, exitance);
   query.evaluations += positions_.size();

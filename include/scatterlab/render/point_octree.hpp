@@ -52,13 +52,28 @@ class RadialKernel {
   // rho > 0, r_max > rho; throws InputError("points", ...) otherwise.
   RadialKernel(const DiffusionProfile& profile, double rho, double r_max, int nodes = 2048);
 
-  double operator()(double r) const {
-    if (r < rho_) return disc_average_;
+  // Where r falls in the table: kernels built with the same rho, r_max and nodes (one per
+  // channel) share it, so a point's distance is located once for all channels.
+  struct Place {
+    std::size_t node = 0;
+    double fraction = 0.0;
+    bool inside_disc = false;
+  };
+  Place locate(double r) const {
+    if (r < rho_) return {0, 0.0, true};
     double s = (std::log(r) - log_rho_) * inverse_step_;
     if (!(s < last_)) s = last_;  // beyond r_max (and NaN) read the last node
     const auto k = static_cast<std::size_t>(s);
-    const double f = s - static_cast<double>(k);
-    return std::exp(log_values_[k] + f * (log_values_[k + 1] - log_values_[k]));
+    return {k, s - static_cast<double>(k), false};
+  }
+  double at(const Place& p) const {
+    if (p.inside_disc) return disc_average_;
+    const double a = log_values_[p.node], b = log_values_[p.node + 1];
+    return std::exp(a + p.fraction * (b - a));
+  }
+  double operator()(double r) const { return at(locate(r)); }
+  bool same_grid(const RadialKernel& other) const {
+    return rho_ == other.rho_ && inverse_step_ == other.inverse_step_ && last_ == other.last_;
   }
   double rho() const { return rho_; }
   double disc_average() const { return disc_average_; }
@@ -83,7 +98,8 @@ class PointOctree {
   PointOctree(std::span<const Vec3> positions, std::span<const double> power, double point_area);
 
   // M(x_o) per channel into exitance[0 .. kernels.size()) (overwritten), with the cluster angle
-  // epsilon >= 0 (sr). Thread-safe; allocates nothing.
+  // epsilon >= 0 (sr). The kernels (1 to max_kernel_channels) share one grid (same_grid;
+  // std::invalid_argument otherwise). Thread-safe; allocates nothing.
   void exitance(const Vec3& x, double epsilon, std::span<const RadialKernel> kernels,
                 std::span<double> exitance, OctreeQuery& query) const;
   // The sum over every point, in the octree's order: exitance with epsilon = 0, bit for bit.
