@@ -2,7 +2,8 @@
 // (render --method volumetric) of the same scene, and the point cloud's own error against run
 // time: a measurement, not a test.
 //
-//   scatterlab_bssrdf_comparison SCENE OUT_DIR [--samples N] [--threads T] [--quick]
+//   scatterlab_bssrdf_comparison SCENE OUT_DIR [--samples N] [--threads T] [--points N]
+//                                [--no-sweep] [--quick]
 //
 // Like with like: the point cloud renders multiple scattering only (no single scattering, no
 // light reflected off the surface), so the reference is the volumetric image of every order
@@ -80,11 +81,11 @@ struct ErrorStats {
 // pixels that lie wholly in the mask (block 1: pixel by pixel; larger blocks average the
 // reference's noise down).
 ErrorStats relative_error(const RgbImage& a, const RgbImage& b, const std::vector<char>& mask,
-                          int channels, int block = 1) {
+                          int channels, int block = 1, int first = 0) {
   std::vector<double> e;
   double signed_sum = 0.0;
   const int w = a.width(), h = a.height();
-  for (int c = 0; c < channels; ++c) {
+  for (int c = first; c < channels; ++c) {
     for (int j0 = 0; j0 + block <= h; j0 += block) {
       for (int i0 = 0; i0 + block <= w; i0 += block) {
         double sa = 0.0, sb = 0.0;
@@ -130,12 +131,15 @@ void write_image(hdf5::Group& group, const std::string& name, const RgbImage& im
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: %s SCENE OUT_DIR [--samples N] [--threads T] [--quick]\n",
+    std::fprintf(stderr,
+                 "usage: %s SCENE OUT_DIR [--samples N] [--threads T] [--points N] [--no-sweep] "
+                 "[--quick]\n",
                  argv[0]);
     return 2;
   }
   const std::filesystem::path scene_path = argv[1], out = argv[2];
-  int samples = 0, threads = 0;
+  int samples = 0, threads = 0, points = 0;
+  bool sweep_runs = true;
   bool quick = false;
   for (int k = 3; k < argc; ++k) {
     const std::string a = argv[k];
@@ -143,6 +147,10 @@ int main(int argc, char** argv) {
       samples = std::stoi(argv[++k]);
     else if (a == "--threads" && k + 1 < argc)
       threads = std::stoi(argv[++k]);
+    else if (a == "--points" && k + 1 < argc)
+      points = std::stoi(argv[++k]);
+    else if (a == "--no-sweep")
+      sweep_runs = false;
     else if (a == "--quick")
       quick = true;
     else {
@@ -194,7 +202,8 @@ int main(int argc, char** argv) {
   fmt::print(
       "reference: {}x{}, {} paths per pixel, every order {:.1f} s, order 1 {:.1f} s; {} pixels "
       "compared; its standard error relative to multiple scattering: median {:.3f}, 90th "
-      "percentile {:.3f} (4 x 4 blocks: about a quarter of that, {:.3f}, {:.3f} as a bound)\n",
+      "percentile {:.3f} (4 x 4 blocks of errors summed, a bound: {:.3f}, {:.3f}; independent "
+      "pixels average to a quarter of the per-pixel figure)\n",
       scene.width, scene.height, scene.samples, all.seconds, single.seconds, masked, noise.median,
       noise.p90, noise4.median, noise4.p90);
   std::fflush(stdout);
@@ -227,6 +236,7 @@ int main(int argc, char** argv) {
         s.model = model;
         s.threads = threads;
         if (quick) s.cloud.points = 2048;
+        if (points > 0) s.cloud.points = points;
         const BssrdfResult r = render_bssrdf(scene, s);
         const ErrorStats e = relative_error(r.image, multiple, mask, channels);
         const ErrorStats e4 = relative_error(r.image, multiple, mask, channels, 4);
@@ -239,6 +249,11 @@ int main(int argc, char** argv) {
             static_cast<double>(r.counters.evaluations) /
                 static_cast<double>(std::max<std::uint64_t>(r.counters.eye_rays, 1)),
             e.median, e.p90, e.mean_signed, e4.median, e4.p90, e4.mean_signed);
+        for (int c = 0; c < channels; ++c) {
+          const ErrorStats ec = relative_error(r.image, multiple, mask, c + 1, 4, c);
+          fmt::print("{:>20}  channel {}: 4 x 4 blocks median {:.3f}, mean signed {:+.3f}\n", "", c,
+                     ec.median, ec.mean_signed);
+        }
         std::fflush(stdout);
         hdf5::Group g = models.create_group(to_string(model));
         write_image(g, "image", r.image, radiance_units);
@@ -267,7 +282,7 @@ int main(int argc, char** argv) {
     std::vector<Row> rows;
     std::vector<BssrdfResult> results;
     RgbImage converged;
-    for (auto n = point_counts.rbegin(); n != point_counts.rend(); ++n) {
+    for (auto n = point_counts.rbegin(); sweep_runs && n != point_counts.rend(); ++n) {
       for (const double angle : angles) {
         BssrdfSettings s;
         s.cloud.points = *n;

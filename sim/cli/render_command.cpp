@@ -101,12 +101,26 @@ int run_bssrdf(const RenderOptions& o, const RenderScene& scene, const std::file
   write_png(result.image, png, exposure, o.gamma);
   write_point_cloud_file(h5, scene, settings, result);
   const BssrdfCounters& c = result.counters;
+  // The power leaving over the power entering, per channel: what the half-space profile keeps
+  // on this object (on a small object of little absorption, much less than R_dr: light the
+  // profile sends past the object's size is lost).
+  std::string kept;
+  double entering = 0.0;
+  for (const double e : result.irradiance) entering += e * result.cloud.point_area;
+  for (int ch = 0; ch < result.channels; ++ch) {
+    double leaving = 0.0;
+    for (std::size_t i = 0; i < result.cloud.size(); ++i) {
+      leaving += result.exitance[i * result.channels + ch] * result.cloud.point_area;
+    }
+    kept += fmt::format("{}{:.4f}", ch > 0 ? ", " : "", entering > 0.0 ? leaving / entering : 0.0);
+  }
   fmt::print(
       "bssrdf {}: {}x{}, {} channel(s), {} points ({} relaxation iterations, {} lit), cluster "
       "angle {} sr, occlusion {}; octree {} nodes, depth {}\n"
       "seconds: point cloud {:.3f}, irradiance {:.3f}, octree {:.3f}, point exitance {:.3f}, "
       "image {:.3f}; {} eye rays, {:.1f} evaluations per pixel ({} clusters), {:.3g} "
-      "evaluations/s; PNG exposure {:.2f} stops{}\nwrote {}, {} and {}\n",
+      "evaluations/s; power leaving / entering {}; PNG exposure {:.2f} stops{}\nwrote {}, {} "
+      "and {}\n",
       to_string(settings.model), scene.width, scene.height, result.channels, result.cloud.size(),
       settings.cloud.relaxation, c.lit_points, settings.cluster_angle,
       settings.occlusion ? "on" : "off", result.octree_nodes, result.octree_depth,
@@ -114,7 +128,7 @@ int run_bssrdf(const RenderOptions& o, const RenderScene& scene, const std::file
       result.seconds_image, c.eye_rays,
       static_cast<double>(c.evaluations) /
           static_cast<double>(std::max<std::uint64_t>(c.eye_rays, 1)),
-      c.clusters, static_cast<double>(c.evaluations) / std::max(result.seconds_image, 1e-9),
+      c.clusters, static_cast<double>(c.evaluations) / std::max(result.seconds_image, 1e-9), kept,
       exposure, auto_exposed ? " (auto)" : "", exr.string(), png.string(), h5.string());
   return 0;
 }

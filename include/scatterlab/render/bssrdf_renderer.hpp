@@ -55,7 +55,8 @@ struct BssrdfResult {
   std::size_t octree_nodes = 0;
   int octree_depth = 0;
   BssrdfCounters counters;
-  // Wall-clock seconds of each step.
+  // Wall-clock seconds of each step (seconds_octree: the octree, the R_d tables and the eye
+  // rays' Embree scene; seconds_image: the eye rays and the octree traversals alone).
   double seconds_cloud = 0.0, seconds_irradiance = 0.0, seconds_octree = 0.0, seconds_points = 0.0,
          seconds_image = 0.0;
   double seconds() const {
