@@ -74,6 +74,7 @@ int run_bssrdf(const RenderOptions& o, const RenderScene& scene, const std::file
   settings.cluster_angle = o.cluster_angle;
   settings.occlusion = !o.no_occlusion;
   settings.threads = o.threads;
+  check_bssrdf_work(scene, settings, "--cluster-angle");
   std::filesystem::path h5 = exr;
   h5.replace_extension(".h5");
 

@@ -18,6 +18,7 @@
 #include "scatterlab/render/image_tiles.hpp"
 #include "scatterlab/render/mesh_ray_tracer.hpp"
 #include "scatterlab/render/point_octree.hpp"
+#include "scatterlab/render/single_scatter_renderer.hpp"
 
 namespace scatterlab {
 
@@ -45,6 +46,22 @@ std::vector<HalfSpaceMedium> channel_media(const RenderScene& scene) {
 
 }  // namespace
 
+void check_bssrdf_work(const RenderScene& scene, const BssrdfSettings& settings,
+                       const std::string& field) {
+  // Without clustering every pixel and every point sums every point.
+  const auto pixels =
+      static_cast<std::uint64_t>(scene.width) * static_cast<std::uint64_t>(scene.height);
+  const auto n_points = static_cast<std::uint64_t>(std::max(settings.cloud.points, 0));
+  if (settings.cluster_angle == 0.0 && (pixels + n_points) * n_points > max_render_evaluations) {
+    throw InputError(
+        field,
+        fmt::format("0 with {} points and {} x {} pixels: {:.3g} evaluations", n_points,
+                    scene.width, scene.height, static_cast<double>((pixels + n_points) * n_points)),
+        "a cluster angle > 0 (a few hundred evaluations per pixel), fewer points or "
+        "a smaller image");
+  }
+}
+
 BssrdfResult render_bssrdf(const RenderScene& scene, const BssrdfSettings& settings,
                            const WorkProgress& progress) {
   if (scene.floor) {
@@ -55,6 +72,7 @@ BssrdfResult render_bssrdf(const RenderScene& scene, const BssrdfSettings& setti
     throw InputError("cluster_angle", fmt::format("got {}", settings.cluster_angle),
                      "a solid angle >= 0 in sr (0: no clustering)");
   }
+  check_bssrdf_work(scene, settings);
   // The profiles first: a medium they refuse is refused before any work.
   std::vector<DiffusionProfile> profiles;
   for (const HalfSpaceMedium& m : channel_media(scene)) profiles.emplace_back(settings.model, m);

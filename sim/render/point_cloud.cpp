@@ -250,7 +250,7 @@ PointCloud make_point_cloud(const TriangleMesh& mesh, const PointCloudOptions& o
     cloud.positions[i] = at_barycentric(mesh, t, a, b);
   }
 
-  // Turk's repulsion (Turk 1992, §3): every point moves by tau sum (r - d) (p - q) / d over its
+  // Turk's repulsion (Turk 1992): every point moves by tau sum (r - d) (p - q) / d over its
   // neighbours q closer than r, in its tangent plane, all at once from the previous positions
   // (so the result does not depend on the order or the thread count). tau = 0.15 moves two
   // coincident points apart by 0.15 r = 0.28 of the lattice spacing per iteration; the push is

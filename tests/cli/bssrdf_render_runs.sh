@@ -70,6 +70,8 @@ expect_refused "bssrdf flag with another method" "--model" render "${args[@]}" \
   --method holzschuch --model dipole --out bad.exr
 expect_refused "a floor" "floor" render "$source_dir/data/scenes/milk-sphere.toml" --width 4 \
   --height 4 --method bssrdf --points 50 --out bad.exr
+expect_refused "no clustering, too much work" "--cluster-angle" render "$scene" --width 16384 \
+  --height 16384 --method bssrdf --points 4000000 --cluster-angle 0 --out bad.exr
 expect_refused "not .exr" "--out" render "${args[@]}" --method bssrdf --out bad.png
 
 report bssrdf_render_runs

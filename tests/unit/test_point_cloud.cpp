@@ -71,8 +71,8 @@ TEST(PointCloud, SameSeedSamePointsAnotherSeedOthers) {
 
 // The nearest-neighbour spread, sd / mean of each point's distance to its nearest neighbour: about
 // 0.52 for independent uniform points (a Poisson process in the plane), and it falls as the
-// repulsion evens the spacing (measured on this sphere: 0.52 at the random start, 0.09 after
-// 20 iterations, 0.06 after 60).
+// repulsion evens the spacing (measured on this sphere: 0.516 at the random start, 0.094 after 5
+// iterations, 0.053 after 20, 0.042 after 60).
 TEST(PointCloud, RelaxationEvensTheSpacing) {
   const TriangleMesh mesh = make_sphere(1.0, 24, 48, true);
   PointCloudOptions options;
@@ -82,9 +82,11 @@ TEST(PointCloud, RelaxationEvensTheSpacing) {
     options.relaxation = iterations;
     spread.push_back(nearest_neighbour_spread(make_point_cloud(mesh, options)));
   }
+  std::printf("nearest-neighbour spread after 0, 5, 20, 60 iterations: %.3f %.3f %.3f %.3f\n",
+              spread[0], spread[1], spread[2], spread[3]);
   EXPECT_NEAR(spread[0], 0.52, 0.05);  // the random start is Poisson-like
   EXPECT_LT(spread[1], 0.8 * spread[0]);
-  EXPECT_LT(spread[2], 0.25);
+  EXPECT_LT(spread[2], 0.1);
   EXPECT_LT(spread[3], spread[2] * 1.05);
 }
 

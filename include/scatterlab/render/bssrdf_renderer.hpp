@@ -21,6 +21,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "scatterlab/core/work_pace.hpp"
@@ -63,6 +64,12 @@ struct BssrdfResult {
     return seconds_cloud + seconds_irradiance + seconds_octree + seconds_points + seconds_image;
   }
 };
+
+// Without clustering (cluster_angle 0) an image costs (pixels + points) x points evaluations:
+// past max_render_evaluations (single_scatter_renderer.hpp: months of work) it is refused with
+// InputError(field, ...). render_bssrdf checks it too.
+void check_bssrdf_work(const RenderScene& scene, const BssrdfSettings& settings,
+                       const std::string& field = "cluster_angle");
 
 // Throws InputError for a scene with a floor, settings out of range ("points", "relaxation",
 // "cluster_angle"), and a medium the profile refuses (naming its field). progress(tiles done,

@@ -8,9 +8,13 @@
 // with probability proportional to its area and a uniform point in it, from the Philox stream of
 // (seed, point)), then `relaxation` iterations in which every point is pushed away from its
 // neighbours closer than the repulsion radius r = 2 sqrt(A / N) with a force (r - d) along the
-// line between them (Turk §3), the push projected onto the point's tangent plane, and the point
-// moved to the nearest point of the mesh (walked across triangles that share a vertex with its
-// own, so a push over an edge continues on the next face). Every point has the area A / N
+// line between them, the push projected onto the point's tangent plane, and the point moved to
+// the nearest point of the mesh (walked across triangles that share a vertex with its own); a
+// push over a sharp edge (facets more than 30 degrees apart) carries on down the face beyond it
+// instead of stopping on the edge (Bitterli §2.6.4: points pushed off their face are "projected
+// onto their neighbouring polygon"), so that a box's points do not gather on its edges. The
+// iterations move every point from the previous positions at once, so the cloud is a function of
+// the seed alone, whatever the thread count. Every point has the area A / N
 // (Bitterli §2.6.4: p_a = A / |P|), so the areas sum to the mesh's area A.
 //
 // Irradiance: the power per unit area entering the medium at each point from the scene's light,
