@@ -91,7 +91,7 @@ int run_bssrdf(const RenderOptions& o, const RenderScene& scene, const std::file
   }
   { const AtomicOutput exr_check(exr), png_check(png), h5_check(h5); }
 
-  ProgressReporter reporter("render bssrdf", "tiles", log_interval);
+  ProgressReporter reporter("render bssrdf", "steps (relaxation, then tiles)", log_interval);
   const WorkProgress progress = [&reporter](std::uint64_t done, std::uint64_t tiles) {
     reporter.update(done, tiles);
   };

@@ -80,7 +80,18 @@ BssrdfResult render_bssrdf(const RenderScene& scene, const BssrdfSettings& setti
   BssrdfResult result;
   result.channels = static_cast<int>(profiles.size());
   auto start = Clock::now();
-  result.cloud = make_point_cloud(scene.mesh, settings.cloud);
+  // Progress in steps: the relaxation's iterations, then the image's tiles.
+  const auto relaxation = static_cast<std::uint64_t>(std::max(settings.cloud.relaxation, 0));
+  const auto tiles = static_cast<std::uint64_t>((scene.width + 7) / 8) *
+                     static_cast<std::uint64_t>((scene.height + 7) / 8);  // image_tiles.hpp
+  WorkProgress cloud_progress, tile_progress;
+  if (progress) {
+    cloud_progress = [&](std::uint64_t done, std::uint64_t) { progress(done, relaxation + tiles); };
+    tile_progress = [&](std::uint64_t done, std::uint64_t all) {
+      progress(relaxation + done, relaxation + all);
+    };
+  }
+  result.cloud = make_point_cloud(scene.mesh, settings.cloud, cloud_progress);
   result.seconds_cloud = seconds_since(start);
 
   start = Clock::now();
@@ -153,8 +164,8 @@ BssrdfResult render_bssrdf(const RenderScene& scene, const BssrdfSettings& setti
       }
     }
   };
-  for (const BssrdfCounters& c : render_tiles<BssrdfCounters>(scene.width, scene.height,
-                                                              settings.threads, progress, pixels)) {
+  for (const BssrdfCounters& c : render_tiles<BssrdfCounters>(
+           scene.width, scene.height, settings.threads, tile_progress, pixels)) {
     result.counters.eye_rays += c.eye_rays;
     result.counters.evaluations += c.evaluations;
     result.counters.clusters += c.clusters;

@@ -207,7 +207,8 @@ BoundingBox grown(BoundingBox box, double margin) {
 
 }  // namespace
 
-PointCloud make_point_cloud(const TriangleMesh& mesh, const PointCloudOptions& options) {
+PointCloud make_point_cloud(const TriangleMesh& mesh, const PointCloudOptions& options,
+                            const WorkProgress& progress) {
   if (options.points < 1 || options.points > max_cloud_points) {
     throw InputError("points", fmt::format("got {}", options.points),
                      fmt::format("an integer in [1, {}]", max_cloud_points));
@@ -279,6 +280,10 @@ PointCloud make_point_cloud(const TriangleMesh& mesh, const PointCloudOptions& o
     }
     std::swap(cloud.positions, next);
     std::swap(spots, next_spots);
+    if (progress) {
+      progress(static_cast<std::uint64_t>(iteration) + 1,
+               static_cast<std::uint64_t>(options.relaxation));
+    }
   }
 
   cloud.normals.resize(n);

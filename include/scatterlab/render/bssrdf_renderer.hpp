@@ -72,8 +72,8 @@ void check_bssrdf_work(const RenderScene& scene, const BssrdfSettings& settings,
                        const std::string& field = "cluster_angle");
 
 // Throws InputError for a scene with a floor, settings out of range ("points", "relaxation",
-// "cluster_angle"), and a medium the profile refuses (naming its field). progress(tiles done,
-// tiles) as render_single_scatter.
+// "cluster_angle"), and a medium the profile refuses (naming its field). progress(steps done,
+// steps): the relaxation's iterations, then the image's tiles of 8 x 8 pixels.
 BssrdfResult render_bssrdf(const RenderScene& scene, const BssrdfSettings& settings,
                            const WorkProgress& progress = {});
 

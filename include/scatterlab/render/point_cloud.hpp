@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "scatterlab/core/triangle_mesh.hpp"
+#include "scatterlab/core/work_pace.hpp"
 #include "scatterlab/render/render_scene.hpp"
 
 namespace scatterlab {
@@ -59,7 +60,9 @@ inline constexpr int max_relaxation = 100000;
 
 // Deterministic for a seed (and independent of the thread count). Throws InputError("points",
 // ...) or ("relaxation", ...) for values out of range, and ("mesh", ...) for a mesh without area.
-PointCloud make_point_cloud(const TriangleMesh& mesh, const PointCloudOptions& options);
+// progress(iterations done, relaxation) after each iteration.
+PointCloud make_point_cloud(const TriangleMesh& mesh, const PointCloudOptions& options,
+                            const WorkProgress& progress = {});
 
 // The spread of the distances from each point to its nearest neighbour: their standard deviation
 // over their mean (about 0.52 for points independent and uniform on a plane, 0 for a perfect
