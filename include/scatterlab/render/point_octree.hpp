@@ -41,8 +41,9 @@ namespace scatterlab {
 // R_d(r) of one profile for r in [0, r_max], tabulated at `nodes` points geometric in r from
 // rho to r_max and interpolated linearly in (ln r, ln R_d): the exponential tail e^{-sigma_tr r}
 // / r^k is a curve of small curvature there (the interpolation's relative error is at most
-// (h^2 / 8) max |d^2 ln R_d / d (ln r)^2| ~ (h^2 / 8) sigma_tr r for spacing h in ln r: below
-// 1e-4 for the default 2048 nodes over six decades and sigma_tr r <= 50). Below rho, the radius
+// (h^2 / 8) max |d^2 ln R_d / d (ln r)^2| ~ (h^2 / 8) sigma_tr r for spacing h in ln r: with
+// the default 2048 nodes over six decades, h = 0.0067, below 1e-4 while sigma_tr r <= 17, where
+// R_d has fallen by e^-17, and 3e-4 at sigma_tr r = 50). Below rho, the radius
 // of the disc of one point's area A_p = pi rho^2, the table holds the average of R_d over that
 // disc (closed form, DiffusionProfile::annulus_averages): the point that x_o lies on stands for
 // the disc around it, and quantized diffusion's R_d(0) is infinite. Beyond r_max: the last node.
