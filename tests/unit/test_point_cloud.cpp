@@ -183,50 +183,48 @@ TEST(PointOctree, ClusteredSumTendsToTheUnclusteredOne) {
   }
 }
 
-// A flat block lit from above: the exitance over the middle of its top face, from the cloud (a
-// 5 x 5 image looking straight down, M = L_o / bssrdf_exit_weight), against an independent
-// quadrature of int_top E_t(x) R_d(|x - x_o|) dA at each pixel's x_o: in polar coordinates
-// about x_o, 256 directions, each out to the face's edge in 120 annular cells (edges r_k =
-// R (k / 120)^2, dense where R_d peaks), R_d over each cell its closed-form annulus average and
-// E_t = F_t cos I / d^2 of the point light at the cell's middle. The sides and the bottom get no
-// light (the light is above the top face's footprint).
+// A flat block lit from above: the exitance at nine points over the middle of its top face, from
+// the cloud through the octree, against an independent quadrature of int_top E_t(x)
+// R_d(|x - x_o|) dA at each: in polar coordinates about x_o, 128 directions, each out to the
+// face's edge in 96 annular cells (edges r_k = R (k / 96)^2, dense where R_d peaks), R_d over each
+// cell its closed-form annulus average and E_t = F_t cos I / d^2 of the point light at the cell's
+// middle. The sides and the bottom get no light (the light is above the top face's footprint).
 // The cloud stands for the face by points of equal area, and the exitance near x_o, where the
-// points within ~ 1 / sigma_t' = 0.48 (a hundred of them) carry most of it, follows their
-// local density: it scatters about the quadrature by a few per cent from pixel to pixel
-// (Bitterli §2.6.4's "low frequency noise"): measured 0.9-1.4 % low on average over the 25
-// pixels, 2.0-4.4 % at the worst pixel (dipole, better dipole, quantized diffusion, whose 1 / r
-// peak follows the nearest points most). Allowed: 2 % on average, 6 % per pixel.
+// points within ~ 1 / sigma_t' = 0.48 (a hundred of them) carry most of it, follows their local
+// density: it scatters about the quadrature by a few per cent from point to point (Bitterli
+// §2.6.4's "low frequency noise"): 0.1-0.5 % low on average over the nine,
+// 2.2-2.9 % at the worst (dipole, better dipole, quantized diffusion). Allowed: 2 % on average, 6 %
+// at any point. The image's pixel at the middle, through render_bssrdf (the same cloud, the same
+// seed), is the octree's exitance times bssrdf_exit_weight.
 TEST(PointCloudExitance, FlatBlockAgreesWithQuadrature) {
   const double half = 3.0, thick = 0.25, eta = 1.3, intensity = 144.0;
   const Vec3 light(0.0, 0.0, 12.0);
   RenderScene scene = lit_scene(make_box(Vec3(half, half, thick)), light, intensity);
-  BssrdfSettings settings;
-  settings.cloud.points = 12000;
-  settings.cloud.relaxation = 40;
-  settings.cluster_angle = 0.0;
-  scene.width = scene.height = 5;
-  scene.camera.position = Vec3(0.0, 0.0, 5.0);
-  scene.camera.look_at = Vec3::Zero();
-  scene.camera.up = Vec3::UnitY();
-  scene.camera.fov_degrees = 20.0;
+  PointCloudOptions options;
+  options.points = 12000;
+  options.relaxation = 40;
+  const PointCloud cloud = make_point_cloud(scene.mesh, options);
+  const std::vector<double> irradiance = point_irradiance(scene, cloud, true);
+  std::vector<double> power(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) power[i] = irradiance[i] * cloud.point_area;
+  const PointOctree octree(cloud.positions, power, cloud.point_area);
+  const double rho = std::sqrt(cloud.point_area / std::numbers::pi);
   const HalfSpaceMedium medium{0.1, 2.0, 0.0, eta};
-  const auto irradiance = [&](const Vec3& x) {
+  const auto light_in = [&](const Vec3& x) {
     const Vec3 to_light = light - x;
     const double d2 = to_light.squaredNorm();
     const double cos_in = to_light.z() / std::sqrt(d2);
     return fresnel_dielectric_transmittance(cos_in, eta) * cos_in * intensity / d2;
   };
   for (const ProfileModel model : all_profile_models) {
-    settings.model = model;
-    const BssrdfResult result = render_bssrdf(scene, settings);
     const DiffusionProfile profile(model, medium);
+    const std::vector<RadialKernel> kernel = {RadialKernel(profile, rho, 9.0)};
     double sum = 0.0, worst = 0.0;
-    for (int j = 0; j < scene.height; ++j) {
-      for (int i = 0; i < scene.width; ++i) {
-        const Vec3 d = scene.camera.ray_direction(i, j, scene.width, scene.height);
-        const Vec3 x_o = scene.camera.position + (thick - scene.camera.position.z()) / d.z() * d;
+    for (const double x : {-0.8, 0.0, 0.8}) {
+      for (const double y : {-0.8, 0.0, 0.8}) {
+        const Vec3 x_o(x, y, thick);
         double reference = 0.0;
-        const int directions = 256, cells = 120;
+        const int directions = 128, cells = 96;
         std::vector<double> edges(cells + 1);
         for (int a = 0; a < directions; ++a) {
           const double phi = 2.0 * std::numbers::pi * (a + 0.5) / directions;
@@ -240,20 +238,38 @@ TEST(PointCloudExitance, FlatBlockAgreesWithQuadrature) {
           for (int k = 0; k < cells; ++k) {
             const double area = 0.5 * (edges[k + 1] * edges[k + 1] - edges[k] * edges[k]) *
                                 (2.0 * std::numbers::pi / directions);
-            reference += averages[k] * area * irradiance(x_o + 0.5 * (edges[k] + edges[k + 1]) * w);
+            reference += averages[k] * area * light_in(x_o + 0.5 * (edges[k] + edges[k + 1]) * w);
           }
         }
-        const double m = result.image.channels[0].at(i, j) / bssrdf_exit_weight(eta, -d.z());
-        const double ratio = m / reference;
+        std::array<double, 1> m{};
+        OctreeQuery query;
+        octree.exitance(x_o, 0.0, kernel, m, query);
+        const double ratio = m[0] / reference;
         sum += ratio;
         worst = std::max(worst, std::abs(ratio - 1.0));
       }
     }
-    const double mean = sum / (scene.width * scene.height);
+    const double mean = sum / 9.0;
     EXPECT_NEAR(mean, 1.0, 0.02) << to_string(model);
     EXPECT_LT(worst, 0.06) << to_string(model);
     std::printf("%s: mean ratio %.4f, worst %.4f\n", to_string(model).c_str(), mean, worst);
   }
+  // The image: one pixel looking straight down at the middle.
+  BssrdfSettings settings;
+  settings.cloud = options;
+  settings.cluster_angle = 0.01;
+  scene.width = scene.height = 1;
+  scene.camera.position = Vec3(0.0, 0.0, 5.0);
+  scene.camera.look_at = Vec3::Zero();
+  scene.camera.up = Vec3::UnitY();
+  const BssrdfResult result = render_bssrdf(scene, settings);
+  const std::vector<RadialKernel> kernel = {
+      RadialKernel(DiffusionProfile(settings.model, medium), rho,
+                   1.01 * scene.mesh.bounds().diagonal() + 2.0 * rho)};
+  std::array<double, 1> m{};
+  OctreeQuery query;
+  octree.exitance(Vec3(0.0, 0.0, thick), settings.cluster_angle, kernel, m, query);
+  EXPECT_NEAR(result.image.channels[0].at(0, 0), m[0] * bssrdf_exit_weight(eta, 1.0), 1e-12 * m[0]);
 }
 
 // Two blocks, one above the other, the light above both: the upper block shades the middle of
