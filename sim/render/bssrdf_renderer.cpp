@@ -91,11 +91,13 @@ BssrdfResult render_bssrdf(const RenderScene& scene, const BssrdfSettings& setti
       progress(relaxation + done, relaxation + all);
     };
   }
-  result.cloud = make_point_cloud(scene.mesh, settings.cloud, cloud_progress);
+  PointCloudOptions cloud_options = settings.cloud;
+  cloud_options.threads = settings.threads;
+  result.cloud = make_point_cloud(scene.mesh, cloud_options, cloud_progress);
   result.seconds_cloud = seconds_since(start);
 
   start = Clock::now();
-  result.irradiance = point_irradiance(scene, result.cloud, settings.occlusion);
+  result.irradiance = point_irradiance(scene, result.cloud, settings.occlusion, settings.threads);
   result.seconds_irradiance = seconds_since(start);
   result.counters.lit_points = static_cast<std::uint64_t>(std::count_if(
       result.irradiance.begin(), result.irradiance.end(), [](double e) { return e > 0.0; }));

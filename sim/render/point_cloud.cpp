@@ -1,6 +1,7 @@
 #include "scatterlab/render/point_cloud.hpp"
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <array>
@@ -264,7 +265,8 @@ PointCloud make_point_cloud(const TriangleMesh& mesh, const PointCloudOptions& o
   std::vector<SurfaceSpot> next_spots(n);
   for (int iteration = 0; iteration < options.relaxation; ++iteration) {
     const PointGrid grid(cloud.positions, box, r);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) \
+    num_threads(options.threads > 0 ? options.threads : omp_get_max_threads())
     for (std::size_t i = 0; i < n; ++i) {
       const Vec3& p = cloud.positions[i];
       Vec3 push = Vec3::Zero();
@@ -329,14 +331,15 @@ double nearest_neighbour_spread(const PointCloud& cloud) {
 }
 
 std::vector<double> point_irradiance(const RenderScene& scene, const PointCloud& cloud,
-                                     bool occlusion) {
+                                     bool occlusion, int threads) {
   const std::vector<LightPoint> lights =
       light_points(scene.light, scene.light_samples, scene.mesh.bounds().center());
   const MeshRayTracer tracer(scene.mesh);
   const double eps = tracer.epsilon();
   const auto n = static_cast<std::ptrdiff_t>(cloud.size());
   std::vector<double> irradiance(cloud.size(), 0.0);
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for schedule(dynamic, 256) \
+    num_threads(threads > 0 ? threads : omp_get_max_threads())
   for (std::ptrdiff_t i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
     const Vec3& p = cloud.positions[k];

@@ -41,6 +41,7 @@ struct PointCloudOptions {
   int points = 4096;       // N >= 1
   int relaxation = 40;     // Turk's repulsion iterations, >= 0
   std::uint64_t seed = 1;  // the random start's Philox key
+  int threads = 0;         // of the relaxation; 0: all (the result does not depend on it)
 };
 
 struct PointCloud {
@@ -71,7 +72,8 @@ double nearest_neighbour_spread(const PointCloud& cloud);
 
 // E_t at every point (above), for the scene's light, eta and mesh. `occlusion`: trace the
 // shadow rays (Embree); false: every point sees the light (a convex object needs none).
+// threads: 0 uses all (the result does not depend on it).
 std::vector<double> point_irradiance(const RenderScene& scene, const PointCloud& cloud,
-                                     bool occlusion);
+                                     bool occlusion, int threads = 0);
 
 }  // namespace scatterlab
