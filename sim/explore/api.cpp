@@ -357,7 +357,7 @@ std::string ExploreApi::profiles(std::string_view body) const {
       const Medium plain = Medium::from_coefficients(medium.sigma_a, medium.sigma_s, medium.g, "mm");
       const double t_in = entry_transmittance(medium.eta);
       for (std::size_t k = 0; k < r.size(); ++k) {
-        values[k] = half_space_single_scatter_exitance(plain, medium.eta, r[k], 1e-8).value / t_in;
+        values[k] = half_space_single_scatter_exitance(plain, medium.eta, r[k]).value / t_in;
       }
     } else if (name == "dipole" || name == "better_dipole" || name == "quantized_diffusion") {
       const DiffusionProfile profile(parse_profile_model(name, "models"), medium);
