@@ -128,6 +128,9 @@ async function onChannelInput(event) {
   const value = Number(input.value);
   if (input.value.trim() === '' || !Number.isFinite(value)) return;  // while typing
   const c = state.channels[channel];
+  // The material is no longer the preset's.
+  $('preset').value = '';
+  $('preset-source').textContent = '';
   if (key === 'albedo' || key === 'mfp') {
     // α′ = σ′_s / σ′_t, mfp = 1 / σ′_t (Bitterli eqs. 2.23-2.24).
     const albedo = key === 'albedo' ? value : shown(channel, 'albedo');
@@ -312,7 +315,7 @@ function profileTraces(answer, mode) {
       });
       series[`mc:${file.path}:${tally.name}`] = { r: file.r, values: tally.mean };
       traces.push({
-        name: `MC ${file.name}: ${tally.name}`,
+        name: `MC ${file.name}: ${tally.name} (r in ${file.medium.length_unit})`,
         x: file.r, y, customdata: tally.stderr.map((s, k) => [tally.mean[k], s]),
         mode: 'markers',
         marker: { color: MC_COLOURS[n % MC_COLOURS.length], size: 5 },
@@ -420,9 +423,9 @@ async function drawSphere() {
       hovertemplate: `ψ = %{x:.1f}°<br>M = %{y:.5g}<extra>%{fullData.name}</extra>`,
     }));
     const layout = {
-      title: { text: `Lit sphere: exitance against the angle from the lit pole (radius ${format(request.radius)} ${plotUnit()})`, font: { size: 14 } },
+      title: { text: `Lit sphere, radius ${format(request.radius)} ${plotUnit()}: exitance per unit power meeting it`, font: { size: 14 } },
       xaxis: { title: { text: 'ψ from the lit pole  [degrees]' }, range: [0, 180], dtick: 30 },
-      yaxis: { title: { text: `M(ψ)  [1/${plotUnit()}²] per unit power on the sphere` }, type: 'log', exponentformat: 'power' },
+      yaxis: { title: { text: `M(ψ)  [1/${plotUnit()}²]` }, type: 'log', exponentformat: 'power' },
       shapes: [{ type: 'line', x0: 90, x1: 90, yref: 'paper', y0: 0, y1: 1, line: { dash: 'dot', color: '#888' } }],
       legend: { x: 0.99, xanchor: 'right', y: 0.99, bgcolor: 'rgba(255,255,255,0.8)' },
       margin: { l: 80, r: 20, t: 40, b: 50 }, uirevision: 'sphere',

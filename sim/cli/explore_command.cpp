@@ -50,10 +50,11 @@ int run_explore(const ExploreCommandOptions& o) {
   for (const std::string& folder : o.open) options.open_folders.emplace_back(folder);
   if (!o.models.empty()) options.models = o.models;
   if (!fs::is_regular_file(options.page / "node_modules/plotly.js-dist-min/plotly.min.js")) {
-    throw InputError("--page",
-                     fmt::format("{} lacks its plotting library (node_modules/plotly.js-dist-min)",
-                                 options.page.string()),
-                     "the page's folder after scripts/setup.sh (npm ci in web/) or cmake --install");
+    throw InputError(
+        "--page",
+        fmt::format("{} lacks its plotting library (node_modules/plotly.js-dist-min)",
+                    options.page.string()),
+        "the page's folder after scripts/setup.sh (npm ci in web/) or cmake --install");
   }
   const ExploreApi api(options);
 
@@ -67,7 +68,8 @@ int run_explore(const ExploreCommandOptions& o) {
   pthread_sigmask(SIG_BLOCK, &ending, nullptr);
 
   ExploreServer server(api, o.host, o.port);
-  const std::string shown_host = o.host.find(':') != std::string::npos ? "[" + o.host + "]" : o.host;
+  const std::string shown_host =
+      o.host.find(':') != std::string::npos ? "[" + o.host + "]" : o.host;
   fmt::print("scatterlab explore: http://{}:{}/ (the page: {}; Ctrl-C ends it)\n", shown_host,
              server.port(), options.page.string());
   std::fflush(stdout);

@@ -50,7 +50,9 @@ constexpr BuiltIn kBuiltIns[] = {
      "the once-scattered exitance of the half-space (refract/half_space_single_scatter.hpp)"},
 };
 
-std::string error_json(const std::string& message) { return json{{"error", message}}.dump(); }
+std::string error_json(const std::string& message) {
+  return json{{"error", message}}.dump();
+}
 
 json parse_body(std::string_view body) {
   json parsed = json::parse(body, nullptr, /*allow_exceptions=*/false);
@@ -112,9 +114,9 @@ HalfSpaceMedium medium_of(const json& request) {
   }
   medium.validate();  // g first: sigma_s_reduced is divided by 1 - g
   // Similarity relation (Bitterli 2013 eq. 2.24): sigma_s = sigma_s' / (1 - g).
-  medium.sigma_s = plain ? number(m, "sigma_s", "medium.sigma_s") * scale
-                         : number(m, "sigma_s_reduced", "medium.sigma_s_reduced") * scale /
-                               (1.0 - medium.g);
+  medium.sigma_s =
+      plain ? number(m, "sigma_s", "medium.sigma_s") * scale
+            : number(m, "sigma_s_reduced", "medium.sigma_s_reduced") * scale / (1.0 - medium.g);
   medium.validate();
   if (!(medium.sigma_t() > 0.0) || !std::isfinite(medium.sigma_t())) {
     throw InputError("medium.sigma_a", "sigma_a + sigma_s is 0 or not finite",
@@ -141,7 +143,9 @@ double milliseconds_since(std::chrono::steady_clock::time_point start) {
       .count();
 }
 
-json string_list(const std::vector<std::string>& values) { return json(values); }
+json string_list(const std::vector<std::string>& values) {
+  return json(values);
+}
 
 }  // namespace
 
@@ -171,7 +175,8 @@ ExploreApi::ExploreApi(ExploreOptions options) : options_(std::move(options)) {
     folder = fs::canonical(folder);
   }
   if (options_.models) {
-    text_models_ = std::make_shared<const std::vector<TextModel>>(load_text_models(*options_.models));
+    text_models_ =
+        std::make_shared<const std::vector<TextModel>>(load_text_models(*options_.models));
   } else {
     text_models_ = std::make_shared<const std::vector<TextModel>>();
   }
@@ -199,16 +204,19 @@ ApiResponse ExploreApi::handle(std::string_view method, std::string_view path,
       if (!get) throw Refusal{405, "the page's files are read with GET"};
       const auto file = page_file(path);
       if (!file) {
-        throw Refusal{lies_inside(options_.page / fs::path(std::string(path)).relative_path(),
-                                  options_.page)
-                          ? 404
-                          : 403,
-                      fmt::format("{}: no such file of the page", path)};
+        throw Refusal{
+            lies_inside(options_.page / fs::path(std::string(path)).relative_path(), options_.page)
+                ? 404
+                : 403,
+            fmt::format("{}: no such file of the page", path)};
       }
       static const std::map<std::string, std::string> types{
-          {".html", "text/html; charset=utf-8"}, {".js", "text/javascript; charset=utf-8"},
-          {".css", "text/css; charset=utf-8"},   {".png", "image/png"},
-          {".svg", "image/svg+xml"},             {".json", "application/json"}};
+          {".html", "text/html; charset=utf-8"},
+          {".js", "text/javascript; charset=utf-8"},
+          {".css", "text/css; charset=utf-8"},
+          {".png", "image/png"},
+          {".svg", "image/svg+xml"},
+          {".json", "application/json"}};
       const auto type = types.find(file->extension().string());
       response.content_type = type != types.end() ? type->second : "application/octet-stream";
       response.file = *file;
@@ -247,7 +255,8 @@ ApiResponse ExploreApi::handle(std::string_view method, std::string_view path,
 std::string ExploreApi::info() const {
   json built_in = json::array();
   for (const BuiltIn& model : kBuiltIns) {
-    built_in.push_back({{"name", model.name}, {"label", model.label}, {"reference", model.reference}});
+    built_in.push_back(
+        {{"name", model.name}, {"label", model.label}, {"reference", model.reference}});
   }
   json folders = json::array();
   for (const fs::path& folder : options_.open_folders) folders.push_back(folder.string());
@@ -276,8 +285,10 @@ std::string ExploreApi::presets() const {
         reduced[c] = preset.sigma_s_reduced.empty() ? preset.sigma_s[c] * (1.0 - g[c])
                                                     : preset.sigma_s_reduced[c];
       }
-      materials.push_back(
-          {{"name", preset.name}, {"sigma_a", preset.sigma_a}, {"sigma_s_reduced", reduced}, {"g", g}});
+      materials.push_back({{"name", preset.name},
+                           {"sigma_a", preset.sigma_a},
+                           {"sigma_s_reduced", reduced},
+                           {"g", g}});
     }
     libraries.push_back({{"id", library.id},
                          {"citation", library.citation},
@@ -314,7 +325,8 @@ std::string ExploreApi::text_models_json() const {
 std::string ExploreApi::reload_models() const {
   if (options_.models) {
     // A bad file leaves the models as they were and is the answer (400, naming file and line).
-    auto models = std::make_shared<const std::vector<TextModel>>(load_text_models(*options_.models));
+    auto models =
+        std::make_shared<const std::vector<TextModel>>(load_text_models(*options_.models));
     const std::lock_guard lock(models_mutex_);
     text_models_ = std::move(models);
   }
@@ -354,7 +366,8 @@ std::string ExploreApi::profiles(std::string_view body) const {
     std::vector<double> values(r.size());
     json curve{{"model", name}};
     if (name == "single_scatter") {
-      const Medium plain = Medium::from_coefficients(medium.sigma_a, medium.sigma_s, medium.g, "mm");
+      const Medium plain =
+          Medium::from_coefficients(medium.sigma_a, medium.sigma_s, medium.g, "mm");
       const double t_in = entry_transmittance(medium.eta);
       for (std::size_t k = 0; k < r.size(); ++k) {
         values[k] = half_space_single_scatter_exitance(plain, medium.eta, r[k]).value / t_in;
@@ -373,7 +386,8 @@ std::string ExploreApi::profiles(std::string_view body) const {
       }
       std::map<std::string, double> values_by_name;
       if (const auto set = parameters.find(name); set != parameters.end()) {
-        if (!set->is_object()) throw InputError("parameters." + name, "not an object", "{name: value}");
+        if (!set->is_object())
+          throw InputError("parameters." + name, "not an object", "{name: value}");
         for (const auto& [key, value] : set->items()) {
           values_by_name[key] = number(*set, key, "parameters." + key);
         }
@@ -406,8 +420,7 @@ std::string ExploreApi::invert(std::string_view body) const {
   return json{{"reduced_albedo", coefficients.reduced_albedo},
               {"sigma_a", coefficients.sigma_a},
               {"sigma_s", coefficients.sigma_s},
-              {"sigma_s_reduced",
-               coefficients.sigma_s * (1.0 - number(request, "g", "g", 0.0))}}
+              {"sigma_s_reduced", coefficients.sigma_s * (1.0 - number(request, "g", "g", 0.0))}}
       .dump();
 }
 
@@ -454,7 +467,8 @@ std::string ExploreApi::files() const {
     }
     std::sort(names.begin(), names.end());
     for (const std::string& name : names) {
-      list.push_back({{"path", fmt::format("{}/{}", i, name)}, {"folder", folder.string()}, {"name", name}});
+      list.push_back(
+          {{"path", fmt::format("{}/{}", i, name)}, {"folder", folder.string()}, {"name", name}});
     }
   }
   return list.dump();
@@ -462,8 +476,9 @@ std::string ExploreApi::files() const {
 
 std::string ExploreApi::file(const std::map<std::string, std::string>& query) const {
   const auto found = query.find("path");
-  const std::string accepted = "I/NAME: the index I of an open folder and a file's name in it "
-                               "(as /api/files lists them)";
+  const std::string accepted =
+      "I/NAME: the index I of an open folder and a file's name in it "
+      "(as /api/files lists them)";
   if (found == query.end()) throw InputError("path", "missing", accepted);
   const std::string& path = found->second;
   const auto slash = path.find('/');
@@ -476,14 +491,15 @@ std::string ExploreApi::file(const std::map<std::string, std::string>& query) co
     throw InputError("path", fmt::format("got \"{}\"", path), accepted);
   }
   if (slash == std::string::npos || index >= options_.open_folders.size()) {
-    throw InputError("path", fmt::format("got \"{}\" ({} open folders)", path,
-                                         options_.open_folders.size()),
-                     accepted);
+    throw InputError(
+        "path", fmt::format("got \"{}\" ({} open folders)", path, options_.open_folders.size()),
+        accepted);
   }
   const fs::path& folder = options_.open_folders[index];
   const fs::path candidate = folder / fs::path(path.substr(slash + 1));
   if (!lies_inside(candidate, folder)) {
-    throw Refusal{403, fmt::format("path: {} lies outside the open folder {}", path, folder.string())};
+    throw Refusal{403,
+                  fmt::format("path: {} lies outside the open folder {}", path, folder.string())};
   }
   std::error_code error;
   if (!fs::is_regular_file(candidate, error) || candidate.extension() != ".h5") {

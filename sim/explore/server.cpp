@@ -66,8 +66,12 @@ ExploreServer::ExploreServer(const ExploreApi& api, const std::string& host, int
 
 ExploreServer::~ExploreServer() = default;
 
-void ExploreServer::run() { impl_->server.listen_after_bind(); }
+void ExploreServer::run() {
+  impl_->server.listen_after_bind();
+}
 
-void ExploreServer::stop() { impl_->server.stop(); }
+void ExploreServer::stop() {
+  impl_->server.stop();
+}
 
 }  // namespace scatterlab

@@ -20,9 +20,20 @@ namespace {
 using toml_reading::TomlReader;
 
 // The material's quantities every expression sees, in this order (text_model.hpp).
-constexpr std::string_view kMaterialNames[] = {
-    "r",       "sigma_a",       "sigma_s",      "g",   "eta", "sigma_t", "albedo",
-    "sigma_s_reduced", "sigma_t_reduced", "alpha_reduced", "F_dr", "C_1", "C_2", "pi"};
+constexpr std::string_view kMaterialNames[] = {"r",
+                                               "sigma_a",
+                                               "sigma_s",
+                                               "g",
+                                               "eta",
+                                               "sigma_t",
+                                               "albedo",
+                                               "sigma_s_reduced",
+                                               "sigma_t_reduced",
+                                               "alpha_reduced",
+                                               "F_dr",
+                                               "C_1",
+                                               "C_2",
+                                               "pi"};
 constexpr std::size_t kMaterialCount = std::size(kMaterialNames);
 
 const std::regex& identifier() {

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "../unit/scratch_directory.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/explore/api.hpp"
 #include "scatterlab/explore/server.hpp"
@@ -17,7 +18,6 @@
 #include "scatterlab/models/parameter_inversion.hpp"
 #include "scatterlab/refract/half_space_single_scatter.hpp"
 #include "scatterlab/transport/searchlight.hpp"
-#include "../unit/scratch_directory.hpp"
 
 // Last: httplib includes <resolv.h>, whose macro _res breaks Eigen's headers included after it.
 #include <httplib.h>
@@ -30,7 +30,9 @@ namespace fs = std::filesystem;
 
 const fs::path kSource = SCATTERLAB_SOURCE_DIR;
 
-void write(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+void write(const fs::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
 
 class ExploreApiTest : public test_support::ScratchDirectoryTest {
  protected:
@@ -59,10 +61,11 @@ json medium(double sigma_a, double sigma_s_reduced, double g, double eta) {
 }
 
 TEST_F(ExploreApiTest, ProfilesAreTheModelsValuesAtTheReturnedRadii) {
-  const json request{{"medium", medium(0.02, 1.5, 0.4, 1.3)},
-                     {"scale", 2.0},
-                     {"points", 64},
-                     {"models", {"dipole", "better_dipole", "quantized_diffusion", "single_scatter"}}};
+  const json request{
+      {"medium", medium(0.02, 1.5, 0.4, 1.3)},
+      {"scale", 2.0},
+      {"points", 64},
+      {"models", {"dipole", "better_dipole", "quantized_diffusion", "single_scatter"}}};
   const ApiResponse response = post("/api/profiles", request);
   ASSERT_EQ(response.status, 200) << response.body;
   const json answer = body_of(response);
@@ -86,8 +89,7 @@ TEST_F(ExploreApiTest, ProfilesAreTheModelsValuesAtTheReturnedRadii) {
       if (name == "single_scatter") {
         const Medium plain = Medium::from_coefficients(m.sigma_a, m.sigma_s, m.g, "mm");
         const double r0 = (1.3 - 1.0) / (1.3 + 1.0);
-        expected = half_space_single_scatter_exitance(plain, m.eta, r[k]).value /
-                   (1.0 - r0 * r0);
+        expected = half_space_single_scatter_exitance(plain, m.eta, r[k]).value / (1.0 - r0 * r0);
       } else {
         expected = DiffusionProfile(parse_profile_model(name, "model"), m).reflectance(r[k]);
       }
@@ -119,9 +121,9 @@ TEST_F(ExploreApiTest, TheDipoleAsATextFileIsTheBuiltInDipole) {
     }
   }
   // And through the API, beside the built-in one.
-  const ApiResponse response = post(
-      "/api/profiles",
-      {{"medium", medium(0.01, 1.0, 0.0, 1.3)}, {"points", 50}, {"models", {"dipole", "dipole_text"}}});
+  const ApiResponse response = post("/api/profiles", {{"medium", medium(0.01, 1.0, 0.0, 1.3)},
+                                                      {"points", 50},
+                                                      {"models", {"dipole", "dipole_text"}}});
   ASSERT_EQ(response.status, 200) << response.body;
   const json curves = body_of(response)["curves"];
   for (std::size_t k = 0; k < 50; ++k) {
@@ -157,11 +159,10 @@ default = 1.0
   };
   EXPECT_EQ(field({{"k", 5.0}}), "parameters.k");
   EXPECT_EQ(field({{"q", 1.0}}), "parameters.q");
-  const ApiResponse response =
-      post("/api/profiles", {{"medium", medium(0.5, 1.5, 0.0, 1.0)},
-                             {"points", 4},
-                             {"models", {"scaled"}},
-                             {"parameters", {{"scaled", {{"k", 9.0}}}}}});
+  const ApiResponse response = post("/api/profiles", {{"medium", medium(0.5, 1.5, 0.0, 1.0)},
+                                                      {"points", 4},
+                                                      {"models", {"scaled"}},
+                                                      {"parameters", {{"scaled", {{"k", 9.0}}}}}});
   EXPECT_EQ(response.status, 400);
   EXPECT_NE(response.body.find("parameters.k"), std::string::npos) << response.body;
 }
@@ -193,7 +194,7 @@ TEST(TextModel, ABadFileIsOneErrorNamingFileLineAndKey) {
                 .find("min < max"),
             error_of("name = \"x\"\n[[parameter]]\nname = \"k\"\nmin = 1\nmax = 0\ndefault = 0\n"
                      "R_d = \"r\"\n")
-                    .find("min < max"));
+                .find("min < max"));
   EXPECT_NE(error_of("name = \"x\"\n[[parameter]]\nname = \"k\"\nmin = 1\nmax = 0\ndefault = 0\n"
                      "R_d = \"r\"\n"),
             "(accepted)");
@@ -336,7 +337,8 @@ TEST_F(ExploreApiTest, ASearchlightFileIsReadWithItsErrorBars) {
   const json files = body_of(explorer.handle("GET", "/api/files", {}, ""));
   ASSERT_EQ(files.size(), 1u);
   EXPECT_EQ(files[0]["path"], "0/runs/half.h5");
-  const ApiResponse response = explorer.handle("GET", "/api/file", {{"path", "0/runs/half.h5"}}, "");
+  const ApiResponse response =
+      explorer.handle("GET", "/api/file", {{"path", "0/runs/half.h5"}}, "");
   ASSERT_EQ(response.status, 200) << response.body;
   const json file = body_of(response);
   EXPECT_EQ(file["r"].size(), 10u);
@@ -373,11 +375,12 @@ TEST_F(ExploreApiTest, PresetsAndInversion) {
     }
   }
   EXPECT_TRUE(skin);
-  const ApiResponse response =
-      post("/api/invert", {{"model", "dipole"}, {"R_dr", 0.5}, {"l_d", 2.0}, {"eta", 1.3}, {"g", 0.5}});
+  const ApiResponse response = post(
+      "/api/invert", {{"model", "dipole"}, {"R_dr", 0.5}, {"l_d", 2.0}, {"eta", 1.3}, {"g", 0.5}});
   ASSERT_EQ(response.status, 200) << response.body;
   const json c = body_of(response);
-  const InvertedCoefficients expected = invert_reflectance(HalfSpaceModel::classical_dipole, 0.5, 2.0, 1.3, 0.5);
+  const InvertedCoefficients expected =
+      invert_reflectance(HalfSpaceModel::classical_dipole, 0.5, 2.0, 1.3, 0.5);
   EXPECT_EQ(c["sigma_a"].get<double>(), expected.sigma_a);
   EXPECT_EQ(c["sigma_s"].get<double>(), expected.sigma_s);
   EXPECT_DOUBLE_EQ(c["sigma_s_reduced"].get<double>(), expected.sigma_s * 0.5);
