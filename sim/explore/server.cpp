@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <httplib.h>
+#include <sys/socket.h>
 
 #include <fstream>
 #include <iterator>
@@ -21,6 +22,12 @@ ExploreServer::ExploreServer(const ExploreApi& api, const std::string& host, int
   }
   httplib::Server& server = impl_->server;
   server.set_payload_max_length(std::size_t{1} << 20);
+  // SO_REUSEADDR only: httplib's default adds SO_REUSEPORT, with which a second explorer would
+  // share a port already in use instead of being told that it is.
+  server.set_socket_options([](int socket) {
+    int yes = 1;
+    ::setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+  });
   const auto answer = [&api](const httplib::Request& request, httplib::Response& response) {
     std::map<std::string, std::string> query;
     for (const auto& [key, value] : request.params) query.emplace(key, value);

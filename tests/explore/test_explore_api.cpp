@@ -427,6 +427,13 @@ TEST_F(ExploreApiTest, TheServerAnswersOnALoopbackPort) {
   ASSERT_TRUE(bad);
   EXPECT_EQ(bad->status, 400);
   EXPECT_NE(json::parse(bad->body)["error"].get<std::string>().find("body"), std::string::npos);
+  // A second server on the same port is refused, naming the port.
+  try {
+    ExploreServer second(explorer, "127.0.0.1", server.port());
+    ADD_FAILURE() << "a second server bound port " << server.port();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "port");
+  }
   server.stop();
   serving.join();
 }
