@@ -13,7 +13,12 @@ packages=(
   python3-matplotlib  # the figures (sim/io/plot_figure.py) and the notebooks
   python3-h5py python3-h5netcdf python3-nbconvert python3-nbclient python3-ipykernel
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-xarray python3-pytest
+  libcpp-httplib-dev nlohmann-json3-dev libmuparser-dev  # scatterlab explore
+  chromium chromium-driver python3-selenium  # its page's test in a headless browser
 )
+# npm installs the page's JavaScript (web/package.json). Debian's npm comes with its nodejs; a
+# nodejs from elsewhere that already brings npm is left as it is.
+command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
 
 missing=()
 for p in "${packages[@]}"; do
@@ -27,5 +32,13 @@ if ((${#missing[@]})); then
   export DEBIAN_FRONTEND=noninteractive
   $sudo apt-get update -q
   $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+# The page's libraries at the versions web/package-lock.json pins, when they are not there yet.
+web="$(dirname "$0")/../web"
+if [ ! -f "$web/node_modules/.package-lock.json" ] ||
+   [ "$web/package-lock.json" -nt "$web/node_modules/.package-lock.json" ]; then
+  echo "setup: npm ci in web/"
+  (cd "$web" && npm ci --ignore-scripts --no-audit --no-fund --loglevel=error >/dev/null)
 fi
 echo "setup: all dependencies present"

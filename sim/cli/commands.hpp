@@ -25,6 +25,7 @@ Action add_report_command(CLI::App& app, const std::string& command_line);
 Action add_render_command(CLI::App& app);
 Action add_invert_command(CLI::App& app);
 Action add_mcml_command(CLI::App& app, const std::string& command_line, World& world);
+Action add_explore_command(CLI::App& app);
 
 // Stands in for a command whose optional component was not built: it takes any arguments and,
 // run, stops with bad-input status 2 and one line saying what the build needs, e.g. "Ceres

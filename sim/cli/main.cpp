@@ -180,6 +180,14 @@ int run(int argc, char** argv) {
       "libopenexr-dev, libpng-dev)");
 #endif
   const auto invert = scatterlab::cli::add_invert_command(app);
+#ifdef SCATTERLAB_WITH_EXPLORE
+  const auto explore = scatterlab::cli::add_explore_command(app);
+#else
+  const auto explore = scatterlab::cli::add_unavailable_command(
+      app, "explore", "The explorer in a browser",
+      "cpp-httplib, nlohmann-json and muparser (Debian: libcpp-httplib-dev, nlohmann-json3-dev, "
+      "libmuparser-dev)");
+#endif
   const auto mcml = scatterlab::cli::add_mcml_command(app, command_line, *world);
   scatterlab::cli::check_numeric_values(app);
   hide_empty_list_defaults(app);
@@ -208,6 +216,7 @@ int run(int argc, char** argv) {
     if (app.got_subcommand("render")) return render();
     if (app.got_subcommand("invert")) return invert();
     if (app.got_subcommand("mcml")) return mcml();
+    if (app.got_subcommand("explore")) return explore();
   } catch (const scatterlab::InputError& e) {
     // Bad input is found alike on every rank, before any of them waits on another.
     if (world->is_root()) print_error("scatterlab: error: {}\n", e.what());

@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
 # The core builds without any optional component: configured as on a machine that has none of
-# Ceres, Embree, tinyobjloader, OpenEXR, libpng or MPI (CMake is told not to find them), it
-# builds scatterlab, which runs simulate and searchlight, links none of those libraries, and
-# answers fit, report and render with one line saying what the build needs, exit status 2.
+# Ceres, Embree, tinyobjloader, OpenEXR, libpng, MPI, cpp-httplib, nlohmann-json or muparser
+# (CMake is told not to find them), it builds scatterlab, which runs simulate and searchlight,
+# links none of those libraries, and answers fit, report, render and explore with one line saying
+# what the build needs, exit status 2.
 # Its Python module (pybind11 is not optional here: it is what the check runs) works the same way.
 # Usage: core_only.sh SOURCE_DIR
 set -uo pipefail
 source_dir=$1
 source "$(dirname "$0")/../cli/harness.sh"
 build=$work/build
-missing=(Ceres embree tinyobjloader OpenEXR PNG MPI)
+missing=(Ceres embree tinyobjloader OpenEXR PNG MPI PkgConfig nlohmann_json muparser)
 disable=()
 for package in "${missing[@]}"; do disable+=("-DCMAKE_DISABLE_FIND_PACKAGE_$package=TRUE"); done
 
@@ -23,13 +24,13 @@ else
   report "core-only build"
   exit 1
 fi
-if grep -q "components: fit OFF, render OFF, MPI OFF" "$work/configure.log"; then pass; else
+if grep -q "components: fit OFF, render OFF, explore OFF, MPI OFF" "$work/configure.log"; then pass; else
   fail "the configure summary does not say every component is off"
 fi
 exe=$build/sim/scatterlab
 linked=$(readelf -d "$exe" | grep NEEDED)  # the libraries it links itself
 # Ceres is a static library on Debian: its code, or glog, which it brings, would show.
-for library in libglog libembree libtinyobjloader libOpenEXR libpng libmpi; do
+for library in libglog libembree libtinyobjloader libOpenEXR libpng libmpi libcpp-httplib libmuparser; do
   if grep -q "$library" <<<"$linked"; then fail "links $library"; else pass; fi
 done
 if nm -C "$exe" | grep -q "ceres::"; then fail "holds Ceres code"; else pass; fi
@@ -40,7 +41,7 @@ if "$exe" simulate --photons 2000 --batches 4 --out beam.h5 >/dev/null 2>&1 &&
 else
   fail "simulate, searchlight or info failed in the core build"
 fi
-for command in fit report render; do
+for command in fit report render explore; do
   status=0
   "$exe" "$command" beam.h5 --out anything >"$work/stdout" 2>"$work/stderr" || status=$?
   if [ "$status" -ne 2 ]; then

@@ -13,7 +13,8 @@ fi
 exe=$prefix/bin/scatterlab
 data=$prefix/share/scatterlab
 for f in "$exe" "$data/scenes/paper-beam.toml" "$data/mcml/sample.mci" \
-         "$prefix/share/doc/scatterlab/README.md" "$prefix/share/doc/scatterlab/notebooks"; do
+         "$prefix/share/doc/scatterlab/README.md" "$prefix/share/doc/scatterlab/notebooks" \
+         "$data/explore/index.html" "$data/explore/node_modules/plotly.js-dist-min/plotly.min.js"; do
   if [ -e "$f" ]; then pass; else fail "not installed: ${f#"$prefix"/}"; fi
 done
 if [ "$("$exe" --version)" = "$("$build/sim/scatterlab" --version)" ]; then pass; else fail "installed --version"; fi
@@ -23,6 +24,21 @@ if "$exe" simulate "$data/scenes/paper-beam.toml" --photons 2000 --batches 4 --o
 else
   fail "installed simulate on the installed scene: $(tail -3 "$work/run.log")"
 fi
+# The installed explorer serves the installed page (not the source tree's) on a free port and
+# ends cleanly on SIGINT.
+"$exe" explore --port 0 >"$work/explore.log" 2>&1 &
+explorer=$!
+for _ in $(seq 50); do grep -q "http://" "$work/explore.log" && break; sleep 0.1; done
+url=$(grep -o "http://[^ ]*" "$work/explore.log" | head -1)
+if [ -n "$url" ] && grep -q "the page: $data/explore" "$work/explore.log" &&
+   /usr/bin/python3 -c 'import sys, urllib.request
+assert b"scatterlab explore" in urllib.request.urlopen(sys.argv[1], timeout=10).read()' "$url"; then
+  pass
+else
+  fail "the installed explorer: $(cat "$work/explore.log")"
+fi
+kill -INT "$explorer"
+if wait "$explorer"; then pass; else fail "the installed explorer did not end cleanly on SIGINT"; fi
 # The Python module (when this build has it), from the prefix alone, reads the file the installed
 # program wrote.
 module=$(find "$prefix/lib" -path "*-packages/scatterlab/__init__.py" 2>/dev/null | head -1)

@@ -1,0 +1,554 @@
+#include "scatterlab/explore/api.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <set>
+
+#include "scatterlab/core/error.hpp"
+#include "scatterlab/core/fresnel.hpp"
+#include "scatterlab/core/medium.hpp"
+#include "scatterlab/io/hdf5_file.hpp"
+#include "scatterlab/io/material_presets.hpp"
+#include "scatterlab/models/diffusion_profile.hpp"
+#include "scatterlab/models/lit_sphere_exitance.hpp"
+#include "scatterlab/models/parameter_inversion.hpp"
+#include "scatterlab/refract/half_space_single_scatter.hpp"
+
+namespace scatterlab {
+namespace {
+
+using json = nlohmann::json;
+namespace fs = std::filesystem;
+
+// A request the API refuses: its status and message.
+struct Refusal {
+  int status;
+  std::string message;
+};
+
+constexpr int kMaxPoints = 2000;       // a plot's width in pixels is less
+constexpr int kMaxLitSphereBins = 90;  // 2 degrees apart
+constexpr int kMaxLitSphereSamples = 1 << 16;
+
+// The built-in profiles: the diffusion models and the exact single scattering.
+struct BuiltIn {
+  const char* name;
+  const char* label;
+  const char* reference;
+};
+constexpr BuiltIn kBuiltIns[] = {
+    {"dipole", "classical dipole", "Jensen et al. 2001; Bitterli 2013 eqs. 2.22, 2.30, 2.37"},
+    {"better_dipole", "better dipole", "d'Eon 2012, \"A better dipole\""},
+    {"quantized_diffusion", "quantized diffusion",
+     "d'Eon & Irving 2011, \"A quantized-diffusion model for rendering translucent materials\""},
+    {"single_scatter", "exact single scattering",
+     "the once-scattered exitance of the half-space (refract/half_space_single_scatter.hpp)"},
+};
+
+std::string error_json(const std::string& message) {
+  return json{{"error", message}}.dump();
+}
+
+json parse_body(std::string_view body) {
+  json parsed = json::parse(body, nullptr, /*allow_exceptions=*/false);
+  if (parsed.is_discarded() || !parsed.is_object()) {
+    throw InputError("body", "not a JSON object", "a JSON object (see the API in the README)");
+  }
+  return parsed;
+}
+
+double number(const json& object, const std::string& key, const std::string& field,
+              std::optional<double> fallback = std::nullopt) {
+  const auto found = object.find(key);
+  if (found == object.end() || found->is_null()) {
+    if (fallback) return *fallback;
+    throw InputError(field, "missing", "a finite number");
+  }
+  if (!found->is_number() || !std::isfinite(found->get<double>())) {
+    throw InputError(field, "got " + found->dump(), "a finite number");
+  }
+  return found->get<double>();
+}
+
+int whole(const json& object, const std::string& key, const std::string& field, int fallback,
+          int lowest, int highest) {
+  const double value = number(object, key, field, fallback);
+  if (value != std::trunc(value) || value < lowest || value > highest) {
+    throw InputError(field, fmt::format("got {}", value),
+                     fmt::format("a whole number in [{}, {}]", lowest, highest));
+  }
+  return static_cast<int>(value);
+}
+
+// The request's medium in the plot's unit: its coefficients times `scale`.
+HalfSpaceMedium medium_of(const json& request) {
+  const auto found = request.find("medium");
+  if (found == request.end() || !found->is_object()) {
+    throw InputError("medium", "missing or not an object",
+                     "{\"sigma_a\", \"sigma_s\" or \"sigma_s_reduced\", \"g\", \"eta\"}");
+  }
+  const json& m = *found;
+  for (const auto& [key, value] : m.items()) {
+    static const std::set<std::string> known{"sigma_a", "sigma_s", "sigma_s_reduced", "g", "eta"};
+    if (!known.contains(key)) {
+      throw InputError("medium." + key, "unknown key", "sigma_a, sigma_s, sigma_s_reduced, g, eta");
+    }
+  }
+  const double scale = number(request, "scale", "scale", 1.0);
+  if (!(scale > 0.0)) {
+    throw InputError("scale", fmt::format("got {}", scale), "a finite number > 0");
+  }
+  HalfSpaceMedium medium;
+  medium.g = number(m, "g", "medium.g", 0.0);
+  medium.eta = number(m, "eta", "medium.eta", 1.0);
+  medium.sigma_a = number(m, "sigma_a", "medium.sigma_a") * scale;
+  const bool plain = m.contains("sigma_s"), reduced = m.contains("sigma_s_reduced");
+  if (plain == reduced) {
+    throw InputError("medium.sigma_s", plain ? "given with sigma_s_reduced" : "missing",
+                     "exactly one of sigma_s and sigma_s_reduced (= sigma_s (1 - g))");
+  }
+  medium.validate();  // g first: sigma_s_reduced is divided by 1 - g
+  // Similarity relation (Bitterli 2013 eq. 2.24): sigma_s = sigma_s' / (1 - g).
+  medium.sigma_s =
+      plain ? number(m, "sigma_s", "medium.sigma_s") * scale
+            : number(m, "sigma_s_reduced", "medium.sigma_s_reduced") * scale / (1.0 - medium.g);
+  medium.validate();
+  if (!(medium.sigma_t() > 0.0) || !std::isfinite(medium.sigma_t())) {
+    throw InputError("medium.sigma_a", "sigma_a + sigma_s is 0 or not finite",
+                     "coefficients whose sum is finite and > 0");
+  }
+  return medium;
+}
+
+// The entry transmittance of a beam at normal incidence, 1 - F_r(0) (core/fresnel.hpp).
+double entry_transmittance(double eta) {
+  return 1.0 - fresnel_dielectric_terms(1.0, eta).reflectance();
+}
+
+// r_max when the request leaves it out: ten diffusion lengths 1 / sigma_tr of the classical
+// dipole (sigma_tr = sqrt(3 sigma_a sigma_t'), Bitterli eq. 2.22), at most 50 reduced mean free
+// paths (without absorption sigma_tr = 0).
+double automatic_r_max(const HalfSpaceMedium& medium) {
+  const double sigma_tr = std::sqrt(3.0 * medium.sigma_a * medium.reduced_sigma_t());
+  return std::min(10.0 / sigma_tr, 50.0 / medium.reduced_sigma_t());
+}
+
+double milliseconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+json string_list(const std::vector<std::string>& values) {
+  return json(values);
+}
+
+}  // namespace
+
+bool lies_inside(const fs::path& candidate, const fs::path& folder) {
+  std::error_code error;
+  const fs::path inside = fs::weakly_canonical(fs::absolute(candidate), error);
+  if (error) return false;
+  const fs::path root = fs::canonical(folder, error);
+  if (error) return false;
+  const auto [end, _] = std::mismatch(root.begin(), root.end(), inside.begin(), inside.end());
+  return end == root.end();
+}
+
+ExploreApi::ExploreApi(ExploreOptions options) : options_(std::move(options)) {
+  std::error_code error;
+  if (!fs::is_regular_file(options_.page / "index.html", error)) {
+    throw InputError("page", fmt::format("{} holds no index.html", options_.page.string()),
+                     "the folder of the explorer's page (share/scatterlab/explore when "
+                     "installed, web/ in the sources, set up by scripts/setup.sh)");
+  }
+  options_.page = fs::canonical(options_.page);
+  for (fs::path& folder : options_.open_folders) {
+    if (!fs::is_directory(folder, error)) {
+      throw InputError("open", fmt::format("{} is not a folder", folder.string()),
+                       "folders that hold searchlight files (*.h5)");
+    }
+    folder = fs::canonical(folder);
+  }
+  if (options_.models) {
+    text_models_ =
+        std::make_shared<const std::vector<TextModel>>(load_text_models(*options_.models));
+  } else {
+    text_models_ = std::make_shared<const std::vector<TextModel>>();
+  }
+}
+
+std::optional<fs::path> ExploreApi::page_file(std::string_view url_path) const {
+  std::string relative(url_path);
+  if (relative.empty() || relative == "/") relative = "/index.html";
+  // Percent-decoded by the server already; anything odd is simply not a page file.
+  if (relative.find('\0') != std::string::npos || relative.front() != '/') return std::nullopt;
+  const fs::path candidate = options_.page / fs::path(relative.substr(1));
+  std::error_code error;
+  if (!lies_inside(candidate, options_.page)) return std::nullopt;
+  if (!fs::is_regular_file(candidate, error)) return std::nullopt;
+  return fs::canonical(candidate);
+}
+
+ApiResponse ExploreApi::handle(std::string_view method, std::string_view path,
+                               const std::map<std::string, std::string>& query,
+                               std::string_view body) const {
+  ApiResponse response;
+  const bool get = method == "GET" || method == "HEAD", post = method == "POST";
+  try {
+    if (path.rfind("/api/", 0) != 0) {
+      if (!get) throw Refusal{405, "the page's files are read with GET"};
+      const auto file = page_file(path);
+      if (!file) {
+        throw Refusal{
+            lies_inside(options_.page / fs::path(std::string(path)).relative_path(), options_.page)
+                ? 404
+                : 403,
+            fmt::format("{}: no such file of the page", path)};
+      }
+      static const std::map<std::string, std::string> types{
+          {".html", "text/html; charset=utf-8"},
+          {".js", "text/javascript; charset=utf-8"},
+          {".css", "text/css; charset=utf-8"},
+          {".png", "image/png"},
+          {".svg", "image/svg+xml"},
+          {".json", "application/json"}};
+      const auto type = types.find(file->extension().string());
+      response.content_type = type != types.end() ? type->second : "application/octet-stream";
+      response.file = *file;
+      return response;
+    }
+    const std::string_view gets[] = {"/api/info", "/api/presets", "/api/models", "/api/files",
+                                     "/api/file"};
+    const std::string_view posts[] = {"/api/profiles", "/api/invert", "/api/lit_sphere"};
+    const bool is_get = std::find(std::begin(gets), std::end(gets), path) != std::end(gets);
+    const bool is_post = std::find(std::begin(posts), std::end(posts), path) != std::end(posts);
+    if (!is_get && !is_post) throw Refusal{404, fmt::format("{}: no such API path", path)};
+    if (is_get && !get) throw Refusal{405, fmt::format("{} is read with GET", path)};
+    if (is_post && !post) throw Refusal{405, fmt::format("{} takes a POST with a JSON body", path)};
+    if (path == "/api/info") response.body = info();
+    if (path == "/api/presets") response.body = presets();
+    if (path == "/api/models") response.body = reload_models();
+    if (path == "/api/files") response.body = files();
+    if (path == "/api/file") response.body = file(query);
+    if (path == "/api/profiles") response.body = profiles(body);
+    if (path == "/api/invert") response.body = invert(body);
+    if (path == "/api/lit_sphere") response.body = lit_sphere(body);
+  } catch (const Refusal& refusal) {
+    response.status = refusal.status;
+    response.body = error_json(refusal.message);
+  } catch (const InputError& error) {
+    response.status = 400;
+    response.body = error_json(error.what());
+  } catch (const std::exception& error) {
+    // A failure of a model or of a file read (HDF5): the request was well formed.
+    response.status = 500;
+    response.body = error_json(error.what());
+  }
+  return response;
+}
+
+std::string ExploreApi::info() const {
+  json built_in = json::array();
+  for (const BuiltIn& model : kBuiltIns) {
+    built_in.push_back(
+        {{"name", model.name}, {"label", model.label}, {"reference", model.reference}});
+  }
+  json folders = json::array();
+  for (const fs::path& folder : options_.open_folders) folders.push_back(folder.string());
+  json inversion = json::array();
+  for (const HalfSpaceModel model : all_half_space_models) inversion.push_back(to_string(model));
+  return json{{"version", SCATTERLAB_VERSION},
+              {"models", built_in},
+              {"text_models", json::parse(text_models_json())},
+              {"inversion_models", inversion},
+              {"open_folders", folders},
+              {"models_folder", options_.models ? options_.models->string() : ""}}
+      .dump();
+}
+
+std::string ExploreApi::presets() const {
+  json libraries = json::array();
+  for (const MaterialLibrary& library : shipped_material_libraries()) {
+    json materials = json::array();
+    for (const MaterialPreset& preset : library.materials) {
+      const std::size_t n = preset.sigma_a.size();
+      std::vector<double> reduced(n), g(n, 0.0);
+      for (std::size_t c = 0; c < n; ++c) {
+        // Jensen's table gives sigma_s' (g free, 0 here); Narasimhan's sigma_s and g, whose
+        // sigma_s' = sigma_s (1 - g) (Bitterli 2013 eq. 2.24).
+        if (!preset.g.empty()) g[c] = preset.g[c];
+        reduced[c] = preset.sigma_s_reduced.empty() ? preset.sigma_s[c] * (1.0 - g[c])
+                                                    : preset.sigma_s_reduced[c];
+      }
+      materials.push_back({{"name", preset.name},
+                           {"sigma_a", preset.sigma_a},
+                           {"sigma_s_reduced", reduced},
+                           {"g", g}});
+    }
+    libraries.push_back({{"id", library.id},
+                         {"citation", library.citation},
+                         {"length_unit", library.length_unit},
+                         {"eta", library.eta},
+                         {"channels", string_list(library.channels)},
+                         {"materials", materials}});
+  }
+  return libraries.dump();
+}
+
+std::string ExploreApi::text_models_json() const {
+  std::shared_ptr<const std::vector<TextModel>> models;
+  {
+    const std::lock_guard lock(models_mutex_);
+    models = text_models_;
+  }
+  json list = json::array();
+  for (const TextModel& model : *models) {
+    json parameters = json::array();
+    for (const auto& p : model.parameters()) {
+      parameters.push_back(
+          {{"name", p.name}, {"min", p.min}, {"max", p.max}, {"default", p.default_value}});
+    }
+    list.push_back({{"name", model.name()},
+                    {"description", model.description()},
+                    {"reference", model.reference()},
+                    {"file", model.origin()},
+                    {"parameters", parameters}});
+  }
+  return list.dump();
+}
+
+std::string ExploreApi::reload_models() const {
+  if (options_.models) {
+    // A bad file leaves the models as they were and is the answer (400, naming file and line).
+    auto models =
+        std::make_shared<const std::vector<TextModel>>(load_text_models(*options_.models));
+    const std::lock_guard lock(models_mutex_);
+    text_models_ = std::move(models);
+  }
+  return text_models_json();
+}
+
+std::string ExploreApi::profiles(std::string_view body) const {
+  const json request = parse_body(body);
+  const HalfSpaceMedium medium = medium_of(request);
+  const int points = whole(request, "points", "points", 256, 2, kMaxPoints);
+  const double r_max = number(request, "r_max", "r_max", automatic_r_max(medium));
+  if (!(r_max > 0.0)) {
+    throw InputError("r_max", fmt::format("got {}", r_max), "a finite number > 0, or leave it out");
+  }
+  // r_k = r_max k / points, k = 1..points: r = 0 is left out, where quantized diffusion is
+  // infinite.
+  std::vector<double> r(static_cast<std::size_t>(points));
+  for (int k = 0; k < points; ++k) r[static_cast<std::size_t>(k)] = r_max * (k + 1) / points;
+
+  const auto found = request.find("models");
+  if (found == request.end() || !found->is_array()) {
+    throw InputError("models", "missing or not an array", "an array of model names");
+  }
+  std::shared_ptr<const std::vector<TextModel>> text_models;
+  {
+    const std::lock_guard lock(models_mutex_);
+    text_models = text_models_;
+  }
+  const json parameters = request.value("parameters", json::object());
+  if (!parameters.is_object()) {
+    throw InputError("parameters", "not an object", "{model: {parameter: value}}");
+  }
+  json curves = json::array();
+  for (const json& entry : *found) {
+    const std::string name = entry.is_string() ? entry.get<std::string>() : entry.dump();
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<double> values(r.size());
+    json curve{{"model", name}};
+    if (name == "single_scatter") {
+      const Medium plain =
+          Medium::from_coefficients(medium.sigma_a, medium.sigma_s, medium.g, "mm");
+      const double t_in = entry_transmittance(medium.eta);
+      for (std::size_t k = 0; k < r.size(); ++k) {
+        values[k] = half_space_single_scatter_exitance(plain, medium.eta, r[k]).value / t_in;
+      }
+    } else if (name == "dipole" || name == "better_dipole" || name == "quantized_diffusion") {
+      const DiffusionProfile profile(parse_profile_model(name, "models"), medium);
+      for (std::size_t k = 0; k < r.size(); ++k) values[k] = profile.reflectance(r[k]);
+      curve["total_reflectance"] = profile.total_reflectance();
+    } else {
+      const auto model = std::find_if(text_models->begin(), text_models->end(),
+                                      [&](const TextModel& m) { return m.name() == name; });
+      if (model == text_models->end()) {
+        std::string accepted = "dipole, better_dipole, quantized_diffusion, single_scatter";
+        for (const TextModel& m : *text_models) accepted += ", " + m.name();
+        throw InputError("models", fmt::format("no model {}", name), accepted);
+      }
+      std::map<std::string, double> values_by_name;
+      if (const auto set = parameters.find(name); set != parameters.end()) {
+        if (!set->is_object())
+          throw InputError("parameters." + name, "not an object", "{name: value}");
+        for (const auto& [key, value] : set->items()) {
+          values_by_name[key] = number(*set, key, "parameters." + key);
+        }
+      }
+      values = model->reflectance(medium, values_by_name, r);
+    }
+    curve["ms"] = milliseconds_since(start);
+    curve["values"] = values;  // a value that is not finite is written as null
+    curves.push_back(std::move(curve));
+  }
+  return json{{"r", r},
+              {"r_max", r_max},
+              {"medium",
+               {{"sigma_a", medium.sigma_a},
+                {"sigma_s", medium.sigma_s},
+                {"g", medium.g},
+                {"eta", medium.eta},
+                {"sigma_s_reduced", medium.reduced_sigma_s()}}},
+              {"curves", curves}}
+      .dump();
+}
+
+std::string ExploreApi::invert(std::string_view body) const {
+  const json request = parse_body(body);
+  const std::string name = request.value("model", std::string("dipole"));
+  const HalfSpaceModel model = half_space_model_from_string(name, "model");
+  const InvertedCoefficients coefficients =
+      invert_reflectance(model, number(request, "R_dr", "R_dr"), number(request, "l_d", "l_d"),
+                         number(request, "eta", "eta", 1.0), number(request, "g", "g", 0.0));
+  return json{{"reduced_albedo", coefficients.reduced_albedo},
+              {"sigma_a", coefficients.sigma_a},
+              {"sigma_s", coefficients.sigma_s},
+              {"sigma_s_reduced", coefficients.sigma_s * (1.0 - number(request, "g", "g", 0.0))}}
+      .dump();
+}
+
+std::string ExploreApi::lit_sphere(std::string_view body) const {
+  const json request = parse_body(body);
+  const HalfSpaceMedium medium = medium_of(request);
+  const double radius = number(request, "radius", "radius", 1.0);
+  const int bins = whole(request, "bins", "bins", 36, 2, kMaxLitSphereBins);
+  const int samples = whole(request, "samples", "samples", 2048, 2, kMaxLitSphereSamples);
+  std::vector<double> edges(static_cast<std::size_t>(bins) + 1), centres(edges.size() - 1);
+  for (int i = 0; i <= bins; ++i) edges[static_cast<std::size_t>(i)] = std::numbers::pi * i / bins;
+  for (std::size_t i = 0; i < centres.size(); ++i) centres[i] = 0.5 * (edges[i] + edges[i + 1]);
+  const auto found = request.find("models");
+  if (found == request.end() || !found->is_array()) {
+    throw InputError("models", "missing or not an array",
+                     "an array of dipole, better_dipole, quantized_diffusion");
+  }
+  json curves = json::array();
+  for (const json& entry : *found) {
+    const std::string name = entry.is_string() ? entry.get<std::string>() : entry.dump();
+    const auto start = std::chrono::steady_clock::now();
+    const DiffusionProfile profile(parse_profile_model(name, "models"), medium);
+    const LitSphereExitance exitance = lit_sphere_exitance(profile, radius, edges, samples, 1);
+    curves.push_back({{"model", name},
+                      {"mean", exitance.mean},
+                      {"stderr", exitance.stderr_of_mean},
+                      {"ms", milliseconds_since(start)}});
+  }
+  return json{{"psi", centres}, {"psi_edges", edges}, {"curves", curves}}.dump();
+}
+
+std::string ExploreApi::files() const {
+  json list = json::array();
+  for (std::size_t i = 0; i < options_.open_folders.size(); ++i) {
+    const fs::path& folder = options_.open_folders[i];
+    std::vector<std::string> names;
+    std::error_code error;
+    for (auto it = fs::recursive_directory_iterator(folder, error);
+         !error && it != fs::recursive_directory_iterator(); it.increment(error)) {
+      if (it.depth() > 3) it.disable_recursion_pending();
+      if (it->is_regular_file() && it->path().extension() == ".h5") {
+        names.push_back(fs::relative(it->path(), folder).generic_string());
+      }
+    }
+    std::sort(names.begin(), names.end());
+    for (const std::string& name : names) {
+      list.push_back(
+          {{"path", fmt::format("{}/{}", i, name)}, {"folder", folder.string()}, {"name", name}});
+    }
+  }
+  return list.dump();
+}
+
+std::string ExploreApi::file(const std::map<std::string, std::string>& query) const {
+  const auto found = query.find("path");
+  const std::string accepted =
+      "I/NAME: the index I of an open folder and a file's name in it "
+      "(as /api/files lists them)";
+  if (found == query.end()) throw InputError("path", "missing", accepted);
+  const std::string& path = found->second;
+  const auto slash = path.find('/');
+  std::size_t index = 0;
+  try {
+    std::size_t used = 0;
+    index = std::stoul(path.substr(0, slash), &used);
+    if (used != slash) throw std::invalid_argument("path");
+  } catch (const std::exception&) {
+    throw InputError("path", fmt::format("got \"{}\"", path), accepted);
+  }
+  if (slash == std::string::npos || index >= options_.open_folders.size()) {
+    throw InputError(
+        "path", fmt::format("got \"{}\" ({} open folders)", path, options_.open_folders.size()),
+        accepted);
+  }
+  const fs::path& folder = options_.open_folders[index];
+  const fs::path candidate = folder / fs::path(path.substr(slash + 1));
+  if (!lies_inside(candidate, folder)) {
+    throw Refusal{403,
+                  fmt::format("path: {} lies outside the open folder {}", path, folder.string())};
+  }
+  std::error_code error;
+  if (!fs::is_regular_file(candidate, error) || candidate.extension() != ".h5") {
+    throw InputError("path", fmt::format("{} is not a file of the folder", path),
+                     "a searchlight file (*.h5) that /api/files lists");
+  }
+  hdf5::File file = hdf5::File::open_read_only(candidate);
+  const hdf5::Group& root = file.root();
+  if (!root.has_member("parameters") ||
+      root.open_group("parameters").read_string_attribute("geometry") != "half_space" ||
+      !root.has_member("grid/r")) {
+    throw InputError("path", fmt::format("{} is not a searchlight file", path),
+                     "a file written by scatterlab searchlight (geometry half_space)");
+  }
+  const hdf5::Group parameters = root.open_group("parameters");
+  const std::vector<double> edges = root.read_dataset("grid/r").values;
+  std::vector<double> centres(edges.size() > 0 ? edges.size() - 1 : 0);
+  for (std::size_t i = 0; i < centres.size(); ++i) centres[i] = 0.5 * (edges[i] + edges[i + 1]);
+  // Per unit power entering: the tallies count per unit incident power, of which 1 - F_r(0)
+  // entered (the file's specular_reflectance is F_r(0)).
+  const double eta = parameters.read_double_attribute("eta");
+  const double t_in = entry_transmittance(eta);
+  json tallies = json::array();
+  const hdf5::Group all = root.open_group("tallies");
+  for (const std::string& name : all.member_names()) {
+    if (name.rfind("reflectance", 0) != 0) continue;
+    const hdf5::Group tally = all.open_group(name);
+    if (tally.read_string_attribute("dims") != "r") continue;
+    std::vector<double> mean = tally.read_dataset("mean").values;
+    std::vector<double> stderr_of_mean = tally.read_dataset("stderr").values;
+    for (double& v : mean) v /= t_in;
+    for (double& v : stderr_of_mean) v /= t_in;
+    tallies.push_back({{"name", name},
+                       {"description", tally.read_string_attribute("description")},
+                       {"mean", mean},
+                       {"stderr", stderr_of_mean}});
+  }
+  json medium{{"sigma_a", parameters.read_double_attribute("sigma_a")},
+              {"sigma_s", parameters.read_double_attribute("sigma_s")},
+              {"g", parameters.read_double_attribute("g")},
+              {"eta", eta},
+              {"length_unit", parameters.read_string_attribute("length_unit")}};
+  return json{{"path", path},
+              {"r", centres},
+              {"r_edges", edges},
+              {"medium", medium},
+              {"entry_transmittance", t_in},
+              {"tallies", tallies}}
+      .dump();
+}
+
+}  // namespace scatterlab

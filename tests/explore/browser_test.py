@@ -1,0 +1,280 @@
+#!/usr/bin/env python3
+"""The explorer's page in a real browser: headless Chromium (Debian's chromium, chromium-driver and
+python3-selenium) against a server this test starts on a free loopback port.
+
+It changes parameters as a user does (typing into the fields, choosing the plot mode), checks that
+the values Plotly plots equal the C++ models' within 1e-9 (the dipoles and the exact single
+scattering through the Python module `import scatterlab`, quantized diffusion through an API call
+of its own), loads a text-file model by dropping a file into the --models folder and pressing
+"Reload text models", refuses a bad one with a message naming the file and line, shows a
+searchlight file with error bars, and saves screenshots, checked against the expected layout
+(elements present and visible, each plot's image not blank), not pixel by pixel.
+
+    browser_test.py SCATTERLAB_PROGRAM SOURCE_DIR SCREENSHOT_DIR   (PYTHONPATH: the build's python/)
+"""
+
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.request
+from pathlib import Path
+
+import scatterlab._scatterlab as core  # the compiled models, not the page or the server
+from selenium import webdriver
+from selenium.webdriver.chrome.service import Service
+from selenium.webdriver.common.by import By
+from selenium.webdriver.support.ui import Select, WebDriverWait
+
+PROGRAM, SOURCE, SHOTS = Path(sys.argv[1]), Path(sys.argv[2]), Path(sys.argv[3])
+TOLERANCE = 1e-9
+failures = []
+
+
+def check(condition, message):
+    if not condition:
+        failures.append(message)
+        print("FAIL:", message, flush=True)
+
+
+def relative_error(a, b):
+    return abs(a - b) / max(abs(b), 1e-300)
+
+
+def start_server(models, open_folder):
+    server = subprocess.Popen(
+        [str(PROGRAM), "explore", "--port", "0", "--models", str(models), "--open", str(open_folder)],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    line = server.stdout.readline()
+    if "http://" not in line:
+        server.kill()
+        raise SystemExit(f"the server did not start: {line}{server.stderr.read()}")
+    url = line.split()[2].rstrip("/") + "/"
+    print("server:", url, flush=True)
+    return server, url
+
+
+def post(url, path, body):
+    request = urllib.request.Request(url + path.lstrip("/"), data=json.dumps(body).encode(),
+                                     headers={"Content-Type": "application/json"})
+    with urllib.request.urlopen(request, timeout=30) as answer:
+        return json.load(answer)
+
+
+def browser():
+    options = webdriver.ChromeOptions()
+    options.binary_location = shutil.which("chromium") or "/usr/bin/chromium"
+    for flag in ("--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--disable-gpu",
+                 "--window-size=1500,1250", "--force-device-scale-factor=1"):
+        options.add_argument(flag)
+    driver_path = shutil.which("chromedriver") or "/usr/bin/chromedriver"
+    return webdriver.Chrome(service=Service(driver_path), options=options)
+
+
+def wait_for(driver, script, what, timeout=30):
+    try:
+        return WebDriverWait(driver, timeout, poll_frequency=0.05).until(
+            lambda d: d.execute_script(script))
+    except Exception:
+        raise SystemExit(f"timed out waiting for {what}; page errors: "
+                         f"{driver.execute_script('return window.explore && window.explore.errors')}")
+
+
+def set_field(driver, element_id, value):
+    field = driver.find_element(By.ID, element_id)
+    field.clear()
+    field.send_keys(str(value))
+
+
+def plotted(driver, trace_name):
+    """The y values Plotly holds for the trace named trace_name (as plotted, after the mode's
+    transform), and its x."""
+    return driver.execute_script(
+        "const t = document.getElementById('profile-plot').data.find(t => t.name === arguments[0]);"
+        "return t ? {x: t.x, y: t.y} : null;", trace_name)
+
+
+# Not blank: the plot drawn to an image by Plotly, in the browser, and the share of its pixels
+# that are not background.
+INK = """
+const done = arguments[arguments.length - 1];
+Plotly.toImage(document.getElementById(arguments[0]), {format: 'png', width: 800, height: 400})
+  .then(url => { const image = new Image(); image.onload = () => {
+    const canvas = document.createElement('canvas'); canvas.width = 800; canvas.height = 400;
+    const context = canvas.getContext('2d'); context.drawImage(image, 0, 0);
+    const pixels = context.getImageData(0, 0, 800, 400).data; let ink = 0;
+    for (let i = 0; i < pixels.length; i += 4) if (pixels[i] + pixels[i + 1] + pixels[i + 2] < 600) ++ink;
+    done(ink / (800 * 400)); }; image.src = url; });
+"""
+
+
+def check_layout(driver, name, plots):
+    path = SHOTS / f"{name}.png"
+    driver.save_screenshot(str(path))
+    print("screenshot:", path, flush=True)
+    for element_id in ("controls", "preset", "channel-rows", "plot-mode", "models", "timing", *plots):
+        element = driver.find_element(By.ID, element_id)
+        check(element.is_displayed() and element.size["width"] > 50,
+              f"{name}: #{element_id} not visible")
+    for plot in plots:
+        ink = driver.execute_async_script(INK, plot)
+        check(0.005 < ink < 0.6, f"{name}: #{plot} looks blank or filled (ink {ink:.4f})")
+        legend = driver.find_elements(By.CSS_SELECTOR, f"#{plot} .legend .traces")
+        check(len(legend) >= 1, f"{name}: #{plot} has no legend")
+        titles = [e.text for e in driver.find_elements(By.CSS_SELECTOR, f"#{plot} .g-xtitle, #{plot} .g-ytitle")]
+        check(len(titles) == 2 and all(titles), f"{name}: #{plot} axis titles {titles}")
+    check(not driver.find_element(By.ID, "error").is_displayed(),
+          f"{name}: error shown: {driver.find_element(By.ID, 'error').text}")
+
+
+def main():
+    SHOTS.mkdir(parents=True, exist_ok=True)
+    work = Path(tempfile.mkdtemp(prefix="scatterlab-browser-"))
+    models, runs = work / "models", work / "runs"
+    models.mkdir()
+    runs.mkdir()
+    shutil.copy(SOURCE / "data/models/dipole_text.toml", models)
+    subprocess.run([str(PROGRAM), "searchlight", "--photons", "20000", "--batches", "4",
+                    "--threads", "1", "--r-bins", "40", "--out", str(runs / "albedo099.h5")],
+                   check=True, capture_output=True)
+    server, url = start_server(models, runs)
+    driver = browser()
+    try:
+        driver.get(url)
+        wait_for(driver, "return window.explore && window.explore.ready && window.explore.updates > 0",
+                 "the page's first profiles")
+        check(driver.title == "scatterlab explore", f"title {driver.title!r}")
+        wait_for(driver, "return window.explore.sphereUpdates > 0", "the lit sphere")
+        check_layout(driver, "1-marble-log", ["profile-plot", "sphere-plot"])
+
+        # A user's change: the red channel to sigma_a = 0.01, sigma_s' = 0.99 per mm (sigma_t' = 1,
+        # albedo 0.99), g = 0, eta 1.3, and the square-root mode.
+        before = driver.execute_script("return window.explore.updates")
+        set_field(driver, "sigma_a-red", 0.01)
+        set_field(driver, "sigma_s_reduced-red", 0.99)
+        set_field(driver, "g-red", 0)
+        set_field(driver, "eta", 1.3)
+        Select(driver.find_element(By.ID, "plot-mode")).select_by_value("sqrt")
+        wait_for(driver, f"const p = window.explore.lastProfile; return window.explore.updates > {before} &&"
+                 " p.medium.sigma_a === 0.01 && p.medium.sigma_s_reduced === 0.99 && "
+                 " window.explore.plotMode === 'sqrt'", "the profiles of the new parameters")
+        series = driver.execute_script("return window.explore.series")
+        labels = {"dipole": "classical dipole", "better_dipole": "better dipole",
+                  "quantized_diffusion": "quantized diffusion", "single_scatter": "exact single scattering",
+                  "dipole_text": "dipole_text (text)"}
+        for model, label in labels.items():
+            trace = plotted(driver, label)
+            check(trace is not None, f"no trace {label}")
+            if trace is None:
+                continue
+            values = series[model]["values"]
+            check(trace["x"] == series[model]["r"], f"{label}: plotted r differ from the answer's")
+            worst = max(relative_error(y, math.sqrt(v)) for y, v in zip(trace["y"], values))
+            check(worst < 1e-15, f"{label}: plotted sqrt differs by {worst:.3g}")
+        r = series["dipole"]["r"]
+        t_in = 1.0 - ((1.3 - 1.0) / (1.3 + 1.0)) ** 2
+        references = {
+            "dipole": [float(core.classical_dipole(x, 0.99, 0.0, 1.3)) for x in r],
+            "better_dipole": [float(core.better_dipole(x, 0.99, 0.0, 1.3)) for x in r],
+            "dipole_text": [float(core.classical_dipole(x, 0.99, 0.0, 1.3)) for x in r],
+            "single_scatter": [float(core.single_scatter_exitance(x, 0.99, 0.0, 1.3, 1.0)) / t_in for x in r],
+        }
+        qd = post(url, "/api/profiles", {
+            "medium": {"sigma_a": 0.01, "sigma_s_reduced": 0.99, "g": 0.0, "eta": 1.3},
+            "scale": 1, "points": len(r), "models": ["quantized_diffusion"]})
+        check(qd["r"] == r, "the test's own request got other radii")
+        references["quantized_diffusion"] = qd["curves"][0]["values"]
+        for model, expected in references.items():
+            worst = max(relative_error(v, e) for v, e in zip(series[model]["values"], expected))
+            print(f"{model}: {len(r)} points, largest relative difference {worst:.3g}", flush=True)
+            check(worst <= TOLERANCE, f"{model}: differs from the C++ model by {worst:.3g}")
+        timing = driver.find_element(By.ID, "timing").text
+        print("timing:", timing, flush=True)
+        before = driver.execute_script("return window.explore.sphereUpdates")
+        wait_for(driver, f"return window.explore.sphereUpdates > {before} || "
+                 "window.explore.sphere && window.explore.lastProfile", "the lit sphere")
+        check_layout(driver, "2-albedo099-sqrt", ["profile-plot", "sphere-plot"])
+
+        # Every plot mode draws.
+        for mode in ("linear", "r", "log"):
+            before = driver.execute_script("return window.explore.updates")
+            Select(driver.find_element(By.ID, "plot-mode")).select_by_value(mode)
+            wait_for(driver, f"return window.explore.updates > {before} && window.explore.plotMode === '{mode}'",
+                     f"the {mode} plot")
+            trace = plotted(driver, "classical dipole")
+            values = driver.execute_script("return window.explore.series.dipole")
+            expected = [x * v for x, v in zip(values["r"], values["values"])] if mode == "r" else values["values"]
+            check(max(relative_error(a, b) for a, b in zip(trace["y"], expected)) < 1e-15,
+                  f"{mode}: plotted values are not the series'")
+
+        # A text model dropped into the folder, then the reload button.
+        (models / "exponential.toml").write_text(
+            'name = "exponential"\n'
+            'description = "A test profile: k alpha\' sigma_t\'^2 exp(-sigma_t\' r) / (2 pi)"\n'
+            'R_d = "k * alpha_reduced * sigma_t_reduced^2 * exp(-sigma_t_reduced * r) / (2 * pi)"\n'
+            '[[parameter]]\nname = "k"\nmin = 0\nmax = 4\ndefault = 2\n')
+        before = driver.execute_script("return window.explore.updates")
+        driver.find_element(By.ID, "reload-models").click()
+        wait_for(driver, f"return window.explore.updates > {before} && window.explore.series.exponential",
+                 "the text model's curve")
+        exponential = driver.execute_script("return window.explore.series.exponential")
+        expected = [2 * 0.99 * math.exp(-x) / (2 * math.pi) for x in exponential["r"]]
+        worst = max(relative_error(v, e) for v, e in zip(exponential["values"], expected))
+        check(worst <= TOLERANCE, f"the text model differs from its formula by {worst:.3g}")
+        check(driver.find_element(By.ID, "param-exponential-k").is_displayed(), "no slider for k")
+
+        # A Monte Carlo file with its error bars.
+        before = driver.execute_script("return window.explore.updates")
+        driver.find_element(By.CSS_SELECTOR, "#files input[data-path='0/albedo099.h5']").click()
+        wait_for(driver, f"return window.explore.updates > {before} && "
+                 "window.explore.series['mc:0/albedo099.h5:reflectance']", "the Monte Carlo curve")
+        error_bars = driver.execute_script(
+            "const t = document.getElementById('profile-plot').data.find(t => t.name.startsWith('MC'));"
+            "return t && t.error_y && t.error_y.array.filter(e => e > 0).length;")
+        check(error_bars and error_bars > 10, f"Monte Carlo error bars: {error_bars}")
+        check_layout(driver, "3-text-model-and-monte-carlo", ["profile-plot", "sphere-plot"])
+
+        # A bad text model: the reload answers with its file and line, the old models stay.
+        (models / "broken.toml").write_text('name = "broken"\nR_d = "exp(-r"\n')
+        driver.find_element(By.ID, "reload-models").click()
+        wait_for(driver, "return !document.getElementById('models-error').hidden", "the bad model's error")
+        message = driver.find_element(By.ID, "models-error").text
+        check("broken.toml:2: R_d" in message, f"bad model message: {message!r}")
+        check(driver.execute_script("return !!window.explore.series.exponential"), "the good models went away")
+        driver.save_screenshot(str(SHOTS / "4-bad-model.png"))
+
+        # The inversion: R_dr, l_d typed for the red channel give the coefficients the API gives.
+        driver.find_element(By.CSS_SELECTOR, "input[name=mode][value=appearance]").click()
+        before = driver.execute_script("return window.explore.updates")
+        set_field(driver, "R_dr-red", 0.5)
+        set_field(driver, "l_d-red", 2)
+        wait_for(driver, f"return window.explore.updates > {before} && "
+                 "Math.abs(window.explore.lastProfile.medium.sigma_a - 0.01) > 1e-6", "the inverted medium")
+        inverted = post(url, "/api/invert", {"model": "dipole", "R_dr": 0.5, "l_d": 2, "eta": 1.3, "g": 0})
+        time.sleep(0.3)
+        medium = driver.execute_script("return window.explore.lastProfile.medium")
+        check(relative_error(medium["sigma_a"], inverted["sigma_a"]) < 1e-12,
+              f"inverted sigma_a {medium['sigma_a']} against {inverted['sigma_a']}")
+        driver.save_screenshot(str(SHOTS / "5-inversion.png"))
+    finally:
+        driver.quit()
+        server.send_signal(2)  # SIGINT: the server stops cleanly
+        try:
+            code = server.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            server.kill()
+            code = "killed"
+        check(code == 0, f"the server ended with {code} on SIGINT")
+        shutil.rmtree(work, ignore_errors=True)
+    if failures:
+        print(f"{len(failures)} failures", flush=True)
+        sys.exit(1)
+    print("browser test passed", flush=True)
+
+
+if __name__ == "__main__":
+    main()
