@@ -374,7 +374,12 @@ let profileTimer = null;
 function update() {
   // At once, but one request per animation frame while a slider is dragged.
   if (profileTimer !== null) return;
-  profileTimer = requestAnimationFrame(() => { profileTimer = null; updateProfiles(); updateSphere(); });
+  profileTimer = requestAnimationFrame(() => {
+    profileTimer = null;
+    updateProfiles();
+    updateSphere();
+    if (window.meshView) window.meshView.materialChanged();
+  });
 }
 
 async function updateProfiles() {

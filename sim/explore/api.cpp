@@ -9,6 +9,8 @@
 #include <numbers>
 #include <set>
 
+#include "mesh_view.hpp"
+#include "request_fields.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/core/medium.hpp"
@@ -22,14 +24,13 @@
 namespace scatterlab {
 namespace {
 
-using json = nlohmann::json;
+using namespace explore_request;
+using Refusal = ApiRefusal;
 namespace fs = std::filesystem;
 
-// A request the API refuses: its status and message.
-struct Refusal {
-  int status;
-  std::string message;
-};
+HalfSpaceMedium request_medium(const json& request) {
+  return medium_of(request.value("medium", json()), "medium", scale_of(request));
+}
 
 constexpr int kMaxPoints = 2000;       // a plot's width in pixels is less
 constexpr int kMaxLitSphereBins = 90;  // 2 degrees apart
@@ -54,77 +55,6 @@ std::string error_json(const std::string& message) {
   return json{{"error", message}}.dump();
 }
 
-json parse_body(std::string_view body) {
-  json parsed = json::parse(body, nullptr, /*allow_exceptions=*/false);
-  if (parsed.is_discarded() || !parsed.is_object()) {
-    throw InputError("body", "not a JSON object", "a JSON object (see the API in the README)");
-  }
-  return parsed;
-}
-
-double number(const json& object, const std::string& key, const std::string& field,
-              std::optional<double> fallback = std::nullopt) {
-  const auto found = object.find(key);
-  if (found == object.end() || found->is_null()) {
-    if (fallback) return *fallback;
-    throw InputError(field, "missing", "a finite number");
-  }
-  if (!found->is_number() || !std::isfinite(found->get<double>())) {
-    throw InputError(field, "got " + found->dump(), "a finite number");
-  }
-  return found->get<double>();
-}
-
-int whole(const json& object, const std::string& key, const std::string& field, int fallback,
-          int lowest, int highest) {
-  const double value = number(object, key, field, fallback);
-  if (value != std::trunc(value) || value < lowest || value > highest) {
-    throw InputError(field, fmt::format("got {}", value),
-                     fmt::format("a whole number in [{}, {}]", lowest, highest));
-  }
-  return static_cast<int>(value);
-}
-
-// The request's medium in the plot's unit: its coefficients times `scale`.
-HalfSpaceMedium medium_of(const json& request) {
-  const auto found = request.find("medium");
-  if (found == request.end() || !found->is_object()) {
-    throw InputError("medium", "missing or not an object",
-                     "{\"sigma_a\", \"sigma_s\" or \"sigma_s_reduced\", \"g\", \"eta\"}");
-  }
-  const json& m = *found;
-  for (const auto& [key, value] : m.items()) {
-    static const std::set<std::string> known{"sigma_a", "sigma_s", "sigma_s_reduced", "g", "eta"};
-    if (!known.contains(key)) {
-      throw InputError("medium." + key, "unknown key", "sigma_a, sigma_s, sigma_s_reduced, g, eta");
-    }
-  }
-  const double scale = number(request, "scale", "scale", 1.0);
-  if (!(scale > 0.0)) {
-    throw InputError("scale", fmt::format("got {}", scale), "a finite number > 0");
-  }
-  HalfSpaceMedium medium;
-  medium.g = number(m, "g", "medium.g", 0.0);
-  medium.eta = number(m, "eta", "medium.eta", 1.0);
-  medium.sigma_a = number(m, "sigma_a", "medium.sigma_a") * scale;
-  const bool plain = m.contains("sigma_s"), reduced = m.contains("sigma_s_reduced");
-  if (plain == reduced) {
-    throw InputError("medium.sigma_s", plain ? "given with sigma_s_reduced" : "missing",
-                     "exactly one of sigma_s and sigma_s_reduced (= sigma_s (1 - g))");
-  }
-  medium.validate();  // g first: sigma_s_reduced is divided by 1 - g
-  // Similarity relation (Bitterli 2013 eq. 2.24): sigma_s = sigma_s' / (1 - g).
-  medium.sigma_s =
-      plain ? number(m, "sigma_s", "medium.sigma_s") * scale
-            : number(m, "sigma_s_reduced", "medium.sigma_s_reduced") * scale / (1.0 - medium.g);
-  medium.validate();
-  if (!(medium.sigma_t() > 0.0) || !std::isfinite(medium.sigma_t())) {
-    throw InputError("medium.sigma_a", "sigma_a + sigma_s is 0 or not finite",
-                     "coefficients whose sum is finite and > 0");
-  }
-  return medium;
-}
-
 // The entry transmittance of a beam at normal incidence, 1 - F_r(0) (core/fresnel.hpp).
 double entry_transmittance(double eta) {
   return 1.0 - fresnel_dielectric_terms(1.0, eta).reflectance();
@@ -136,11 +66,6 @@ double entry_transmittance(double eta) {
 double automatic_r_max(const HalfSpaceMedium& medium) {
   const double sigma_tr = std::sqrt(3.0 * medium.sigma_a * medium.reduced_sigma_t());
   return std::min(10.0 / sigma_tr, 50.0 / medium.reduced_sigma_t());
-}
-
-double milliseconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
 }
 
 json string_list(const std::vector<std::string>& values) {
@@ -174,6 +99,7 @@ ExploreApi::ExploreApi(ExploreOptions options) : options_(std::move(options)) {
     }
     folder = fs::canonical(folder);
   }
+  mesh_view_ = std::make_shared<const MeshView>(options_.open_folders);
   if (options_.models) {
     text_models_ =
         std::make_shared<const std::vector<TextModel>>(load_text_models(*options_.models));
@@ -181,6 +107,8 @@ ExploreApi::ExploreApi(ExploreOptions options) : options_(std::move(options)) {
     text_models_ = std::make_shared<const std::vector<TextModel>>();
   }
 }
+
+ExploreApi::~ExploreApi() = default;
 
 std::optional<fs::path> ExploreApi::page_file(std::string_view url_path) const {
   std::string relative(url_path);
@@ -222,9 +150,10 @@ ApiResponse ExploreApi::handle(std::string_view method, std::string_view path,
       response.file = *file;
       return response;
     }
-    const std::string_view gets[] = {"/api/info", "/api/presets", "/api/models", "/api/files",
-                                     "/api/file"};
-    const std::string_view posts[] = {"/api/profiles", "/api/invert", "/api/lit_sphere"};
+    const std::string_view gets[] = {"/api/info",  "/api/presets", "/api/models",
+                                     "/api/files", "/api/file",    "/api/meshes"};
+    const std::string_view posts[] = {"/api/profiles", "/api/invert", "/api/lit_sphere",
+                                      "/api/mesh_exitance"};
     const bool is_get = std::find(std::begin(gets), std::end(gets), path) != std::end(gets);
     const bool is_post = std::find(std::begin(posts), std::end(posts), path) != std::end(posts);
     if (!is_get && !is_post) throw Refusal{404, fmt::format("{}: no such API path", path)};
@@ -238,6 +167,8 @@ ApiResponse ExploreApi::handle(std::string_view method, std::string_view path,
     if (path == "/api/profiles") response.body = profiles(body);
     if (path == "/api/invert") response.body = invert(body);
     if (path == "/api/lit_sphere") response.body = lit_sphere(body);
+    if (path == "/api/meshes") response.body = mesh_view_->meshes();
+    if (path == "/api/mesh_exitance") response.body = mesh_view_->exitance(body);
   } catch (const Refusal& refusal) {
     response.status = refusal.status;
     response.body = error_json(refusal.message);
@@ -335,7 +266,7 @@ std::string ExploreApi::reload_models() const {
 
 std::string ExploreApi::profiles(std::string_view body) const {
   const json request = parse_body(body);
-  const HalfSpaceMedium medium = medium_of(request);
+  const HalfSpaceMedium medium = request_medium(request);
   const int points = whole(request, "points", "points", 256, 2, kMaxPoints);
   const double r_max = number(request, "r_max", "r_max", automatic_r_max(medium));
   if (!(r_max > 0.0)) {
@@ -426,7 +357,7 @@ std::string ExploreApi::invert(std::string_view body) const {
 
 std::string ExploreApi::lit_sphere(std::string_view body) const {
   const json request = parse_body(body);
-  const HalfSpaceMedium medium = medium_of(request);
+  const HalfSpaceMedium medium = request_medium(request);
   const double radius = number(request, "radius", "radius", 1.0);
   const int bins = whole(request, "bins", "bins", 36, 2, kMaxLitSphereBins);
   const int samples = whole(request, "samples", "samples", 2048, 2, kMaxLitSphereSamples);
@@ -454,58 +385,23 @@ std::string ExploreApi::lit_sphere(std::string_view body) const {
 
 std::string ExploreApi::files() const {
   json list = json::array();
-  for (std::size_t i = 0; i < options_.open_folders.size(); ++i) {
-    const fs::path& folder = options_.open_folders[i];
-    std::vector<std::string> names;
-    std::error_code error;
-    for (auto it = fs::recursive_directory_iterator(folder, error);
-         !error && it != fs::recursive_directory_iterator(); it.increment(error)) {
-      if (it.depth() > 3) it.disable_recursion_pending();
-      if (it->is_regular_file() && it->path().extension() == ".h5") {
-        names.push_back(fs::relative(it->path(), folder).generic_string());
-      }
-    }
-    std::sort(names.begin(), names.end());
-    for (const std::string& name : names) {
-      list.push_back(
-          {{"path", fmt::format("{}/{}", i, name)}, {"folder", folder.string()}, {"name", name}});
-    }
+  for (const OpenFile& file : open_files(options_.open_folders, ".h5")) {
+    list.push_back({{"path", file.path}, {"folder", file.folder.string()}, {"name", file.name}});
   }
   return list.dump();
 }
 
 std::string ExploreApi::file(const std::map<std::string, std::string>& query) const {
   const auto found = query.find("path");
-  const std::string accepted =
-      "I/NAME: the index I of an open folder and a file's name in it "
-      "(as /api/files lists them)";
-  if (found == query.end()) throw InputError("path", "missing", accepted);
+  if (found == query.end()) {
+    throw InputError("path", "missing",
+                     "I/NAME: the index I of an open folder and a file's name "
+                     "in it (as /api/files lists them)");
+  }
   const std::string& path = found->second;
-  const auto slash = path.find('/');
-  std::size_t index = 0;
-  try {
-    std::size_t used = 0;
-    index = std::stoul(path.substr(0, slash), &used);
-    if (used != slash) throw std::invalid_argument("path");
-  } catch (const std::exception&) {
-    throw InputError("path", fmt::format("got \"{}\"", path), accepted);
-  }
-  if (slash == std::string::npos || index >= options_.open_folders.size()) {
-    throw InputError(
-        "path", fmt::format("got \"{}\" ({} open folders)", path, options_.open_folders.size()),
-        accepted);
-  }
-  const fs::path& folder = options_.open_folders[index];
-  const fs::path candidate = folder / fs::path(path.substr(slash + 1));
-  if (!lies_inside(candidate, folder)) {
-    throw Refusal{403,
-                  fmt::format("path: {} lies outside the open folder {}", path, folder.string())};
-  }
-  std::error_code error;
-  if (!fs::is_regular_file(candidate, error) || candidate.extension() != ".h5") {
-    throw InputError("path", fmt::format("{} is not a file of the folder", path),
-                     "a searchlight file (*.h5) that /api/files lists");
-  }
+  const fs::path candidate = resolve_open_file(options_.open_folders, path, "path", ".h5",
+                                               "a searchlight file (*.h5) that /api/files lists")
+                                 .file;
   hdf5::File file = hdf5::File::open_read_only(candidate);
   const hdf5::Group& root = file.root();
   if (!root.has_member("parameters") ||

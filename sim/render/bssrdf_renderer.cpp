@@ -7,7 +7,6 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <numbers>
 #include <span>
 
 #include "scatterlab/core/error.hpp"
@@ -107,12 +106,8 @@ BssrdfResult render_bssrdf(const RenderScene& scene, const BssrdfSettings& setti
   std::vector<double> power(cloud.size());
   for (std::size_t i = 0; i < cloud.size(); ++i) power[i] = result.irradiance[i] * cloud.point_area;
   const PointOctree octree(cloud.positions, power, cloud.point_area);
-  // One point's disc, A_p = pi rho^2; no two points of the mesh are farther apart than its box's
-  // diagonal.
-  const double rho = std::sqrt(cloud.point_area / std::numbers::pi);
-  const double r_max = 1.01 * scene.mesh.bounds().diagonal() + 2.0 * rho;
-  std::vector<RadialKernel> kernels;
-  for (const DiffusionProfile& profile : profiles) kernels.emplace_back(profile, rho, r_max);
+  const std::vector<RadialKernel> kernels =
+      cloud_kernels(profiles, cloud.point_area, scene.mesh.bounds());
   result.octree_nodes = octree.node_count();
   result.octree_depth = octree.depth();
   result.seconds_octree = seconds_since(start);

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -330,12 +331,20 @@ double nearest_neighbour_spread(const PointCloud& cloud) {
   return std::sqrt(variance) / mean;
 }
 
-std::vector<double> point_irradiance(const RenderScene& scene, const PointCloud& cloud,
-                                     bool occlusion, int threads) {
-  const std::vector<LightPoint> lights =
-      light_points(scene.light, scene.light_samples, scene.mesh.bounds().center());
-  const MeshRayTracer tracer(scene.mesh);
-  const double eps = tracer.epsilon();
+namespace {
+
+// E_t at every point from light sources seen along directions: sources(p, emit) calls
+// emit(direction to the source, its irradiance normal to that direction, distance to it) for each
+// source seen from point p. E_t(p) = sum F_t(eta, cos theta) cos theta E_normal V (Bitterli eq.
+// 2.14's cos(theta_i) L_i dw_i, times the entry F_t of eq. 2.16), V the visibility along the
+// direction when `occlusion` (an Embree ray from just outside the facet; a source behind the
+// facet itself is blocked by it).
+template <class Sources>
+std::vector<double> irradiance_from(const TriangleMesh& mesh, const PointCloud& cloud, double eta,
+                                    bool occlusion, int threads, const Sources& sources) {
+  std::optional<MeshRayTracer> tracer;
+  if (occlusion) tracer.emplace(mesh);
+  const double eps = occlusion ? tracer->epsilon() : 0.0;
   const auto n = static_cast<std::ptrdiff_t>(cloud.size());
   std::vector<double> irradiance(cloud.size(), 0.0);
 #pragma omp parallel for schedule(dynamic, 256) \
@@ -344,27 +353,51 @@ std::vector<double> point_irradiance(const RenderScene& scene, const PointCloud&
     const auto k = static_cast<std::size_t>(i);
     const Vec3& p = cloud.positions[k];
     const Vec3& normal = cloud.normals[k];
-    const Vec3 facet = scene.mesh.geometric_normal(cloud.triangles[k]);
+    const Vec3 facet = mesh.geometric_normal(cloud.triangles[k]);
     double sum = 0.0;
-    for (const LightPoint& light : lights) {
-      const Vec3 to_light = light.position - p;
-      const double d2 = to_light.squaredNorm();
-      const double d = std::sqrt(d2);
-      const Vec3 direction = to_light / d;
+    sources(p, [&](const Vec3& direction, double normal_irradiance, double distance) {
       const double cos_in = normal.dot(direction);
-      if (!(cos_in > 0.0)) continue;
+      if (!(cos_in > 0.0)) return;
       if (occlusion) {
-        // From just outside the facet; a light behind the facet itself is blocked by it.
-        if (!(facet.dot(direction) > 0.0)) continue;
-        if (tracer.occluded(p + eps * facet, direction, 0.0, d - 2.0 * eps)) continue;
+        if (!(facet.dot(direction) > 0.0)) return;
+        if (tracer->occluded(p + eps * facet, direction, 0.0, distance - 2.0 * eps)) return;
       }
-      // Bitterli eq. 2.14 for a point source: cos(theta_i) I / d^2, times the entry F_t of
-      // eq. 2.16.
-      sum += fresnel_dielectric_transmittance(cos_in, scene.eta) * cos_in * light.intensity / d2;
-    }
+      sum += fresnel_dielectric_transmittance(cos_in, eta) * cos_in * normal_irradiance;
+    });
     irradiance[k] = sum;
   }
   return irradiance;
+}
+
+}  // namespace
+
+std::vector<double> point_irradiance(const RenderScene& scene, const PointCloud& cloud,
+                                     bool occlusion, int threads) {
+  const std::vector<LightPoint> lights =
+      light_points(scene.light, scene.light_samples, scene.mesh.bounds().center());
+  // A point source of intensity I at distance d: irradiance I / d^2 normal to the direction.
+  return irradiance_from(scene.mesh, cloud, scene.eta, occlusion, threads,
+                         [&](const Vec3& p, const auto& emit) {
+                           for (const LightPoint& light : lights) {
+                             const Vec3 to_light = light.position - p;
+                             const double d2 = to_light.squaredNorm();
+                             const double d = std::sqrt(d2);
+                             emit(Vec3(to_light / d), light.intensity / d2, d);
+                           }
+                         });
+}
+
+std::vector<double> directional_irradiance(const TriangleMesh& mesh, const PointCloud& cloud,
+                                           const DirectionalLight& light, double eta,
+                                           bool occlusion, int threads) {
+  const double norm = light.to_light.norm();
+  if (!(norm > 0.0) || !std::isfinite(norm)) {
+    throw InputError("light.direction", "zero or not finite", "a direction of length > 0");
+  }
+  const Vec3 to_light = light.to_light / norm;
+  return irradiance_from(mesh, cloud, eta, occlusion, threads, [&](const Vec3&, const auto& emit) {
+    emit(to_light, light.irradiance, std::numeric_limits<double>::infinity());
+  });
 }
 
 }  // namespace scatterlab

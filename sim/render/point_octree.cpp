@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "scatterlab/core/error.hpp"
@@ -114,6 +115,16 @@ void PointOctree::sum_points(const Vec3& x, std::uint32_t begin, std::uint32_t e
     const double power = power_[i];
     for (std::size_t c = 0; c < channels; ++c) exitance[c] += power * kernels[c].at(place);
   }
+}
+
+std::vector<RadialKernel> cloud_kernels(std::span<const DiffusionProfile> profiles,
+                                        double point_area, const BoundingBox& bounds) {
+  const double rho = std::sqrt(point_area / std::numbers::pi);
+  const double r_max = 1.01 * bounds.diagonal() + 2.0 * rho;
+  std::vector<RadialKernel> kernels;
+  kernels.reserve(profiles.size());
+  for (const DiffusionProfile& profile : profiles) kernels.emplace_back(profile, rho, r_max);
+  return kernels;
 }
 
 namespace {

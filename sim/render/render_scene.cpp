@@ -439,8 +439,12 @@ RenderScene parse_render_scene(std::string_view toml_text, const std::string& or
 }
 
 SceneMesh load_scene_mesh(const std::filesystem::path& scene) {
-  return RenderSceneReader(scene.string(), scene.parent_path())
-      .read_mesh_only(parse_toml(read_text(scene), scene.string()));
+  return parse_scene_mesh(read_text(scene), scene.string(), scene.parent_path());
+}
+
+SceneMesh parse_scene_mesh(std::string_view toml_text, const std::string& origin,
+                           const std::filesystem::path& base) {
+  return RenderSceneReader(origin, base).read_mesh_only(parse_toml(toml_text, origin));
 }
 
 RenderScene load_render_scene(const std::filesystem::path& path) {

@@ -69,7 +69,9 @@ def browser():
     options = webdriver.ChromeOptions()
     options.binary_location = shutil.which("chromium") or "/usr/bin/chromium"
     for flag in ("--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--disable-gpu",
-                 "--window-size=1500,1250", "--force-device-scale-factor=1"):
+                 "--window-size=1500,1250", "--force-device-scale-factor=1",
+                 # WebGL without a GPU (the mesh view): SwiftShader.
+                 "--use-angle=swiftshader", "--enable-unsafe-swiftshader"):
         options.add_argument(flag)
     driver_path = shutil.which("chromedriver") or "/usr/bin/chromedriver"
     return webdriver.Chrome(service=Service(driver_path), options=options)
@@ -131,6 +133,56 @@ def check_layout(driver, name, plots):
           f"{name}: error shown: {driver.find_element(By.ID, 'error').text}")
 
 
+# The mesh view's WebGL canvas, scaled down: the share of pixels unlike the background, and the
+# pixels themselves.
+CANVAS = """
+const source = document.getElementById('mesh-canvas');
+const copy = document.createElement('canvas'); copy.width = 200; copy.height = 120;
+const context = copy.getContext('2d'); context.drawImage(source, 0, 0, 200, 120);
+const pixels = context.getImageData(0, 0, 200, 120).data; let ink = 0; const values = [];
+for (let i = 0; i < pixels.length; i += 4) {
+  values.push(pixels[i], pixels[i + 1], pixels[i + 2]);
+  if (Math.abs(pixels[i] - 0x1d) + Math.abs(pixels[i + 1] - 0x22) + Math.abs(pixels[i + 2] - 0x29) > 30) ++ink;
+}
+return [ink / (200 * 120), values];
+"""
+
+
+def check_mesh_view(driver, runs):
+    """The BSSRDF on a mesh: drawn, changed by the light, and an OBJ file of the open folder."""
+    driver.execute_script("document.getElementById('mesh-controls').scrollIntoView()")
+    wait_for(driver, "return (window.explore.meshUpdates || 0) > 0", "the mesh view's first exitance", 120)
+    time.sleep(0.3)
+    ink, before = driver.execute_script(CANVAS)
+    check(0.05 < ink < 0.9, f"mesh view looks blank or filled (ink {ink:.3f})")
+    driver.save_screenshot(str(SHOTS / "6-mesh.png"))
+    updates = driver.execute_script("return window.explore.meshUpdates")
+    driver.execute_script("const s = document.getElementById('light-azimuth'); s.value = 120;"
+                          "s.dispatchEvent(new Event('input'));")
+    wait_for(driver, f"return window.explore.meshUpdates > {updates} && "
+             "window.explore.mesh.light.azimuth === 120", "the exitance for the moved light")
+    time.sleep(0.3)
+    _, after = driver.execute_script(CANVAS)
+    change = sum(abs(a - b) for a, b in zip(before, after)) / len(before)
+    check(change > 2.0, f"the mesh view did not change with the light (mean change {change:.2f})")
+    ms = driver.execute_script("return window.explore.mesh.ms")
+    print(f"mesh view: light moved, server ms {ms}", flush=True)
+    check("server ms" in driver.find_element(By.ID, "mesh-timing").text, "no mesh timing line")
+    driver.save_screenshot(str(SHOTS / "7-mesh-light-moved.png"))
+    # An OBJ file of the open folder, in the chooser.
+    options = [o.get_attribute("value") for o in driver.find_elements(By.CSS_SELECTOR, "#mesh-shape option")]
+    check("obj:0/cube.obj" in options, f"the OBJ file is not offered: {options}")
+    updates = driver.execute_script("return window.explore.meshUpdates")
+    Select(driver.find_element(By.ID, "mesh-shape")).select_by_value("obj:0/cube.obj")
+    wait_for(driver, f"return window.explore.meshUpdates > {updates}", "the OBJ mesh", 60)
+    time.sleep(0.3)
+    ink, _ = driver.execute_script(CANVAS)
+    check(0.02 < ink < 0.9, f"OBJ mesh view looks blank or filled (ink {ink:.3f})")
+    check(not driver.find_element(By.ID, "error").is_displayed(),
+          f"mesh view: error shown: {driver.find_element(By.ID, 'error').text}")
+    driver.save_screenshot(str(SHOTS / "8-mesh-obj.png"))
+
+
 def main():
     SHOTS.mkdir(parents=True, exist_ok=True)
     work = Path(tempfile.mkdtemp(prefix="scatterlab-browser-"))
@@ -141,6 +193,11 @@ def main():
     subprocess.run([str(PROGRAM), "searchlight", "--photons", "20000", "--batches", "4",
                     "--threads", "1", "--r-bins", "40", "--out", str(runs / "albedo099.h5")],
                    check=True, capture_output=True)
+    # A cube (counter-clockwise seen from outside) for the mesh view's OBJ chooser.
+    (runs / "cube.obj").write_text(
+        "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+        "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\n"
+        "f 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n")
     server, url = start_server(models, runs)
     driver = browser()
     try:
@@ -260,6 +317,8 @@ def main():
         check(relative_error(medium["sigma_a"], inverted["sigma_a"]) < 1e-12,
               f"inverted sigma_a {medium['sigma_a']} against {inverted['sigma_a']}")
         driver.save_screenshot(str(SHOTS / "5-inversion.png"))
+
+        check_mesh_view(driver, runs)
     finally:
         driver.quit()
         server.send_signal(2)  # SIGINT: the server stops cleanly

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <thread>
 
 #include "../unit/scratch_directory.hpp"
@@ -18,6 +19,11 @@
 #include "scatterlab/models/parameter_inversion.hpp"
 #include "scatterlab/refract/half_space_single_scatter.hpp"
 #include "scatterlab/transport/searchlight.hpp"
+#if SCATTERLAB_EXPLORE_MESH
+#include "scatterlab/render/point_cloud.hpp"
+#include "scatterlab/render/point_octree.hpp"
+#include "scatterlab/render/render_scene.hpp"
+#endif
 
 // Last: httplib includes <resolv.h>, whose macro _res breaks Eigen's headers included after it.
 #include <httplib.h>
@@ -437,6 +443,162 @@ TEST_F(ExploreApiTest, TheServerAnswersOnALoopbackPort) {
   server.stop();
   serving.join();
 }
+
+#if SCATTERLAB_EXPLORE_MESH
+// The BSSRDF on a mesh (explore/mesh_view.hpp): skim milk's coefficients per channel in mm (Jensen
+// et al. 2001, Table 2) on meshes of a few mm, small clouds so that each request takes
+// milliseconds.
+json mesh_request(const json& mesh, double azimuth, double elevation, bool occlusion = true) {
+  json media = json::array();
+  const double sigma_a[] = {0.0014, 0.0025, 0.0142}, sigma_s[] = {0.70, 1.22, 1.90};
+  for (int c = 0; c < 3; ++c) media.push_back(medium(sigma_a[c], sigma_s[c], 0.0, 1.3));
+  return {{"mesh", mesh},           {"points", 512},
+          {"media", media},         {"scale", 1.0},
+          {"model", "dipole"},      {"light", {{"azimuth", azimuth}, {"elevation", elevation}}},
+          {"occlusion", occlusion}, {"cluster_angle", 0.05}};
+}
+
+TEST_F(ExploreApiTest, MeshExitanceAtVerticesIsTheOctreeEvaluatedThere) {
+  const json request = mesh_request({{"shape", "sphere"}}, 30.0, 40.0);
+  const ApiResponse response = post("/api/mesh_exitance", request);
+  ASSERT_EQ(response.status, 200) << response.body;
+  const json answer = body_of(response);
+  const std::size_t vertices = answer["mesh"]["vertices"];
+  ASSERT_EQ(answer["mesh"]["positions"].size(), 3 * vertices);
+  ASSERT_EQ(answer["mesh"]["normals"].size(), 3 * vertices);
+  ASSERT_EQ(answer["exitance"].size(), 3 * vertices);
+  EXPECT_EQ(answer["cloud"]["points"], 512);
+  EXPECT_TRUE(answer["units"].contains("exitance"));
+  EXPECT_GT(answer["ms"]["total"].get<double>(), 0.0);
+  EXPECT_EQ(answer["exit_weight"]["weight"].size(), answer["exit_weight"]["cos_outside"].size());
+
+  // The same steps by hand (point_cloud.hpp, point_octree.hpp): the sphere's edges are shorter
+  // than the cloud's spacing, so the page's mesh is the sphere itself.
+  const SceneMesh sphere = parse_scene_mesh("[mesh]\nshape = \"sphere\"\n", "test");
+  ASSERT_EQ(sphere.mesh.positions.size(), vertices);
+  PointCloudOptions options;
+  options.points = 512;
+  const PointCloud cloud = make_point_cloud(sphere.mesh, options);
+  DirectionalLight light;
+  const double a = 30.0 * std::numbers::pi / 180.0, e = 40.0 * std::numbers::pi / 180.0;
+  light.to_light = Vec3(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e));
+  const std::vector<double> irradiance =
+      directional_irradiance(sphere.mesh, cloud, light, 1.3, true);
+  std::vector<double> power(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) power[i] = irradiance[i] * cloud.point_area;
+  const PointOctree octree(cloud.positions, power, cloud.point_area);
+  std::vector<DiffusionProfile> profiles;
+  const double sigma_a[] = {0.0014, 0.0025, 0.0142}, sigma_s[] = {0.70, 1.22, 1.90};
+  for (int c = 0; c < 3; ++c) {
+    profiles.emplace_back(ProfileModel::dipole, HalfSpaceMedium{sigma_a[c], sigma_s[c], 0.0, 1.3});
+  }
+  const std::vector<RadialKernel> kernels =
+      cloud_kernels(profiles, cloud.point_area, sphere.mesh.bounds());
+  int lit = 0;
+  for (std::size_t v = 0; v < vertices; ++v) {
+    double m[3];
+    OctreeQuery query;
+    octree.exitance(sphere.mesh.positions[v], 0.05, kernels, m, query);
+    for (std::size_t c = 0; c < 3; ++c) {
+      EXPECT_DOUBLE_EQ(answer["exitance"][3 * v + c].get<double>(), m[c]) << v << " " << c;
+    }
+    lit += m[0] > 0.0;
+  }
+  EXPECT_GT(lit, 0);
+  // The second request for the same cloud finds it cached; the geometry can be left out.
+  json again = request;
+  again["geometry"] = false;
+  ExploreApi explorer = api();
+  explorer.handle("POST", "/api/mesh_exitance", {}, request.dump());
+  const json second = body_of(explorer.handle("POST", "/api/mesh_exitance", {}, again.dump()));
+  EXPECT_TRUE(second["cloud"]["cached"].get<bool>());
+  EXPECT_FALSE(second["mesh"].contains("positions"));
+  EXPECT_EQ(second["exitance"], answer["exitance"]);
+}
+
+TEST_F(ExploreApiTest, MeshLitFromTheOppositeSideIsShadowedWithOcclusion) {
+  // A bumpy sphere: its bumps shadow one another at a grazing light.
+  const json mesh{{"shape", "bumpy_sphere"}, {"amplitude", 0.15}, {"frequency", 4}};
+  const auto answer = [&](double azimuth, bool occlusion) {
+    const ApiResponse response =
+        post("/api/mesh_exitance", mesh_request(mesh, azimuth, 5.0, occlusion));
+    EXPECT_EQ(response.status, 200) << response.body;
+    return body_of(response);
+  };
+  const json east = answer(0.0, true), west = answer(180.0, true), open = answer(180.0, false);
+  EXPECT_NE(east["exitance"], west["exitance"]);
+  EXPECT_LT(west["cloud"]["lit_points"].get<int>(), open["cloud"]["lit_points"].get<int>());
+  // Vertices facing +x are brighter lit from +x than from -x, and the other way round (skim
+  // milk carries the light around a sphere of 1 mm: not ten times).
+  const json& positions = east["mesh"]["positions"];
+  double east_side[2] = {0, 0}, west_side[2] = {0, 0};
+  for (std::size_t v = 0; v < positions.size() / 3; ++v) {
+    const double x = positions[3 * v];
+    double* side = x > 0.5 ? east_side : x < -0.5 ? west_side : nullptr;
+    if (side == nullptr) continue;
+    side[0] += east["exitance"][3 * v].get<double>();
+    side[1] += west["exitance"][3 * v].get<double>();
+  }
+  EXPECT_GT(east_side[0], 1.5 * east_side[1]);
+  EXPECT_GT(west_side[1], 1.5 * west_side[0]);
+}
+
+TEST_F(ExploreApiTest, MeshFromAnObjFileOfAnOpenFolder) {
+  // A unit cube, counter-clockwise seen from outside.
+  write(open_ / "cube.obj",
+        "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+        "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\n"
+        "f 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n");
+  const json listed = body_of(api().handle("GET", "/api/meshes", {}, ""));
+  ASSERT_EQ(listed["obj_files"].size(), 1u);
+  EXPECT_EQ(listed["obj_files"][0]["path"], "0/cube.obj");
+  const ApiResponse response = post(
+      "/api/mesh_exitance", mesh_request({{"shape", "obj"}, {"path", "0/cube.obj"}}, 0.0, 30.0));
+  ASSERT_EQ(response.status, 200) << response.body;
+  const json answer = body_of(response);
+  // Flat facets: the page's mesh splits them until its edges are below the points' spacing.
+  EXPECT_GT(answer["mesh"]["triangles"].get<int>(), 12);
+  EXPECT_EQ(answer["mesh"]["mesh_triangles"], 12);
+}
+
+TEST_F(ExploreApiTest, BadMeshRequestsNameTheirField) {
+  write(directory_ / "outside.obj", "v 0 0 0\n");
+  const auto refused = [&](json request, int status, const std::string& field) {
+    const ApiResponse response = post("/api/mesh_exitance", request);
+    EXPECT_EQ(response.status, status) << response.body;
+    EXPECT_NE(body_of(response)["error"].get<std::string>().find(field), std::string::npos)
+        << response.body;
+  };
+  const json good = mesh_request({{"shape", "sphere"}}, 0.0, 45.0);
+  json bad = good;
+  bad["mesh"]["shape"] = "teapot";
+  refused(bad, 400, "mesh.shape");
+  bad = good;
+  bad["mesh"] = {{"shape", "obj"}, {"path", "0/../outside.obj"}};
+  refused(bad, 403, "mesh.path");
+  bad["mesh"]["path"] = "7/cube.obj";
+  refused(bad, 400, "mesh.path");
+  bad = good;
+  bad["light"]["elevation"] = 120;
+  refused(bad, 400, "light.elevation");
+  bad = good;
+  bad["light"]["azimuth"] = "east";
+  refused(bad, 400, "light.azimuth");
+  bad = good;
+  bad["media"].erase(1);
+  refused(bad, 400, "media");
+  bad = good;
+  bad["model"] = "measured";
+  refused(bad, 400, "model");
+  bad = good;
+  bad["points"] = 3;
+  refused(bad, 400, "points");
+  bad = good;
+  bad["mesh"]["radius"] = -1;
+  refused(bad, 400, "mesh.radius");
+  EXPECT_EQ(api().handle("GET", "/api/mesh_exitance", {}, "").status, 405);
+}
+#endif
 
 }  // namespace
 }  // namespace scatterlab

@@ -15,6 +15,18 @@
 //                          angle from the lit pole (models/lit_sphere_exitance.hpp)
 //   GET  /api/files        the searchlight files (*.h5) in the open folders
 //   GET  /api/file?path=I/NAME   the reflectance tallies of file NAME of open folder I
+//   GET  /api/meshes       the mesh view's built-in shapes and the OBJ files (*.obj) in the open
+//                          folders (explore/mesh_view.hpp)
+//   POST /api/mesh_exitance  the BSSRDF on a mesh (Bitterli 2013 §3.1.2): {"mesh": {"shape",
+//                          its parameters as a render scene's [mesh] table, or "path": "I/NAME"
+//                          of an OBJ file}, "points", "seed", "relaxation", "media": [red, green,
+//                          blue] (each a "medium" as above), "scale", "model", "light":
+//                          {"azimuth", "elevation" (degrees, z up), "irradiance"}, "occlusion",
+//                          "cluster_angle", "geometry"} -> the mesh the page draws (positions,
+//                          normals, indices unless geometry is false), the multiple-scattering
+//                          exitance M at its vertices per channel, the exit factor's table, the
+//                          units and the milliseconds of each step. 501 without the render
+//                          component.
 //   GET  /, /FILE          the page's files (its folder only)
 //
 // Units: coefficients in 1 / (the material's length unit); `scale` (> 0) is that unit's length in
@@ -40,6 +52,8 @@
 
 namespace scatterlab {
 
+class MeshView;
+
 struct ExploreOptions {
   std::filesystem::path page;                       // the page's folder (index.html, ...)
   std::vector<std::filesystem::path> open_folders;  // --open: files the page may read
@@ -58,6 +72,7 @@ class ExploreApi {
   // Checks the folders (InputError "page", "open", "models") and loads the text models (a bad
   // file is TextModel's InputError).
   explicit ExploreApi(ExploreOptions options);
+  ~ExploreApi();
 
   ApiResponse handle(std::string_view method, std::string_view path,
                      const std::map<std::string, std::string>& query, std::string_view body) const;
@@ -82,6 +97,7 @@ class ExploreApi {
   ExploreOptions options_;
   mutable std::mutex models_mutex_;  // the server answers on several threads
   mutable std::shared_ptr<const std::vector<TextModel>> text_models_;
+  std::shared_ptr<const MeshView> mesh_view_;  // its own cache of meshes and point clouds
 };
 
 // The inclusive-of-nothing check every served path goes through: `candidate` (made absolute and

@@ -27,6 +27,12 @@
 // Bitterli eq. 2.14's cos(theta_i) L_i dw_i for a point source with the BSSRDF's entry F_t, so
 // that sum_p E_t(p) A_p R_d is the exitance the BSSRDF gives (eq. 2.16). Units: W / length^2 for
 // I in W/sr, lengths in the mesh's unit.
+//
+// A directional light (the explorer's, Bitterli §3.1.2: a light the user rotates about the
+// object) is the limit of a point light far away: a beam of irradiance E_0 normal to it arriving
+// from the unit direction w_l, so that
+//   E_t(p) = E_0 F_t(eta, cos theta_i) cos theta_i V(p),   cos theta_i = n(p) . w_l,
+// with V the visibility along w_l (a shadow ray from p towards the light, unbounded).
 
 #include <cstdint>
 #include <vector>
@@ -75,5 +81,17 @@ double nearest_neighbour_spread(const PointCloud& cloud);
 // threads: 0 uses all (the result does not depend on it).
 std::vector<double> point_irradiance(const RenderScene& scene, const PointCloud& cloud,
                                      bool occlusion, int threads = 0);
+
+struct DirectionalLight {
+  Vec3 to_light = Vec3::UnitZ();  // towards the light (need not be unit; the light travels along
+                                  // -to_light)
+  double irradiance = 1.0;        // E_0, W / length^2 on a plane normal to the beam
+};
+
+// E_t at every point (above) for a directional light on `mesh` (the mesh the cloud was made on),
+// eta = n_inside / n_outside. Throws InputError("light.direction", ...) for a zero direction.
+std::vector<double> directional_irradiance(const TriangleMesh& mesh, const PointCloud& cloud,
+                                           const DirectionalLight& light, double eta,
+                                           bool occlusion, int threads = 0);
 
 }  // namespace scatterlab

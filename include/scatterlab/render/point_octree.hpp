@@ -88,6 +88,12 @@ class RadialKernel {
 // Up to three channels (red, green, blue), one kernel each.
 inline constexpr int max_kernel_channels = 3;
 
+// One kernel per profile for a cloud whose points each stand for `point_area` on a mesh inside
+// `bounds`: rho the radius of one point's disc (A_p = pi rho^2), r_max past the box's diagonal
+// (no two points of the mesh are farther apart), so that the kernels share one grid.
+std::vector<RadialKernel> cloud_kernels(std::span<const DiffusionProfile> profiles,
+                                        double point_area, const BoundingBox& bounds);
+
 struct OctreeQuery {
   std::uint64_t evaluations = 0;  // R_d lookups: points summed plus nodes clustered
   std::uint64_t clusters = 0;     // nodes evaluated as one point

@@ -99,6 +99,10 @@ struct SceneMesh {
   std::string source;
 };
 SceneMesh load_scene_mesh(const std::filesystem::path& scene);
+// The same from a TOML text holding a [mesh] table (the explorer's meshes); `base` resolves
+// relative OBJ paths.
+SceneMesh parse_scene_mesh(std::string_view toml_text, const std::string& origin,
+                           const std::filesystem::path& base = {});
 
 // `base` resolves relative OBJ paths.
 RenderScene parse_render_scene(std::string_view toml_text, const std::string& origin,
