@@ -175,6 +175,11 @@ def check_mesh_view(driver, runs):
     updates = driver.execute_script("return window.explore.meshUpdates")
     Select(driver.find_element(By.ID, "mesh-shape")).select_by_value("obj:0/cube.obj")
     wait_for(driver, f"return window.explore.meshUpdates > {updates}", "the OBJ mesh", 60)
+    # A cube's edges are sharp: with smoothed normals its faces would shade as if rounded.
+    updates = driver.execute_script("return window.explore.meshUpdates")
+    driver.find_element(By.ID, "mesh-flat").click()
+    wait_for(driver, f"return window.explore.meshUpdates > {updates}", "the flat cube", 60)
+    driver.execute_script("document.getElementById('mesh-controls').scrollIntoView()")
     time.sleep(0.3)
     ink, _ = driver.execute_script(CANVAS)
     check(0.02 < ink < 0.9, f"OBJ mesh view looks blank or filled (ink {ink:.3f})")
