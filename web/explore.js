@@ -301,6 +301,7 @@ function profileTraces(answer, mode) {
   });
   // Monte Carlo files, with their standard errors as error bars.
   Object.values(state.openFiles).forEach((file, n) => {
+    if (file.kind !== 'searchlight') return;
     for (const tally of file.tallies) {
       if (!$(`tally-${file.path}-${tally.name}`) || !$(`tally-${file.path}-${tally.name}`).checked) continue;
       const upper = [], lower = [];
@@ -427,6 +428,22 @@ async function drawSphere() {
       error_y: { type: 'data', array: c.stderr, thickness: 1, width: 2 },
       hovertemplate: `ψ = %{x:.1f}°<br>M = %{y:.5g}<extra>%{fullData.name}</extra>`,
     }));
+    // Path-traced lit spheres (Bitterli §3.1.3) from the open files, as points with error bars.
+    Object.values(state.openFiles).forEach((file, n) => {
+      if (file.kind !== 'lit_sphere') return;
+      const x = file.psi.map((p) => (p * 180) / Math.PI);
+      for (const tally of file.tallies) {
+        const box = $(`tally-${file.path}-${tally.name}`);
+        if (!box || !box.checked) continue;
+        traces.push({
+          name: `path traced ${file.name}: ${tally.name} (R = ${format(file.radius)} ${file.medium.length_unit})`,
+          x, y: tally.mean, mode: 'markers',
+          marker: { color: MC_COLOURS[n % MC_COLOURS.length], size: 6, symbol: 'circle-open' },
+          error_y: { type: 'data', array: tally.stderr, thickness: 1, width: 2 },
+          hovertemplate: `ψ = %{x:.1f}°<br>M = %{y:.5g}<extra>%{fullData.name}</extra>`,
+        });
+      }
+    });
     const layout = {
       title: { text: `Lit sphere, radius ${format(request.radius)} ${plotUnit()}: exitance per unit power meeting it`, font: { size: 14 } },
       xaxis: { title: { text: 'ψ from the lit pole  [degrees]' }, range: [0, 180], dtick: 30 },
@@ -490,7 +507,7 @@ async function buildFiles() {
   const box = $('files');
   if (state.files.length === 0) {
     box.innerHTML = state.info.open_folders.length
-      ? `<p class="note">no searchlight files (*.h5) in ${state.info.open_folders.join(', ')}</p>`
+      ? `<p class="note">no searchlight or lit-sphere files (*.h5) in ${state.info.open_folders.join(', ')}</p>`
       : '<p class="note">none: start with --open FOLDER</p>';
     return;
   }
@@ -519,15 +536,16 @@ async function toggleFile(file, on, row) {
     box.className = 'tallies parameter';
     const m = answer.medium;
     box.innerHTML = answer.tallies.map((t) =>
-      `<label title="${t.description}"><input type="checkbox" id="tally-${file.path}-${t.name}" ${t.name === 'reflectance' ? 'checked' : ''}> ${t.name}</label>`).join(' ') +
-      `<br><span class="note">σ<sub>a</sub> ${format(m.sigma_a)}, σ<sub>s</sub> ${format(m.sigma_s)}, g ${format(m.g)}, η ${format(m.eta)} (1/${m.length_unit})</span> ` +
-      '<button type="button">use this medium</button>';
+      `<label title="${t.description}"><input type="checkbox" id="tally-${file.path}-${t.name}" ${t.name === (answer.kind === 'lit_sphere' ? 'exitance_multiple' : 'reflectance') ? 'checked' : ''}> ${t.name}</label>`).join(' ') +
+      `<br><span class="note">${answer.kind === 'lit_sphere' ? `lit sphere, R = ${format(answer.radius)} ${m.length_unit}; ` : ''}σ<sub>a</sub> ${format(m.sigma_a)}, σ<sub>s</sub> ${format(m.sigma_s)}, g ${format(m.g)}, η ${format(m.eta)} (1/${m.length_unit})</span> ` +
+      `<button type="button">use this medium${answer.kind === 'lit_sphere' ? ' and radius' : ''}</button>`;
     box.querySelectorAll('input').forEach((input) => input.addEventListener('change', update));
     box.querySelector('button').addEventListener('click', () => {
       for (const c of state.channels) Object.assign(c, { sigma_a: m.sigma_a, sigma_s_reduced: m.sigma_s * (1 - m.g), g: m.g, R_dr: null, l_d: null });
       $('eta').value = m.eta;
       $('unit').value = m.length_unit;
       $('scale').value = 1;
+      if (answer.kind === 'lit_sphere') $('sphere-radius').value = answer.radius;
       $('preset').value = '';
       setMode('coefficients');
       update();

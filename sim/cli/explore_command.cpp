@@ -100,8 +100,9 @@ Action add_explore_command(CLI::App& app) {
                       "network the machine is on)");
   command->add_option("--port", o->port, "Port to listen on; 0 picks a free one")
       ->check(CLI::Range(0, 65535));
-  command->add_option("--open", o->open,
-                      "A folder whose searchlight files (*.h5) the page may read (repeatable)");
+  command->add_option(
+      "--open", o->open,
+      "A folder whose searchlight and lit-sphere files (*.h5) the page may read (repeatable)");
   command->add_option("--models", o->models,
                       "A folder of text models (*.toml; README, \"The explorer\")");
   command->add_option("--page", o->page,

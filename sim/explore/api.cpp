@@ -95,7 +95,7 @@ ExploreApi::ExploreApi(ExploreOptions options) : options_(std::move(options)) {
   for (fs::path& folder : options_.open_folders) {
     if (!fs::is_directory(folder, error)) {
       throw InputError("open", fmt::format("{} is not a folder", folder.string()),
-                       "folders that hold searchlight files (*.h5)");
+                       "folders that hold searchlight or lit-sphere files (*.h5)");
     }
     folder = fs::canonical(folder);
   }
@@ -391,6 +391,50 @@ std::string ExploreApi::files() const {
   return list.dump();
 }
 
+namespace {
+
+// A path-traced lit sphere (transport/lit_sphere.hpp, simulate on a sphere scene) under the
+// directional light, for the lit sphere panel (Bitterli §3.1.3: the path tracer beside the
+// BSSRDF integrated over the sphere): M(psi) of every order and by order, as the file holds
+// them, per unit power meeting the sphere, and the medium, index and radius to compare with.
+std::string lit_sphere_file(const std::string& path, const hdf5::Group& root) {
+  const hdf5::Group parameters = root.open_group("parameters");
+  if (parameters.read_string_attribute("source") != "directional" || !root.has_member("grid/psi") ||
+      !root.has_member("grid/azimuth") || root.read_dataset("grid/azimuth").values.size() != 2) {
+    throw InputError("path",
+                     fmt::format("{} is not a lit sphere under the directional light", path),
+                     "a lit sphere's file with source directional and one azimuth bin");
+  }
+  const std::vector<double> edges = root.read_dataset("grid/psi").values;
+  std::vector<double> centres(edges.size() - 1);
+  for (std::size_t i = 0; i < centres.size(); ++i) centres[i] = 0.5 * (edges[i] + edges[i + 1]);
+  json tallies = json::array();
+  const hdf5::Group all = root.open_group("tallies");
+  for (const std::string& name : all.member_names()) {
+    if (name.rfind("exitance", 0) != 0) continue;
+    const hdf5::Group tally = all.open_group(name);
+    tallies.push_back({{"name", name},
+                       {"description", tally.read_string_attribute("description")},
+                       {"mean", tally.read_dataset("mean").values},
+                       {"stderr", tally.read_dataset("stderr").values}});
+  }
+  json medium{{"sigma_a", parameters.read_double_attribute("sigma_a")},
+              {"sigma_s", parameters.read_double_attribute("sigma_s")},
+              {"g", parameters.read_double_attribute("g")},
+              {"eta", parameters.read_double_attribute("eta")},
+              {"length_unit", parameters.read_string_attribute("length_unit")}};
+  return json{{"path", path},
+              {"kind", "lit_sphere"},
+              {"psi", centres},
+              {"psi_edges", edges},
+              {"radius", parameters.read_double_attribute("radius")},
+              {"medium", medium},
+              {"tallies", tallies}}
+      .dump();
+}
+
+}  // namespace
+
 std::string ExploreApi::file(const std::map<std::string, std::string>& query) const {
   const auto found = query.find("path");
   if (found == query.end()) {
@@ -404,11 +448,15 @@ std::string ExploreApi::file(const std::map<std::string, std::string>& query) co
                                  .file;
   hdf5::File file = hdf5::File::open_read_only(candidate);
   const hdf5::Group& root = file.root();
-  if (!root.has_member("parameters") ||
-      root.open_group("parameters").read_string_attribute("geometry") != "half_space" ||
-      !root.has_member("grid/r")) {
-    throw InputError("path", fmt::format("{} is not a searchlight file", path),
-                     "a file written by scatterlab searchlight (geometry half_space)");
+  const std::string geometry = root.has_member("parameters")
+                                   ? root.open_group("parameters").read_string_attribute("geometry")
+                                   : std::string();
+  if (geometry == "sphere") return lit_sphere_file(path, root);
+  if (geometry != "half_space" || !root.has_member("grid/r")) {
+    throw InputError("path",
+                     fmt::format("{} is neither a searchlight file nor a lit sphere's", path),
+                     "a file written by scatterlab searchlight (geometry half_space) or by "
+                     "simulate on a lit-sphere scene under the directional light");
   }
   const hdf5::Group parameters = root.open_group("parameters");
   const std::vector<double> edges = root.read_dataset("grid/r").values;
@@ -438,11 +486,8 @@ std::string ExploreApi::file(const std::map<std::string, std::string>& query) co
               {"g", parameters.read_double_attribute("g")},
               {"eta", eta},
               {"length_unit", parameters.read_string_attribute("length_unit")}};
-  return json{{"path", path},
-              {"r", centres},
-              {"r_edges", edges},
-              {"medium", medium},
-              {"entry_transmittance", t_in},
+  return json{{"path", path},      {"kind", "searchlight"}, {"r", centres},
+              {"r_edges", edges},  {"medium", medium},      {"entry_transmittance", t_in},
               {"tallies", tallies}}
       .dump();
 }

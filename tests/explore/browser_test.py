@@ -188,6 +188,26 @@ def check_mesh_view(driver, runs):
     driver.save_screenshot(str(SHOTS / "8-mesh-obj.png"))
 
 
+def check_path_traced_sphere(driver):
+    """The lit sphere panel with a path-traced sphere beside the models (Bitterli §3.1.3): the
+    file's medium and radius taken over, its points drawn with their error bars."""
+    driver.find_element(By.CSS_SELECTOR, "#files input[data-path='0/sphere.h5']").click()
+    button = "//input[@data-path='0/sphere.h5']/ancestor::div[contains(@class,'file-row')]//button"
+    wait_for(driver, "return !!window.explore.sphere", "the lit sphere")
+    WebDriverWait(driver, 30).until(lambda d: d.find_elements(By.XPATH, button))
+    before = driver.execute_script("return window.explore.sphereUpdates")
+    driver.find_element(By.XPATH, button).click()
+    wait_for(driver, f"return window.explore.sphereUpdates > {before}", "the lit sphere of the file's medium", 60)
+    radius = driver.find_element(By.ID, "sphere-radius").get_attribute("value")
+    check(float(radius) == 1.0, f"the file's radius was not taken over: {radius}")
+    points = driver.execute_script(
+        "const t = document.getElementById('sphere-plot').data.find(t => t.name.startsWith('path traced'));"
+        "return t && t.error_y.array.filter(e => e > 0).length;")
+    check(points and points > 20, f"path-traced lit sphere points with error bars: {points}")
+    driver.execute_script("document.getElementById('sphere-plot').scrollIntoView()")
+    check_layout(driver, "9-lit-sphere-path-traced", ["sphere-plot"])
+
+
 def main():
     SHOTS.mkdir(parents=True, exist_ok=True)
     work = Path(tempfile.mkdtemp(prefix="scatterlab-browser-"))
@@ -198,6 +218,10 @@ def main():
     subprocess.run([str(PROGRAM), "searchlight", "--photons", "20000", "--batches", "4",
                     "--threads", "1", "--r-bins", "40", "--out", str(runs / "albedo099.h5")],
                    check=True, capture_output=True)
+    # A path-traced lit sphere (R = 1 mfp, directional light) for the lit sphere panel.
+    subprocess.run([str(PROGRAM), "simulate", str(SOURCE / "data/scenes/lit-sphere.toml"),
+                    "--photons", "20000", "--batches", "4", "--threads", "1",
+                    "--out", str(runs / "sphere.h5")], check=True, capture_output=True)
     # A cube (counter-clockwise seen from outside) for the mesh view's OBJ chooser.
     (runs / "cube.obj").write_text(
         "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
@@ -324,6 +348,7 @@ def main():
         driver.save_screenshot(str(SHOTS / "5-inversion.png"))
 
         check_mesh_view(driver, runs)
+        check_path_traced_sphere(driver)
     finally:
         driver.quit()
         server.send_signal(2)  # SIGINT: the server stops cleanly

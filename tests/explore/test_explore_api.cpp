@@ -18,6 +18,8 @@
 #include "scatterlab/models/lit_sphere_exitance.hpp"
 #include "scatterlab/models/parameter_inversion.hpp"
 #include "scatterlab/refract/half_space_single_scatter.hpp"
+#include "scatterlab/tally/tally_result.hpp"
+#include "scatterlab/transport/lit_sphere.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #if SCATTERLAB_EXPLORE_MESH
 #include "scatterlab/render/point_cloud.hpp"
@@ -366,6 +368,45 @@ TEST_F(ExploreApiTest, ASearchlightFileIsReadWithItsErrorBars) {
     }
   }
   EXPECT_TRUE(found);
+}
+
+TEST_F(ExploreApiTest, APathTracedLitSphereIsReadForTheLitSpherePanel) {
+  LitSphereSpec spec;
+  spec.radius = 2.0;
+  spec.run = RunSettings{2000, 4, 1, 1};
+  const TransportOutput out = run_lit_sphere(spec);
+  fs::create_directories(open_ / "runs");
+  write_lit_sphere_file(open_ / "runs/sphere.h5", spec, out.tallies, run_provenance(out, "test"));
+  const ExploreApi explorer = api();
+  const ApiResponse response =
+      explorer.handle("GET", "/api/file", {{"path", "0/runs/sphere.h5"}}, "");
+  ASSERT_EQ(response.status, 200) << response.body;
+  const json file = body_of(response);
+  EXPECT_EQ(file["kind"], "lit_sphere");
+  EXPECT_DOUBLE_EQ(file["radius"].get<double>(), 2.0);
+  ASSERT_EQ(file["psi"].size(), 36u);
+  EXPECT_DOUBLE_EQ(file["psi"][0].get<double>(), 0.5 * spec.psi.width());
+  bool found = false;
+  for (const json& tally : file["tallies"]) {
+    if (tally["name"] != "exitance_multiple") continue;
+    found = true;
+    const TallyResult* written = find_tally(out.tallies, "exitance_multiple");
+    ASSERT_NE(written, nullptr);
+    for (std::size_t i = 0; i < 36; ++i) {
+      EXPECT_EQ(tally["mean"][i].get<double>(), written->mean[i]);
+      EXPECT_EQ(tally["stderr"][i].get<double>(), written->stderr_of_mean[i]);
+    }
+  }
+  EXPECT_TRUE(found);
+
+  // A beam's sphere is not azimuthally symmetric: the panel's curves are not for it.
+  spec.light = SphereLight::pole_beam;
+  spec.azimuth = UniformAxis{0.0, 2.0 * std::numbers::pi, 4};
+  const TransportOutput beam = run_lit_sphere(spec);
+  write_lit_sphere_file(open_ / "runs/beam.h5", spec, beam.tallies, run_provenance(beam, "test"));
+  const ApiResponse refused = explorer.handle("GET", "/api/file", {{"path", "0/runs/beam.h5"}}, "");
+  EXPECT_EQ(refused.status, 400);
+  EXPECT_NE(refused.body.find("path"), std::string::npos) << refused.body;
 }
 
 TEST_F(ExploreApiTest, PresetsAndInversion) {
