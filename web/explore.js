@@ -186,6 +186,20 @@ function textColour(index) { return EXTRA_COLOURS[index % EXTRA_COLOURS.length];
 function buildTextModels() {
   const box = $('text-models');
   box.innerHTML = '';
+  // The mesh view renders the text models too, beside the built-in ones.
+  const meshModel = $('mesh-model');
+  if (meshModel) {
+    const chosen = meshModel.value;
+    meshModel.querySelectorAll('option[data-text]').forEach((o) => o.remove());
+    for (const model of state.textModels) {
+      const option = document.createElement('option');
+      option.value = model.name;
+      option.dataset.text = 'yes';
+      option.textContent = `${model.name} (text)`;
+      meshModel.appendChild(option);
+    }
+    if ([...meshModel.options].some((o) => o.value === chosen)) meshModel.value = chosen;
+  }
   state.textModels.forEach((model, index) => {
     const row = document.createElement('div');
     const label = document.createElement('label');

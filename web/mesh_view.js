@@ -85,6 +85,7 @@ function request(geometry) {
     media: [0, 1, 2].map((c) => window.mediumOf(c)),
     scale: window.scale(),
     model: $('mesh-model').value,
+    parameters: window.textParameters(),
     light: { azimuth: Number($('light-azimuth').value), elevation: Number($('light-elevation').value) },
     occlusion: $('mesh-occlusion').checked,
     cluster_angle: Number($('mesh-epsilon').value),
@@ -183,7 +184,7 @@ async function update() {
     applyExitance(answer);
     describe(answer, performance.now() - started);
     window.explore.meshUpdates = (window.explore.meshUpdates || 0) + 1;
-    window.explore.mesh = { key: answer.mesh.key, vertices: answer.mesh.vertices, ms: answer.ms, light: answer.light };
+    window.explore.mesh = { key: answer.mesh.key, vertices: answer.mesh.vertices, ms: answer.ms, light: answer.light, model: answer.model };
     window.showError('');
   } catch (error) {
     if (seq === view.seq) window.showError(`mesh: ${error.message}`);

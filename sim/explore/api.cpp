@@ -168,7 +168,14 @@ ApiResponse ExploreApi::handle(std::string_view method, std::string_view path,
     if (path == "/api/invert") response.body = invert(body);
     if (path == "/api/lit_sphere") response.body = lit_sphere(body);
     if (path == "/api/meshes") response.body = mesh_view_->meshes();
-    if (path == "/api/mesh_exitance") response.body = mesh_view_->exitance(body);
+    if (path == "/api/mesh_exitance") {
+      std::shared_ptr<const std::vector<TextModel>> text_models;
+      {
+        const std::lock_guard lock(models_mutex_);
+        text_models = text_models_;
+      }
+      response.body = mesh_view_->exitance(body, *text_models);
+    }
   } catch (const Refusal& refusal) {
     response.status = refusal.status;
     response.body = error_json(refusal.message);
@@ -286,10 +293,6 @@ std::string ExploreApi::profiles(std::string_view body) const {
     const std::lock_guard lock(models_mutex_);
     text_models = text_models_;
   }
-  const json parameters = request.value("parameters", json::object());
-  if (!parameters.is_object()) {
-    throw InputError("parameters", "not an object", "{model: {parameter: value}}");
-  }
   json curves = json::array();
   for (const json& entry : *found) {
     const std::string name = entry.is_string() ? entry.get<std::string>() : entry.dump();
@@ -315,15 +318,7 @@ std::string ExploreApi::profiles(std::string_view body) const {
         for (const TextModel& m : *text_models) accepted += ", " + m.name();
         throw InputError("models", fmt::format("no model {}", name), accepted);
       }
-      std::map<std::string, double> values_by_name;
-      if (const auto set = parameters.find(name); set != parameters.end()) {
-        if (!set->is_object())
-          throw InputError("parameters." + name, "not an object", "{name: value}");
-        for (const auto& [key, value] : set->items()) {
-          values_by_name[key] = number(*set, key, "parameters." + key);
-        }
-      }
-      values = model->reflectance(medium, values_by_name, r);
+      values = model->reflectance(medium, text_model_parameters(request, name), r);
     }
     curve["ms"] = milliseconds_since(start);
     curve["values"] = values;  // a value that is not finite is written as null

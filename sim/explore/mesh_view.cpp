@@ -23,6 +23,7 @@
 #include <sstream>
 #include <utility>
 
+#include "scatterlab/core/quadrature.hpp"
 #include "scatterlab/models/bssrdf.hpp"
 #include "scatterlab/models/diffusion_profile.hpp"
 #include "scatterlab/render/point_cloud.hpp"
@@ -198,7 +199,35 @@ std::string MeshView::meshes() const {
       .dump();
 }
 
-std::string MeshView::exitance(std::string_view body) const {
+namespace {
+
+// The kernels of a text model on the cloud's grid (point_octree.hpp), one per channel: its
+// values, and its average over one point's disc, 2 / rho^2 int_0^rho R_d r dr, by adaptive
+// quadrature (r R_d stays finite at 0 where R_d ~ 1 / r, as quantized diffusion's does).
+std::vector<RadialKernel> text_model_kernels(const TextModel& model,
+                                             const std::map<std::string, double>& parameters,
+                                             const std::vector<HalfSpaceMedium>& media,
+                                             double point_area, const BoundingBox& bounds) {
+  const KernelGrid grid = cloud_kernel_grid(point_area, bounds);
+  std::vector<RadialKernel> kernels;
+  for (const HalfSpaceMedium& medium : media) {
+    const auto reflectance = [&](double r) {
+      const double at[] = {r};
+      return model.reflectance(medium, parameters, at)[0];
+    };
+    const double disc = 2.0 / (grid.rho * grid.rho) *
+                        integrate_adaptive([&](double r) { return r * reflectance(r); }, 0.0,
+                                           grid.rho, QuadratureOptions{0.0, 1e-8, 200})
+                            .value;
+    kernels.emplace_back(reflectance, disc, grid.rho, grid.r_max);
+  }
+  return kernels;
+}
+
+}  // namespace
+
+std::string MeshView::exitance(std::string_view body,
+                               const std::vector<TextModel>& text_models) const {
   const auto start = std::chrono::steady_clock::now();
   const json request = parse_body(body);
 
@@ -214,12 +243,20 @@ std::string MeshView::exitance(std::string_view body) const {
   const json model_value = request.value("model", json("better_dipole"));
   const std::string model_name =
       model_value.is_string() ? model_value.get<std::string>() : model_value.dump();
-  if (std::find(std::begin(kModels), std::end(kModels), model_name) == std::end(kModels)) {
-    throw InputError("model", fmt::format("got {}", model_name),
-                     "dipole, better_dipole, quantized_diffusion");
+  // A built-in profile, or a text model (its parameters from request.parameters[name]).
+  const bool built_in =
+      std::find(std::begin(kModels), std::end(kModels), model_name) != std::end(kModels);
+  const auto text_model = std::find_if(text_models.begin(), text_models.end(),
+                                       [&](const TextModel& m) { return m.name() == model_name; });
+  if (!built_in && text_model == text_models.end()) {
+    std::string accepted = "dipole, better_dipole, quantized_diffusion";
+    for (const TextModel& m : text_models) accepted += ", " + m.name();
+    throw InputError("model", fmt::format("got {}", model_name), accepted);
   }
-  const ProfileModel model = parse_profile_model(model_name, "model");
+  const std::map<std::string, double> text_parameters =
+      built_in ? std::map<std::string, double>{} : text_model_parameters(request, model_name);
   std::vector<DiffusionProfile> profiles;
+  std::vector<HalfSpaceMedium> media;
   double eta = 1.0;
   for (std::size_t c = 0; c < media_found->size(); ++c) {
     const std::string field = fmt::format("media[{}]", c);
@@ -229,7 +266,8 @@ std::string MeshView::exitance(std::string_view body) const {
       throw InputError(field + ".eta", fmt::format("got {} after {}", medium.eta, eta),
                        "one eta for every channel (the surface's)");
     }
-    profiles.emplace_back(model, medium);
+    media.push_back(medium);
+    if (built_in) profiles.emplace_back(parse_profile_model(model_name, "model"), medium);
   }
 
   // The light: towards (azimuth, elevation) in degrees, z up.
@@ -328,12 +366,14 @@ std::string MeshView::exitance(std::string_view body) const {
   for (std::size_t i = 0; i < cloud.size(); ++i) power[i] = irradiance[i] * cloud.point_area;
   const PointOctree octree(cloud.positions, power, cloud.point_area);
   const std::vector<RadialKernel> kernels =
-      cloud_kernels(profiles, cloud.point_area, prepared->mesh.bounds());
+      built_in ? cloud_kernels(profiles, cloud.point_area, prepared->mesh.bounds())
+               : text_model_kernels(*text_model, text_parameters, media, cloud.point_area,
+                                    prepared->mesh.bounds());
   const double ms_octree = milliseconds_since(step);
 
   // Second pass: M at every vertex of the page's mesh (point_octree.hpp).
   step = std::chrono::steady_clock::now();
-  const std::size_t channels = profiles.size();
+  const std::size_t channels = media.size();
   std::vector<double> exitance(vertices * channels);
   std::uint64_t evaluations = 0;
   const auto n = static_cast<std::ptrdiff_t>(vertices);
@@ -432,7 +472,7 @@ std::string MeshView::meshes() const {
                    "which this program was built without"};
 }
 
-std::string MeshView::exitance(std::string_view) const {
+std::string MeshView::exitance(std::string_view, const std::vector<TextModel>&) const {
   return meshes();
 }
 

@@ -11,6 +11,8 @@
 #include <string_view>
 #include <vector>
 
+#include "scatterlab/explore/text_model.hpp"
+
 namespace scatterlab {
 
 class MeshView {
@@ -23,8 +25,8 @@ class MeshView {
   // GET /api/meshes: the built-in shapes with their parameters' defaults, the OBJ files of the
   // open folders, the request's defaults and limits.
   std::string meshes() const;
-  // POST /api/mesh_exitance (api.hpp).
-  std::string exitance(std::string_view body) const;
+  // POST /api/mesh_exitance (api.hpp): a built-in model, or one of `text_models` by name.
+  std::string exitance(std::string_view body, const std::vector<TextModel>& text_models) const;
 
  private:
   struct Cache;

@@ -144,4 +144,19 @@ OpenFile resolve_open_file(const std::vector<fs::path>& folders, const std::stri
   return {path, folder, candidate, path.substr(slash + 1)};
 }
 
+std::map<std::string, double> text_model_parameters(const json& request, const std::string& model) {
+  const json parameters = request.value("parameters", json::object());
+  if (!parameters.is_object()) {
+    throw InputError("parameters", "not an object", "{model: {parameter: value}}");
+  }
+  std::map<std::string, double> values;
+  if (const auto set = parameters.find(model); set != parameters.end()) {
+    if (!set->is_object())
+      throw InputError("parameters." + model, "not an object", "{name: value}");
+    for (const auto& [key, value] : set->items())
+      values[key] = number(*set, key, "parameters." + key);
+  }
+  return values;
+}
+
 }  // namespace scatterlab::explore_request

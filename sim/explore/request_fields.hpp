@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -39,6 +40,10 @@ HalfSpaceMedium medium_of(const json& m, const std::string& field, double scale)
 double scale_of(const json& request);
 
 double milliseconds_since(std::chrono::steady_clock::time_point start);
+
+// The values request["parameters"][model] gives a text model's parameters, by name (an object of
+// numbers; InputError "parameters.<model>" or "parameters.<name>" otherwise); empty when absent.
+std::map<std::string, double> text_model_parameters(const json& request, const std::string& model);
 
 // A file of an open folder as the page names it: "I/NAME", the index I of an open folder and a
 // file's name in it.

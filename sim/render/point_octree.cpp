@@ -13,11 +13,21 @@
 namespace scatterlab {
 
 RadialKernel::RadialKernel(const DiffusionProfile& profile, double rho, double r_max, int nodes)
-    : rho_(rho), log_rho_(std::log(rho)) {
+    : RadialKernel([&profile](double r) { return profile.reflectance(r); },
+                   profile.annulus_averages(std::array<double, 2>{0.0, rho})[0], rho, r_max,
+                   nodes) {}
+
+RadialKernel::RadialKernel(const std::function<double(double)>& reflectance, double disc_average,
+                           double rho, double r_max, int nodes)
+    : rho_(rho), log_rho_(std::log(rho)), disc_average_(disc_average) {
   if (!(rho > 0.0) || !(r_max > rho) || !std::isfinite(r_max) || nodes < 2) {
     throw InputError("points",
                      fmt::format("a point radius {} and a largest distance {}", rho, r_max),
                      "points smaller than the mesh (a point radius below its size)");
+  }
+  if (!std::isfinite(disc_average)) {
+    throw InputError("model", fmt::format("R_d's average within r = {} is {}", rho, disc_average),
+                     "a profile finite for r > 0 whose r R_d(r) is integrable at 0");
   }
   const double step = (std::log(r_max) - log_rho_) / (nodes - 1);
   inverse_step_ = 1.0 / step;
@@ -25,12 +35,15 @@ RadialKernel::RadialKernel(const DiffusionProfile& profile, double rho, double r
   log_values_.resize(static_cast<std::size_t>(nodes) + 1);
   for (int k = 0; k < nodes; ++k) {
     const double r = std::exp(log_rho_ + k * step);
-    log_values_[static_cast<std::size_t>(k)] = std::log(std::max(profile.reflectance(r), 1e-300));
+    const double value = reflectance(r);
+    if (!std::isfinite(value)) {
+      throw InputError("model", fmt::format("R_d({}) is {}", r, value),
+                       "a profile finite for r > 0");
+    }
+    log_values_[static_cast<std::size_t>(k)] = std::log(std::max(value, 1e-300));
   }
   // operator() reads node k + 1 at s = last_ (f = 0): a copy of the last node.
   log_values_.back() = log_values_[log_values_.size() - 2];
-  const double edges[] = {0.0, rho};
-  disc_average_ = profile.annulus_averages(edges)[0];
 }
 
 PointOctree::PointOctree(std::span<const Vec3> positions, std::span<const double> power,
@@ -117,13 +130,18 @@ void PointOctree::sum_points(const Vec3& x, std::uint32_t begin, std::uint32_t e
   }
 }
 
+KernelGrid cloud_kernel_grid(double point_area, const BoundingBox& bounds) {
+  const double rho = std::sqrt(point_area / std::numbers::pi);
+  return {rho, 1.01 * bounds.diagonal() + 2.0 * rho};
+}
+
 std::vector<RadialKernel> cloud_kernels(std::span<const DiffusionProfile> profiles,
                                         double point_area, const BoundingBox& bounds) {
-  const double rho = std::sqrt(point_area / std::numbers::pi);
-  const double r_max = 1.01 * bounds.diagonal() + 2.0 * rho;
+  const KernelGrid grid = cloud_kernel_grid(point_area, bounds);
   std::vector<RadialKernel> kernels;
   kernels.reserve(profiles.size());
-  for (const DiffusionProfile& profile : profiles) kernels.emplace_back(profile, rho, r_max);
+  for (const DiffusionProfile& profile : profiles)
+    kernels.emplace_back(profile, grid.rho, grid.r_max);
   return kernels;
 }
 

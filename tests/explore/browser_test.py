@@ -186,6 +186,18 @@ def check_mesh_view(driver, runs):
     check(not driver.find_element(By.ID, "error").is_displayed(),
           f"mesh view: error shown: {driver.find_element(By.ID, 'error').text}")
     driver.save_screenshot(str(SHOTS / "8-mesh-obj.png"))
+    # A text model renders on the mesh beside the built-in ones.
+    options = [o.get_attribute("value") for o in driver.find_elements(By.CSS_SELECTOR, "#mesh-model option")]
+    check("dipole_text" in options, f"the text model is not offered for the mesh: {options}")
+    updates = driver.execute_script("return window.explore.meshUpdates")
+    Select(driver.find_element(By.ID, "mesh-model")).select_by_value("dipole_text")
+    wait_for(driver, f"return window.explore.meshUpdates > {updates}", "the text model on the mesh", 60)
+    check(driver.execute_script("return window.explore.mesh.model") == "dipole_text",
+          "the mesh was not drawn with the text model")
+    ink, _ = driver.execute_script(CANVAS)
+    check(0.02 < ink < 0.9, f"text model on the mesh looks blank or filled (ink {ink:.3f})")
+    check(not driver.find_element(By.ID, "error").is_displayed(),
+          f"text model on the mesh: error shown: {driver.find_element(By.ID, 'error').text}")
 
 
 def check_path_traced_sphere(driver):

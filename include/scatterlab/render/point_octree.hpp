@@ -30,6 +30,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -52,6 +53,11 @@ class RadialKernel {
   RadialKernel() = default;
   // rho > 0, r_max > rho; throws InputError("points", ...) otherwise.
   RadialKernel(const DiffusionProfile& profile, double rho, double r_max, int nodes = 2048);
+  // A profile known only by its values (a text model): R_d(r), and its average over the disc of
+  // radius rho, 2 / rho^2 int_0^rho R_d r dr. Throws InputError("model", ...) where R_d is not
+  // finite (r > 0) or the average is not.
+  RadialKernel(const std::function<double(double)>& reflectance, double disc_average, double rho,
+               double r_max, int nodes = 2048);
 
   // Where r falls in the table: kernels built with the same rho, r_max and nodes (one per
   // channel) share it, so a point's distance is located once for all channels.
@@ -88,9 +94,15 @@ class RadialKernel {
 // Up to three channels (red, green, blue), one kernel each.
 inline constexpr int max_kernel_channels = 3;
 
-// One kernel per profile for a cloud whose points each stand for `point_area` on a mesh inside
+// The grid of a cloud's kernels, for points that each stand for `point_area` on a mesh inside
 // `bounds`: rho the radius of one point's disc (A_p = pi rho^2), r_max past the box's diagonal
-// (no two points of the mesh are farther apart), so that the kernels share one grid.
+// (no two points of the mesh are farther apart).
+struct KernelGrid {
+  double rho = 0.0, r_max = 0.0;
+};
+KernelGrid cloud_kernel_grid(double point_area, const BoundingBox& bounds);
+
+// One kernel per profile on the cloud's grid, so that the kernels share it.
 std::vector<RadialKernel> cloud_kernels(std::span<const DiffusionProfile> profiles,
                                         double point_area, const BoundingBox& bounds);
 
