@@ -12,14 +12,37 @@
 
 namespace scatterlab {
 
-RadialKernel::RadialKernel(const DiffusionProfile& profile, double rho, double r_max, int nodes)
-    : RadialKernel([&profile](double r) { return profile.reflectance(r); },
-                   profile.annulus_averages(std::array<double, 2>{0.0, rho})[0], rho, r_max,
-                   nodes) {}
+namespace {
 
-RadialKernel::RadialKernel(const std::function<double(double)>& reflectance, double disc_average,
-                           double rho, double r_max, int nodes)
+std::vector<double> profile_at(const DiffusionProfile& profile, std::span<const double> r) {
+  std::vector<double> values(r.size());
+  for (std::size_t k = 0; k < r.size(); ++k) values[k] = profile.reflectance(r[k]);
+  return values;
+}
+
+}  // namespace
+
+std::vector<double> RadialKernel::node_radii(double rho, double r_max, int nodes) {
+  if (!(rho > 0.0) || !(r_max > rho) || !std::isfinite(r_max) || nodes < 2) {
+    throw InputError("points",
+                     fmt::format("a point radius {} and a largest distance {}", rho, r_max),
+                     "points smaller than the mesh (a point radius below its size)");
+  }
+  const double step = (std::log(r_max) - std::log(rho)) / (nodes - 1);
+  std::vector<double> r(static_cast<std::size_t>(nodes));
+  for (int k = 0; k < nodes; ++k)
+    r[static_cast<std::size_t>(k)] = std::exp(std::log(rho) + k * step);
+  return r;
+}
+
+RadialKernel::RadialKernel(const DiffusionProfile& profile, double rho, double r_max, int nodes)
+    : RadialKernel(profile_at(profile, node_radii(rho, r_max, nodes)),
+                   profile.annulus_averages(std::array<double, 2>{0.0, rho})[0], rho, r_max) {}
+
+RadialKernel::RadialKernel(std::span<const double> values_at_nodes, double disc_average, double rho,
+                           double r_max)
     : rho_(rho), log_rho_(std::log(rho)), disc_average_(disc_average) {
+  const int nodes = static_cast<int>(values_at_nodes.size());
   if (!(rho > 0.0) || !(r_max > rho) || !std::isfinite(r_max) || nodes < 2) {
     throw InputError("points",
                      fmt::format("a point radius {} and a largest distance {}", rho, r_max),
@@ -33,14 +56,13 @@ RadialKernel::RadialKernel(const std::function<double(double)>& reflectance, dou
   inverse_step_ = 1.0 / step;
   last_ = static_cast<double>(nodes - 1);
   log_values_.resize(static_cast<std::size_t>(nodes) + 1);
-  for (int k = 0; k < nodes; ++k) {
-    const double r = std::exp(log_rho_ + k * step);
-    const double value = reflectance(r);
+  for (std::size_t k = 0; k < values_at_nodes.size(); ++k) {
+    const double value = values_at_nodes[k];
     if (!std::isfinite(value)) {
-      throw InputError("model", fmt::format("R_d({}) is {}", r, value),
+      throw InputError("model", fmt::format("R_d is {} at node {}", value, k),
                        "a profile finite for r > 0");
     }
-    log_values_[static_cast<std::size_t>(k)] = std::log(std::max(value, 1e-300));
+    log_values_[k] = std::log(std::max(value, 1e-300));
   }
   // operator() reads node k + 1 at s = last_ (f = 0): a copy of the last node.
   log_values_.back() = log_values_[log_values_.size() - 2];

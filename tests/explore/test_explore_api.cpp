@@ -560,7 +560,7 @@ TEST_F(ExploreApiTest, MeshExitanceAtVerticesIsTheOctreeEvaluatedThere) {
 TEST_F(ExploreApiTest, ATextModelRendersOnTheMeshAsItsBuiltInTwin) {
   // The dipole written as a text file (data/models/dipole_text.toml) gives, vertex by vertex, the
   // built-in dipole's exitance: the tables' nodes agree to the models' 1e-9, and the average over
-  // one point's disc (closed form for the built-in, adaptive quadrature for the text) to 1e-8.
+  // one point's disc (closed form for the built-in, Gauss-Legendre for the text) to 1e-8.
   json request = mesh_request({{"shape", "sphere"}}, 30.0, 40.0);
   const json built_in = body_of(post("/api/mesh_exitance", request));
   request["model"] = "dipole_text";

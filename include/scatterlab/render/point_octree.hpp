@@ -30,7 +30,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <span>
 #include <vector>
 
@@ -53,11 +52,13 @@ class RadialKernel {
   RadialKernel() = default;
   // rho > 0, r_max > rho; throws InputError("points", ...) otherwise.
   RadialKernel(const DiffusionProfile& profile, double rho, double r_max, int nodes = 2048);
-  // A profile known only by its values (a text model): R_d(r), and its average over the disc of
-  // radius rho, 2 / rho^2 int_0^rho R_d r dr. Throws InputError("model", ...) where R_d is not
-  // finite (r > 0) or the average is not.
-  RadialKernel(const std::function<double(double)>& reflectance, double disc_average, double rho,
-               double r_max, int nodes = 2048);
+  // A profile known only by its values (a text model): R_d at node_radii(rho, r_max, nodes), and
+  // its average over the disc of radius rho, 2 / rho^2 int_0^rho R_d r dr. Throws
+  // InputError("model", ...) where a value or the average is not finite.
+  RadialKernel(std::span<const double> values_at_nodes, double disc_average, double rho,
+               double r_max);
+  // The table's nodes: geometric from rho to r_max.
+  static std::vector<double> node_radii(double rho, double r_max, int nodes = 2048);
 
   // Where r falls in the table: kernels built with the same rho, r_max and nodes (one per
   // channel) share it, so a point's distance is located once for all channels.
