@@ -41,9 +41,7 @@ const OctreeFixture& fixture() {
     options.relaxation = 20;
     g.cloud = make_point_cloud(scene.mesh, options);
     const std::vector<double> e = point_irradiance(scene, g.cloud, true);
-    std::vector<double> power(e.size());
-    for (std::size_t i = 0; i < e.size(); ++i) power[i] = e[i] * g.cloud.point_area;
-    g.octree = std::make_unique<PointOctree>(g.cloud.positions, power, g.cloud.point_area);
+    g.octree = std::make_unique<PointOctree>(cloud_octree(g.cloud, e));
     for (std::size_t i = 0; i < g.cloud.size(); i += 61) g.queries.push_back(g.cloud.positions[i]);
     g.rho = std::sqrt(g.cloud.point_area / std::numbers::pi);
     return g;

@@ -365,9 +365,7 @@ std::string MeshView::exitance(std::string_view body,
       directional_irradiance(prepared->mesh, cloud, light, eta, occlusion);
   const double ms_irradiance = milliseconds_since(step);
   step = std::chrono::steady_clock::now();
-  std::vector<double> power(cloud.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) power[i] = irradiance[i] * cloud.point_area;
-  const PointOctree octree(cloud.positions, power, cloud.point_area);
+  const PointOctree octree = cloud_octree(cloud, irradiance);
   const std::vector<RadialKernel> kernels =
       built_in ? cloud_kernels(profiles, cloud.point_area, prepared->mesh.bounds())
                : text_model_kernels(*text_model, text_parameters, media, cloud.point_area,

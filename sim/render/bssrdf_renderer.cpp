@@ -103,9 +103,7 @@ BssrdfResult render_bssrdf(const RenderScene& scene, const BssrdfSettings& setti
 
   start = Clock::now();
   const PointCloud& cloud = result.cloud;
-  std::vector<double> power(cloud.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) power[i] = result.irradiance[i] * cloud.point_area;
-  const PointOctree octree(cloud.positions, power, cloud.point_area);
+  const PointOctree octree = cloud_octree(cloud, result.irradiance);
   const std::vector<RadialKernel> kernels =
       cloud_kernels(profiles, cloud.point_area, scene.mesh.bounds());
   result.octree_nodes = octree.node_count();

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/render/point_cloud.hpp"
 
 namespace scatterlab {
 
@@ -150,6 +151,12 @@ void PointOctree::sum_points(const Vec3& x, std::uint32_t begin, std::uint32_t e
     const double power = power_[i];
     for (std::size_t c = 0; c < channels; ++c) exitance[c] += power * kernels[c].at(place);
   }
+}
+
+PointOctree cloud_octree(const PointCloud& cloud, std::span<const double> irradiance) {
+  std::vector<double> power(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) power[i] = irradiance[i] * cloud.point_area;
+  return PointOctree(cloud.positions, power, cloud.point_area);
 }
 
 KernelGrid cloud_kernel_grid(double point_area, const BoundingBox& bounds) {

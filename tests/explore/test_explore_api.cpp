@@ -525,9 +525,7 @@ TEST_F(ExploreApiTest, MeshExitanceAtVerticesIsTheOctreeEvaluatedThere) {
   light.to_light = Vec3(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e));
   const std::vector<double> irradiance =
       directional_irradiance(sphere.mesh, cloud, light, 1.3, true);
-  std::vector<double> power(cloud.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) power[i] = irradiance[i] * cloud.point_area;
-  const PointOctree octree(cloud.positions, power, cloud.point_area);
+  const PointOctree octree = cloud_octree(cloud, irradiance);
   std::vector<DiffusionProfile> profiles;
   const double sigma_a[] = {0.0014, 0.0025, 0.0142}, sigma_s[] = {0.70, 1.22, 1.90};
   for (int c = 0; c < 3; ++c) {

@@ -142,9 +142,7 @@ TEST(PointOctree, ClusteredSumTendsToTheUnclusteredOne) {
   options.relaxation = 10;
   const PointCloud cloud = make_point_cloud(scene.mesh, options);
   const std::vector<double> irradiance = point_irradiance(scene, cloud, true);
-  std::vector<double> power(cloud.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) power[i] = irradiance[i] * cloud.point_area;
-  const PointOctree octree(cloud.positions, power, cloud.point_area);
+  const PointOctree octree = cloud_octree(cloud, irradiance);
   EXPECT_LE(octree.depth(), PointOctree::max_depth);
   const HalfSpaceMedium medium{0.1, 2.0, 0.0, 1.3};
   const double rho = std::sqrt(cloud.point_area / std::numbers::pi);
@@ -205,9 +203,7 @@ TEST(PointCloudExitance, FlatBlockAgreesWithQuadrature) {
   options.relaxation = 40;
   const PointCloud cloud = make_point_cloud(scene.mesh, options);
   const std::vector<double> irradiance = point_irradiance(scene, cloud, true);
-  std::vector<double> power(cloud.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) power[i] = irradiance[i] * cloud.point_area;
-  const PointOctree octree(cloud.positions, power, cloud.point_area);
+  const PointOctree octree = cloud_octree(cloud, irradiance);
   const double rho = std::sqrt(cloud.point_area / std::numbers::pi);
   const HalfSpaceMedium medium{0.1, 2.0, 0.0, eta};
   const auto light_in = [&](const Vec3& x) {

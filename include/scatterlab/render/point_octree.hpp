@@ -156,4 +156,10 @@ class PointOctree {
   int depth_ = 0;
 };
 
+struct PointCloud;
+
+// The octree of a cloud (point_cloud.hpp) whose points receive `irradiance` (E_t, power per unit
+// area entering; one per point): each point carries E_t A_p.
+PointOctree cloud_octree(const PointCloud& cloud, std::span<const double> irradiance);
+
 }  // namespace scatterlab
