@@ -306,8 +306,8 @@ std::string ExploreApi::profiles(std::string_view body) const {
       for (std::size_t k = 0; k < r.size(); ++k) {
         values[k] = half_space_single_scatter_exitance(plain, medium.eta, r[k]).value / t_in;
       }
-    } else if (name == "dipole" || name == "better_dipole" || name == "quantized_diffusion") {
-      const DiffusionProfile profile(parse_profile_model(name, "models"), medium);
+    } else if (const std::optional<ProfileModel> built_in = find_profile_model(name)) {
+      const DiffusionProfile profile(*built_in, medium);
       for (std::size_t k = 0; k < r.size(); ++k) values[k] = profile.reflectance(r[k]);
       curve["total_reflectance"] = profile.total_reflectance();
     } else {

@@ -52,7 +52,6 @@ constexpr double kMaxUnclusteredEvaluations = 2e8;
 constexpr int kExitWeightSteps = 64;
 
 const char* const kShapes[] = {"sphere", "bumpy_sphere", "rounded_tile", "box"};
-const char* const kModels[] = {"dipole", "better_dipole", "quantized_diffusion"};
 
 // A mesh with its cloud, and the mesh the page draws (render_scene.hpp's shapes, point_cloud.hpp).
 struct PreparedMesh {
@@ -193,7 +192,12 @@ std::string MeshView::meshes() const {
        "those of a render scene's [mesh] table (radius, amplitude, frequency, rings, "
        "segments, half_size, exponent, normals), with its defaults"},
       {"obj_files", obj},
-      {"models", kModels},
+      {"models",
+       [] {
+         json names = json::array();
+         for (const ProfileModel model : all_profile_models) names.push_back(to_string(model));
+         return names;
+       }()},
       {"defaults", {{"points", 4096}, {"seed", 1}, {"relaxation", 40}, {"cluster_angle", 0.05}}},
       {"limits", {{"points", {kMinPoints, kMaxPoints}}, {"relaxation", {0, kMaxRelaxation}}}}}
       .dump();
@@ -247,8 +251,7 @@ std::string MeshView::exitance(std::string_view body,
   const std::string model_name =
       model_value.is_string() ? model_value.get<std::string>() : model_value.dump();
   // A built-in profile, or a text model (its parameters from request.parameters[name]).
-  const bool built_in =
-      std::find(std::begin(kModels), std::end(kModels), model_name) != std::end(kModels);
+  const std::optional<ProfileModel> built_in = find_profile_model(model_name);
   const auto text_model = std::find_if(text_models.begin(), text_models.end(),
                                        [&](const TextModel& m) { return m.name() == model_name; });
   if (!built_in && text_model == text_models.end()) {
@@ -270,7 +273,7 @@ std::string MeshView::exitance(std::string_view body,
                        "one eta for every channel (the surface's)");
     }
     media.push_back(medium);
-    if (built_in) profiles.emplace_back(parse_profile_model(model_name, "model"), medium);
+    if (built_in) profiles.emplace_back(*built_in, medium);
   }
 
   // The light: towards (azimuth, elevation) in degrees, z up.

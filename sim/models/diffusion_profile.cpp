@@ -63,9 +63,14 @@ int RingProfile::ring_of(double r) const {
   return static_cast<int>(upper - r_edges.begin()) - 1;
 }
 
-ProfileModel parse_profile_model(std::string_view name, std::string_view field) {
+std::optional<ProfileModel> find_profile_model(std::string_view name) {
   for (ProfileModel model : all_profile_models)
     if (name == to_string(model)) return model;
+  return std::nullopt;
+}
+
+ProfileModel parse_profile_model(std::string_view name, std::string_view field) {
+  if (const std::optional<ProfileModel> model = find_profile_model(name)) return *model;
   throw InputError(std::string(field), "unknown model '" + std::string(name) + "'",
                    "dipole, better_dipole, quantized_diffusion");
 }

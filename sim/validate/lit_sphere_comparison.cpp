@@ -25,6 +25,25 @@ MonteCarloCurve tally_curve(const std::vector<TallyResult>& tallies, const std::
   return {t->mean, t->stderr_of_mean};
 }
 
+// Region errors of a model curve against a Monte Carlo curve (psi_edges in radians).
+void set_region_errors(LitSphereModelCurve& curve, const MonteCarloCurve& monte_carlo,
+                       const std::vector<double>& psi_edges) {
+  double sum[3] = {0.0, 0.0, 0.0};
+  int count[3] = {0, 0, 0};
+  for (std::size_t b = 0; b + 1 < psi_edges.size(); ++b) {
+    const double mc = monte_carlo.mean[b];
+    if (!(mc > 3.0 * monte_carlo.stderr_of_mean[b])) continue;
+    const double middle = 0.5 * (psi_edges[b] + psi_edges[b + 1]);
+    const int region = middle < 80.0 * degree ? 0 : middle <= 100.0 * degree ? 1 : 2;
+    sum[region] += std::abs(curve.exitance.mean[b] - mc) / mc;
+    ++count[region];
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  curve.lit_error = count[0] > 0 ? sum[0] / count[0] : nan;
+  curve.terminator_error = count[1] > 0 ? sum[1] / count[1] : nan;
+  curve.shadow_error = count[2] > 0 ? sum[2] / count[2] : nan;
+}
+
 }  // namespace
 
 std::vector<LitSphereCase> lit_sphere_cases() {
@@ -48,24 +67,6 @@ std::vector<LitSphereCase> lit_sphere_cases() {
                      Medium::from_albedo(a.albedo, 1.0, a.g, "mfp"), a.radius, 1.3});
   }
   return cases;
-}
-
-void set_region_errors(LitSphereModelCurve& curve, const MonteCarloCurve& monte_carlo,
-                       const std::vector<double>& psi_edges) {
-  double sum[3] = {0.0, 0.0, 0.0};
-  int count[3] = {0, 0, 0};
-  for (std::size_t b = 0; b + 1 < psi_edges.size(); ++b) {
-    const double mc = monte_carlo.mean[b];
-    if (!(mc > 3.0 * monte_carlo.stderr_of_mean[b])) continue;
-    const double middle = 0.5 * (psi_edges[b] + psi_edges[b + 1]);
-    const int region = middle < 80.0 * degree ? 0 : middle <= 100.0 * degree ? 1 : 2;
-    sum[region] += std::abs(curve.exitance.mean[b] - mc) / mc;
-    ++count[region];
-  }
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  curve.lit_error = count[0] > 0 ? sum[0] / count[0] : nan;
-  curve.terminator_error = count[1] > 0 ? sum[1] / count[1] : nan;
-  curve.shadow_error = count[2] > 0 ? sum[2] / count[2] : nan;
 }
 
 LitSphereComparison compare_lit_sphere(const LitSphereCase& lit_case,

@@ -17,6 +17,7 @@
 // lit_sphere_exitance.hpp), unbiased for any profile because it returns the exact density of what
 // it draws.
 
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -35,6 +36,8 @@ enum class ProfileModel { dipole, better_dipole, quantized_diffusion, measured }
 // published models only, and throws InputError naming `field` and them otherwise.
 std::string to_string(ProfileModel model);
 ProfileModel parse_profile_model(std::string_view name, std::string_view field);
+// The published model of that name, or none (for callers that accept other names too).
+std::optional<ProfileModel> find_profile_model(std::string_view name);
 inline constexpr ProfileModel all_profile_models[] = {
     ProfileModel::dipole, ProfileModel::better_dipole, ProfileModel::quantized_diffusion};
 

@@ -66,8 +66,4 @@ LitSphereComparison compare_lit_sphere(const LitSphereCase& lit_case,
                                        const LitSphereSettings& settings,
                                        const ProgressCallback& progress = {});
 
-// Region errors of a model curve against a Monte Carlo curve (psi_edges in radians).
-void set_region_errors(LitSphereModelCurve& curve, const MonteCarloCurve& monte_carlo,
-                       const std::vector<double>& psi_edges);
-
 }  // namespace scatterlab
