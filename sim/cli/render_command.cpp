@@ -341,12 +341,12 @@ Action add_render_command(CLI::App& app) {
       peak = std::max(peak, v);
     }
     fmt::print(
-        "{}: {}x{}, {} samples/ray, {:.3f} s, {} eye rays, {} queries, {} paths, "
+        "{}: {}x{}, {} samples/ray, {:.3f} s, {} eye rays, {} queries, {} paths ({} blocked), "
         "mean radiance {:.6g}, peak {:.6g}; PNG exposure {:.2f} stops{}\nwrote {} and {}\n",
         o.method, scene.width, scene.height, scene.samples, result.seconds,
         result.counters.eye_rays, result.counters.point_queries, result.counters.paths,
-        total / static_cast<double>(result.image.values.size()), peak, exposure,
-        auto_exposed ? " (auto)" : "", exr.string(), png.string());
+        result.counters.blocked_paths, total / static_cast<double>(result.image.values.size()),
+        peak, exposure, auto_exposed ? " (auto)" : "", exr.string(), png.string());
     return 0;
   };
 }

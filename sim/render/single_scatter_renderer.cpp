@@ -148,6 +148,7 @@ class Renderer {
       result.counters.triangle_searches += c.triangle_searches;
       result.counters.paths += c.paths;
       result.counters.supports += c.supports;
+      result.counters.blocked_paths += c.blocked_paths;
     }
   }
 
@@ -199,12 +200,34 @@ class Renderer {
     return true;
   }
 
-  // S(V) of the header over the paths in `paths`, for one light point.
+  // Whether light can take the refracted path: nothing of the boundary between V and P (the leg
+  // inside) or between P and the light (the leg outside). The solver finds every path that obeys
+  // Snell's law at one triangle; on a shape that is not convex, another part of the boundary can
+  // lie across either leg (Walter et al. 2009, §5 tests both with shadow rays).
+  // Each leg starts a little off P along the facet's normal, to its own side: started on the
+  // surface, a leg that grazes a flat face would meet its coplanar neighbours in single precision.
+  // A leg shorter than twice that offset is not tested: nothing can be resolved across it.
+  bool unblocked(const RefractionPath& path) const {
+    const double epsilon = tracer_.epsilon();
+    const Vec3 off = epsilon * scene_.mesh.geometric_normal(path.triangle);
+    const auto open = [&](const Vec3& from, const Vec3& direction, double length) {
+      return length <= 2.0 * epsilon || !tracer_.occluded(from, direction, 0.0, length - epsilon);
+    };
+    return open(path.point - off, path.omega_v, path.distance_v) &&
+           open(path.point + off, path.omega_l, std::min(path.distance_l, 1e30));
+  }
+
+  // S(V) of the header over the paths in `paths` that light can take, for one light point.
   double path_sum(const EyeSegment& segment, const LightPoint& light,
-                  const std::vector<RefractionPath>& paths, std::size_t first) const {
+                  const std::vector<RefractionPath>& paths, std::size_t first,
+                  RenderCounters& count) const {
     double sum = 0.0;
     for (std::size_t k = first; k < paths.size(); ++k) {
       const RefractionPath& path = paths[k];
+      if (!unblocked(path)) {
+        ++count.blocked_paths;
+        continue;
+      }
       const PathContribution c = path_contribution(solver_.triangle(path.triangle), path,
                                                    scene_.eta, scene_.medium.sigma_t, false);
       // Light travels along omega_v at V and leaves towards the camera along -direction.
@@ -225,7 +248,7 @@ class Renderer {
       for (const LightPoint& light : lights_) {
         paths.clear();
         solver_.find_paths(v, Light::point(light.position), paths, stats);
-        sum += path_sum(segment, light, paths, 0);
+        sum += path_sum(segment, light, paths, 0, count);
       }
     }
     count.point_queries += stats.queries;
@@ -255,7 +278,7 @@ class Renderer {
           paths.clear();
           solver_.find_paths_through(support.triangle, v, point, paths, stats);
           solver_.merge_duplicates(paths, 0, stats);
-          triangle_sum += path_sum(segment, light, paths, 0);
+          triangle_sum += path_sum(segment, light, paths, 0, count);
         }
         sum += sampler.mass * triangle_sum / n;
       }
@@ -289,7 +312,7 @@ class Renderer {
           }
         }
         solver_.merge_duplicates(paths, 0, stats);
-        sum += path_sum(segment, light, paths, 0);
+        sum += path_sum(segment, light, paths, 0, count);
       }
     }
     count.supports += support_stats.supports;

@@ -15,7 +15,10 @@
 //              the boundary's Fresnel transmittance; E = I T exp(-sigma_t s) / |L - V|^2.
 //  walter      `samples` points along the segment (midpoints of equal steps of the
 //              transmittance exp(-sigma_t x)), every refracted path at each found with the
-//              refractive solver (Walter §3).
+//              refractive solver (Walter §3), and counted when nothing of the boundary lies
+//              across its leg inside (V to P) or its leg outside (P to the light): Walter §5
+//              checks every path for occlusion, without which a shape that is not convex is
+//              lit through itself. holzschuch counts its paths the same way.
 //  holzschuch  support intervals per triangle (Holzschuch §3.2, find_segment_supports), and
 //              `samples` points inside each interval; only that triangle is searched there.
 //              With shared_points, walter's points instead, each searched only in the
@@ -84,8 +87,9 @@ struct RenderCounters {
   std::uint64_t eye_rays = 0;       // pixels whose ray entered the object
   std::uint64_t point_queries = 0;  // points searched (shadow rays; holzschuch: per interval)
   std::uint64_t triangle_searches = 0;
-  std::uint64_t paths = 0;     // refracted paths found (or light hits for pathtrace)
-  std::uint64_t supports = 0;  // holzschuch: triangle intervals
+  std::uint64_t paths = 0;          // refracted paths found (or light hits for pathtrace)
+  std::uint64_t supports = 0;       // holzschuch: triangle intervals
+  std::uint64_t blocked_paths = 0;  // walter, holzschuch: paths found but blocked by the mesh
 };
 
 struct RenderResult {
