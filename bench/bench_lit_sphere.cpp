@@ -56,14 +56,19 @@ void Sphere(benchmark::State& state, Phase phase, LitSphereSpec spec) {
 }
 
 template <class Phase, bool fresnel>
-void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitSphereSpec& spec) {
+void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitSphereSpec& spec,
+                   SphereLight kind) {
   const TransportProblem problem = transport_problem(spec);
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
   const MeshRayTracer tracer(*spec.mesh);
   const MeshBoundary<fresnel> boundary(tracer, *spec.mesh, spec.eta);
-  const MeshLight<fresnel> light(boundary, MeshLight<fresnel>::Kind::beam, Vec3(1e-3, 2e-3, -20.0),
-                                 Vec3::UnitZ(), Vec3::Zero(), 10.0);
+  using Kind = typename MeshLight<fresnel>::Kind;
+  // The beam aims at the pole a hair off the axis; the directional light covers the sphere of
+  // radius 10 that holds the mesh.
+  const MeshLight<fresnel> light(boundary,
+                                 kind == SphereLight::directional ? Kind::directional : Kind::beam,
+                                 Vec3(1e-3, 2e-3, -20.0), Vec3::UnitZ(), Vec3::Zero(), 10.0);
   const RandomWalk<MeshBoundary<fresnel>, Phase, VolumeEstimator::none, Weighting::analog,
                    MeshLight<fresnel>>
       walk(boundary, phase, light, scorer, problem.albedo, problem.run.escape_radius,
@@ -76,8 +81,8 @@ void Mesh(benchmark::State& state, Phase phase, double albedo, double g, double 
           SphereLight kind) {
   LitSphereSpec spec = lit_sphere(albedo, g, eta, 10.0, kind);
   spec.mesh = std::make_shared<const TriangleMesh>(make_sphere(10.0, 48, 96, false));
-  if (eta != 1.0) return run_mesh_walk<Phase, true>(state, phase, spec);
-  run_mesh_walk<Phase, false>(state, phase, spec);
+  if (eta != 1.0) return run_mesh_walk<Phase, true>(state, phase, spec, kind);
+  run_mesh_walk<Phase, false>(state, phase, spec, kind);
 }
 
 const IsotropicPhase iso{};
