@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 
 #include "scatterlab/core/error.hpp"
 
@@ -93,6 +94,18 @@ std::vector<Vec3> area_weighted_vertex_normals(const TriangleMesh& mesh) {
     n = length > 0.0 ? Vec3(n / length) : Vec3::UnitZ();
   }
   return sums;
+}
+
+void append_mesh(TriangleMesh& mesh, const TriangleMesh& part, const Vec3& shift) {
+  if (!mesh.positions.empty() && mesh.has_shading_normals() != part.has_shading_normals()) {
+    throw std::invalid_argument("append_mesh: one mesh has shading normals and the other not");
+  }
+  const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+  for (const Vec3& p : part.positions) mesh.positions.push_back(p + shift);
+  mesh.normals.insert(mesh.normals.end(), part.normals.begin(), part.normals.end());
+  for (const auto& t : part.triangles) {
+    mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
 }
 
 }  // namespace scatterlab

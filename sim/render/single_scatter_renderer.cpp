@@ -219,11 +219,9 @@ class Renderer {
 
   // S(V) of the header over the paths in `paths` that light can take, for one light point.
   double path_sum(const EyeSegment& segment, const LightPoint& light,
-                  const std::vector<RefractionPath>& paths, std::size_t first,
-                  RenderCounters& count) const {
+                  const std::vector<RefractionPath>& paths, RenderCounters& count) const {
     double sum = 0.0;
-    for (std::size_t k = first; k < paths.size(); ++k) {
-      const RefractionPath& path = paths[k];
+    for (const RefractionPath& path : paths) {
       if (!unblocked(path)) {
         ++count.blocked_paths;
         continue;
@@ -248,7 +246,7 @@ class Renderer {
       for (const LightPoint& light : lights_) {
         paths.clear();
         solver_.find_paths(v, Light::point(light.position), paths, stats);
-        sum += path_sum(segment, light, paths, 0, count);
+        sum += path_sum(segment, light, paths, count);
       }
     }
     count.point_queries += stats.queries;
@@ -278,7 +276,7 @@ class Renderer {
           paths.clear();
           solver_.find_paths_through(support.triangle, v, point, paths, stats);
           solver_.merge_duplicates(paths, 0, stats);
-          triangle_sum += path_sum(segment, light, paths, 0, count);
+          triangle_sum += path_sum(segment, light, paths, count);
         }
         sum += sampler.mass * triangle_sum / n;
       }
@@ -312,7 +310,7 @@ class Renderer {
           }
         }
         solver_.merge_duplicates(paths, 0, stats);
-        sum += path_sum(segment, light, paths, 0, count);
+        sum += path_sum(segment, light, paths, count);
       }
     }
     count.supports += support_stats.supports;

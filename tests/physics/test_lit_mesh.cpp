@@ -49,11 +49,7 @@ LitSphereSpec lit_mesh(TriangleMesh mesh, double albedo, double g, double eta,
 TriangleMesh two_boxes(double h1, double h2) {
   TriangleMesh mesh;
   const auto add = [&mesh](double z_low, double height) {
-    TriangleMesh box = make_box(Vec3(1.0, 1.0, 0.5 * height));
-    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
-    for (const Vec3& p : box.positions)
-      mesh.positions.push_back(p + Vec3(0, 0, z_low + 0.5 * height));
-    for (auto t : box.triangles) mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    append_mesh(mesh, make_box(Vec3(1.0, 1.0, 0.5 * height)), Vec3(0, 0, z_low + 0.5 * height));
   };
   add(-1.2, h1);
   add(0.2, h2);

@@ -78,18 +78,9 @@ TEST(RenderPathtrace, ConvergesToTheRefractiveSolution) {
 // under the upper one.
 TEST(RenderPathtrace, AgreesOnAShapeThatShadowsItself) {
   RenderScene scene;
-  const TriangleMesh lower = make_rounded_tile(1.0, 1.0, 0.25, 0.3, 12, 24);
-  TriangleMesh upper = lower;
-  for (Vec3& p : upper.positions) p += Vec3(0.6, 0.0, 0.8);
-  scene.mesh = lower;
-  const auto offset = static_cast<std::uint32_t>(lower.positions.size());
-  scene.mesh.positions.insert(scene.mesh.positions.end(), upper.positions.begin(),
-                              upper.positions.end());
-  scene.mesh.normals.insert(scene.mesh.normals.end(), upper.normals.begin(), upper.normals.end());
-  for (auto t : upper.triangles) {
-    for (std::uint32_t& v : t) v += offset;
-    scene.mesh.triangles.push_back(t);
-  }
+  const TriangleMesh tile = make_rounded_tile(1.0, 1.0, 0.25, 0.3, 12, 24);
+  scene.mesh = tile;
+  append_mesh(scene.mesh, tile, Vec3(0.6, 0.0, 0.8));
   scene.medium = Medium::from_coefficients(0.05, 0.5, 0.2, "mesh units");
   scene.eta = 1.5;
   scene.light.position = Vec3(0.3, 0.4, 3.0);

@@ -16,11 +16,7 @@ TEST(ConvexMesh, SpheresAndBoxesAreConvexBumpsAndTwoPiecesAreNot) {
   EXPECT_FALSE(bounds_convex_solid(make_bumpy_sphere(3.0, 0.05, 5, 41, 48)));
   // Two boxes, each convex, side by side: light leaving one can enter the other.
   TriangleMesh two = make_box(Vec3(1.0, 1.0, 1.0));
-  const TriangleMesh other = make_box(Vec3(1.0, 1.0, 1.0));
-  const auto base = static_cast<std::uint32_t>(two.positions.size());
-  for (const Vec3& p : other.positions) two.positions.push_back(p + Vec3(3.0, 0.0, 0.0));
-  for (const auto& t : other.triangles)
-    two.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  append_mesh(two, make_box(Vec3(1.0, 1.0, 1.0)), Vec3(3.0, 0.0, 0.0));
   EXPECT_FALSE(bounds_convex_solid(two));
   // An open mesh bounds no solid.
   EXPECT_FALSE(bounds_convex_solid(make_flat_square(1.0, 1)));

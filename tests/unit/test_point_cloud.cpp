@@ -273,12 +273,7 @@ TEST(PointCloudExitance, FlatBlockAgreesWithQuadrature) {
 // light as if the upper block were not there.
 TEST(PointCloudIrradiance, ShadowedPointsGetNoLight) {
   TriangleMesh mesh = make_box(Vec3(2.0, 2.0, 0.5));
-  const TriangleMesh upper = make_box(Vec3(0.6, 0.6, 0.25));
-  const auto offset = static_cast<std::uint32_t>(mesh.positions.size());
-  for (const Vec3& p : upper.positions) mesh.positions.push_back(p + Vec3(0.0, 0.0, 1.5));
-  for (const auto& t : upper.triangles) {
-    mesh.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
-  }
+  append_mesh(mesh, make_box(Vec3(0.6, 0.6, 0.25)), Vec3(0.0, 0.0, 1.5));
   const RenderScene scene = lit_scene(mesh, Vec3(0.0, 0.0, 6.0), 1.0);
   PointCloudOptions options;
   options.points = 3000;

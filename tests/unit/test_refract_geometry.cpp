@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 #include "scatterlab/core/constants.hpp"
 #include "scatterlab/core/error.hpp"
@@ -66,6 +67,22 @@ TEST(ProceduralMeshes, ClosedOutwardAndOfTheRequestedSize) {
   TriangleMesh bad = sphere;
   bad.triangles[3][1] = 1u << 30;
   EXPECT_THROW(bad.validate(), InputError);
+}
+
+// Two parts in one mesh: the volumes add, the second part's vertices are moved and renumbered,
+// and shading normals are kept only for two meshes that both have them.
+TEST(ProceduralMeshes, AppendedPartsMakeOneMesh) {
+  TriangleMesh two = make_rounded_tile(1.0, 1.0, 0.25, 0.3, 12, 24);
+  const double one = signed_volume(two);
+  const std::size_t positions = two.positions.size();
+  append_mesh(two, make_rounded_tile(1.0, 1.0, 0.25, 0.3, 12, 24), Vec3(0.0, 0.0, 5.0));
+  two.validate();
+  EXPECT_EQ(two.positions.size(), 2 * positions);
+  EXPECT_EQ(two.normals.size(), 2 * positions);
+  EXPECT_NEAR(signed_volume(two), 2.0 * one, 1e-12);
+  EXPECT_EQ(two.vertex(two.triangle_count() - 1, 0).z(),
+            two.vertex(two.triangle_count() / 2 - 1, 0).z() + 5.0);
+  EXPECT_THROW(append_mesh(two, make_flat_square(1.0, 1), Vec3::Zero()), std::invalid_argument);
 }
 
 // Exact plane path for the test: Snell solved by bisection on the incidence-plane equation.

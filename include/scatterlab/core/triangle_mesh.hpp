@@ -56,4 +56,9 @@ std::vector<std::uint32_t> vertex_ids_by_position(const TriangleMesh& mesh);
 // normals for a mesh that has none.
 std::vector<Vec3> area_weighted_vertex_normals(const TriangleMesh& mesh);
 
+// Adds `part`, moved by `shift`, to `mesh` as more triangles of the same mesh: one mesh of
+// several closed parts. Shading normals are kept when both have them (or `mesh` is empty);
+// std::invalid_argument when only one of two non-empty meshes has them.
+void append_mesh(TriangleMesh& mesh, const TriangleMesh& part, const Vec3& shift);
+
 }  // namespace scatterlab
