@@ -319,8 +319,14 @@ class Renderer {
     return scene_.medium.sigma_s() * sampler.mass * sum / n;
   }
 
-  // Jensen et al. 2001, §4.3 single scattering with the light's refraction ignored: the shadow
-  // ray runs straight from V to the light point.
+  // Jensen et al. 2001, §4.3: the shadow ray runs straight from V to the light point, meeting
+  // the boundary at x_i after the observed distance s_i at cosine mu = w . n_i, and the light's
+  // refraction there is accounted for by two corrections (Bitterli 2013, §2.6.2 describes them):
+  // the attenuation takes the refracted distance s_i' = s_i mu / sqrt(1 - (1 - mu^2) / eta^2),
+  // and the phase function the refracted direction omega_i'. The distance is exact for a flat
+  // boundary seen along the straight ray: V lies s_i mu below the tangent plane at x_i, and light
+  // refracted there crosses that depth at cosine mu_t = sqrt(1 - (1 - mu^2) / eta^2), in s_i mu /
+  // mu_t.
   template <bool Smooth>
   double straight(const EyeSegment& segment, RenderCounters& count) const {
     const TransmittanceSampler sampler(segment.t0, segment.t1, scene_.medium.sigma_t);
@@ -339,12 +345,17 @@ class Renderer {
         const double cos_l = w.dot(n_s);
         if (!(cos_l > 0.0)) continue;
         if (tracer_.occluded(v, w, hit.distance + tracer_.epsilon(), distance)) continue;
+        Vec3 refracted = -w;  // omega_i', the light's direction inside
+        if (scene_.eta != 1.0 && !refract(-w, n_s, scene_.eta, refracted)) continue;
         ++count.paths;
+        const double cos_t = -refracted.dot(n_s);
         const double transmittance = fresnel_dielectric_transmittance(cos_l, scene_.eta);
-        const double irradiance =
-            transmittance * std::exp(-scene_.medium.sigma_t * hit.distance) / (distance * distance);
-        // Light travels along -w at V and leaves towards the camera along -direction.
-        sum += phase_.evaluate(w.dot(segment.direction)) * light.intensity * irradiance;
+        const double refracted_distance = hit.distance * cos_l / cos_t;
+        const double irradiance = transmittance *
+                                  std::exp(-scene_.medium.sigma_t * refracted_distance) /
+                                  (distance * distance);
+        // The light travels along omega_i' and leaves towards the camera along -direction.
+        sum += phase_.evaluate(-refracted.dot(segment.direction)) * light.intensity * irradiance;
       }
     }
     return scene_.medium.sigma_s() * sampler.mass * sum / n;

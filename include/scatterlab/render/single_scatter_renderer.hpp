@@ -10,9 +10,10 @@
 // medium. Units: radiance per unit light intensity times I, W / (sr length^2) for I in W/sr.
 //
 // Methods:
-//  straight    Jensen et al. 2001, §4.3: the light's refraction ignored; the shadow ray goes
-//              straight from V to the light, attenuated by exp(-sigma_t s) to the boundary and
-//              the boundary's Fresnel transmittance; E = I T exp(-sigma_t s) / |L - V|^2.
+//  straight    Jensen et al. 2001, §4.3: the shadow ray goes straight from V to the light,
+//              meeting the boundary after s at cosine mu; the light's refraction is approximated
+//              by Jensen's refracted distance s' = s mu / mu_t (Snell's mu_t) and the refracted
+//              direction in the phase function: E = I T(mu) exp(-sigma_t s') / |L - V|^2.
 //  walter      `samples` points along the segment (midpoints of equal steps of the
 //              transmittance exp(-sigma_t x)), every refracted path at each found with the
 //              refractive solver (Walter §3), and counted when nothing of the boundary lies
