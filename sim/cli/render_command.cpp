@@ -135,7 +135,7 @@ int run_bssrdf(const RenderOptions& o, const RenderScene& scene, const std::file
 }
 
 // `render --study`: the study itself lives in sim/render/render_study.cpp.
-int run_study(const RenderOptions& o, const std::filesystem::path& out_dir) {
+int run_study(const RenderOptions& o, const std::filesystem::path& out_dir, double log_interval) {
   check_threads(o.threads, "--threads");
   check_seed(o.seed, "--seed");
   const std::vector<std::string> paths =
@@ -155,17 +155,25 @@ int run_study(const RenderOptions& o, const std::filesystem::path& out_dir) {
   RenderStudyOptions options = o.quick ? RenderStudyOptions::quick() : RenderStudyOptions{};
   options.threads = o.threads;
   options.seed = o.seed;
-  fmt::print(
-      "study: {}x{} pixels, reference holzschuch at {} samples per interval and {} light "
-      "points\n",
-      options.size, options.size, options.reference_samples, options.reference_light_samples);
-  run_render_study(scenes, options, out_dir, [](const RenderStudyRow& row) {
+  fmt::print("study: {}x{} pixels, reference path-traced at {} samples per pixel (its own seed)\n",
+             options.size, options.size, options.reference_samples);
+  // One bar (with its ETA) per render, cleared before the render's line is printed.
+  std::unique_ptr<ProgressReporter> reporter;
+  const StudyProgress progress = [&reporter, log_interval](const std::string& what) {
+    reporter = std::make_unique<ProgressReporter>("study " + what, "tiles", log_interval);
+    return WorkProgress(
+        [&reporter](std::uint64_t done, std::uint64_t tiles) { reporter->update(done, tiles); });
+  };
+  const auto on_row = [&reporter](const RenderStudyRow& row) {
+    if (reporter) reporter->finish();
     fmt::print("{:>14} {:>10} budget {:>6}: {:9.3f} s, rmse {:.4g}, relative error {:.4g}{}\n",
                row.scene, to_string(row.method), row.budget, row.seconds, row.rmse,
                row.relative_error,
                std::isnan(row.mean_z2) ? "" : fmt::format(", mean z^2 {:.3g}", row.mean_z2));
     std::fflush(stdout);
-  });
+  };
+  run_render_study(scenes, options, out_dir, on_row, progress);
+  reporter.reset();
   fmt::print("wrote {}\n", (out_dir / "render_study.csv").string());
   return 0;
 }
@@ -186,9 +194,10 @@ Action add_render_command(CLI::App& app) {
       ->default_str("");
   render->add_flag("--study", options->study,
                    "Error against run time: every method at increasing budgets against a "
-                   "converged reference (holzschuch, many samples); writes render_study.csv, "
-                   "<scene>_error.png and <scene>_images.png into --out (a directory); not with "
-                   "--method, --width, --height, --samples, --light-samples, --exposure, --gamma");
+                   "path-traced reference (2^20 samples per pixel, its noise subtracted); writes "
+                   "render_study.csv, <scene>_error.png and <scene>_images.png into --out (a "
+                   "directory); not with --method, --width, --height, --samples, "
+                   "--light-samples, --exposure, --gamma");
   render->add_flag("--quick", options->quick, "With --study: tiny images and budgets");
   render->add_option("--method", options->method,
                      "straight (Jensen 2001), walter (sample points), holzschuch (support "
@@ -246,7 +255,9 @@ Action add_render_command(CLI::App& app) {
   for (const char* flag : bssrdf_flags) study->excludes(render->get_option(flag));
   return [options, out_option, exposure_option, render, log_interval] {
     const RenderOptions& o = *options;
-    if (o.study) return run_study(o, out_option->count() > 0 ? o.out : "render-study");
+    if (o.study) {
+      return run_study(o, out_option->count() > 0 ? o.out : "render-study", *log_interval);
+    }
     if (o.quick) throw InputError("quick", "given without --study", "--quick with --study");
     if (o.method != "bssrdf") {
       for (const char* flag : bssrdf_flags) {

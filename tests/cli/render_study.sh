@@ -2,7 +2,8 @@
 # Usage: render_study.sh SCATTERLAB SOURCE_DIR
 # `scatterlab render --study --quick` end to end: the output directory is made, the CSV has a row
 # per scene, method and budget with finite errors and times (and pathtrace's z-scores against the
-# reference), and the error plot and the side-by-side images are written.
+# path-traced reference, and the reference's noise), and the error plot and the side-by-side
+# images are written.
 set -u
 exe=$1
 source_dir=$2
@@ -17,7 +18,7 @@ else
 fi
 
 csv="$work/new/study/render_study.csv"
-if [ "$(head -1 "$csv" 2>/dev/null)" = "scene,method,budget,light_samples,seconds,rmse,relative_error,mean_z2" ]; then
+if [ "$(head -1 "$csv" 2>/dev/null)" = "scene,method,budget,light_samples,seconds,rmse,relative_error,mean_z2,reference_noise,resolution" ]; then
   pass
 else
   fail "CSV header: $(head -1 "$csv" 2>/dev/null)"
@@ -27,7 +28,7 @@ rows=$(tail -n +2 "$csv" 2>/dev/null | grep -c .)
 [ "$rows" = 16 ] && pass || fail "expected 16 rows, got $rows"
 bad=$(tail -n +2 "$csv" 2>/dev/null | awk -F, '
   function finite(v) { return v ~ /^-?[0-9.]+(e[-+]?[0-9]+)?$/ }
-  !(finite($5) && finite($6) && finite($7) && $6 >= 0 && $7 >= 0) { print }')
+  !(finite($5) && finite($6) && finite($7) && finite($9) && finite($10) && $6 >= 0 && $7 >= 0 && $9 > 0 && $10 > 0) { print }')
 [ -z "$bad" ] && pass || fail "non-finite or negative values: $bad"
 # mean_z2: a finite non-negative number for pathtrace, nan for the deterministic methods.
 bad=$(tail -n +2 "$csv" 2>/dev/null | awk -F, '

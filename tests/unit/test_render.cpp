@@ -287,7 +287,6 @@ TEST(Render, BadScenesGiveOneClearError) {
   EXPECT_THROW(parse_render_method("jensen"), InputError);
 }
 
-// The study's error measures on a 2 x 1 image: differences (0.3, -0.4) against (1, 0).
 TEST(Render, WorkIsPixelsTimesSamplesTimesLightPoints) {
   RenderScene scene;
   scene.width = 64;
@@ -309,18 +308,30 @@ TEST(Render, WorkIsPixelsTimesSamplesTimesLightPoints) {
   EXPECT_THROW(check_render_work(scene, settings), InputError);
 }
 
-TEST(Render, StudyErrorsAreRmsAndRelativeL2) {
-  Image reference(2, 1), image(2, 1);
+// The study's error measures on a 2 x 1 image: differences (0.3, -0.4) against (1, 0), first
+// against an exact reference, then against one with standard errors (0.1, 0.2), whose variance
+// 0.05 comes off the sum of squares 0.25 and off the reference's 1.
+TEST(Render, StudyErrorsAreRmsAndRelativeL2LessTheReferenceNoise) {
+  Image reference(2, 1), image(2, 1), exact(2, 1), noisy(2, 1);
   reference.values = {1.0, 0.0};
   image.values = {1.3, -0.4};
-  double rmse = 0.0, relative = 0.0;
-  image_errors(image, reference, rmse, relative);
-  EXPECT_NEAR(rmse, std::sqrt(0.25 / 2.0), 1e-15);
-  EXPECT_NEAR(relative, 0.5, 1e-15);
-  image_errors(reference, reference, rmse, relative);
-  EXPECT_EQ(rmse, 0.0);
-  EXPECT_EQ(relative, 0.0);
-  EXPECT_THROW(image_errors(Image(1, 1), reference, rmse, relative), std::invalid_argument);
+  noisy.values = {0.1, 0.2};
+  ImageErrors errors = image_errors(image, reference, exact);
+  EXPECT_NEAR(errors.rmse, std::sqrt(0.25 / 2.0), 1e-15);
+  EXPECT_NEAR(errors.relative_error, 0.5, 1e-15);
+  EXPECT_EQ(errors.reference_noise, 0.0);
+  errors = image_errors(image, reference, noisy);
+  EXPECT_NEAR(errors.rmse, std::sqrt(0.2 / 2.0), 1e-15);
+  EXPECT_NEAR(errors.relative_error, std::sqrt(0.2 / 0.95), 1e-15);
+  EXPECT_NEAR(errors.reference_noise, std::sqrt(0.05 / 0.95), 1e-15);
+  // (2 (0.1^4 + 0.2^4))^(1/4) / sqrt(0.95)
+  EXPECT_NEAR(errors.resolution, std::pow(2.0 * 0.0017, 0.25) / std::sqrt(0.95), 1e-15);
+  // An error under the reference's noise is not resolved: 0.
+  errors = image_errors(reference, reference, noisy);
+  EXPECT_EQ(errors.rmse, 0.0);
+  EXPECT_EQ(errors.relative_error, 0.0);
+  EXPECT_THROW(image_errors(Image(1, 1), reference, exact), std::invalid_argument);
+  EXPECT_THROW(image_errors(image, reference, Image(1, 1)), std::invalid_argument);
 }
 
 TEST(Render, ShippedScenesLoad) {
