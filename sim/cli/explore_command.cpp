@@ -17,6 +17,7 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/explore/api.hpp"
 #include "scatterlab/explore/server.hpp"
+#include "shipped_path.hpp"
 
 namespace scatterlab::cli {
 namespace {
@@ -35,13 +36,7 @@ struct ExploreCommandOptions {
 // (<prefix>/share/scatterlab/explore), else the source tree's web/ this program was built from.
 fs::path find_page(const std::string& page) {
   if (!page.empty()) return page;
-  std::error_code error;
-  const fs::path program = fs::read_symlink("/proc/self/exe", error);
-  if (!error) {
-    const fs::path installed = program.parent_path().parent_path() / "share/scatterlab/explore";
-    if (fs::is_regular_file(installed / "index.html", error)) return installed;
-  }
-  return SCATTERLAB_SOURCE_WEB;
+  return shipped_path("explore", SCATTERLAB_SOURCE_WEB);
 }
 
 int run_explore(const ExploreCommandOptions& o) {

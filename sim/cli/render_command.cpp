@@ -25,6 +25,7 @@
 #include "scatterlab/render/render_study.hpp"
 #include "scatterlab/render/single_scatter_renderer.hpp"
 #include "scatterlab/render/volumetric_renderer.hpp"
+#include "shipped_path.hpp"
 
 namespace scatterlab::cli {
 
@@ -138,10 +139,15 @@ int run_bssrdf(const RenderOptions& o, const RenderScene& scene, const std::file
 int run_study(const RenderOptions& o, const std::filesystem::path& out_dir, double log_interval) {
   check_threads(o.threads, "--threads");
   check_seed(o.seed, "--seed");
-  const std::vector<std::string> paths =
-      o.scenes.empty()
-          ? std::vector<std::string>{"data/scenes/bumpy-sphere.toml", "data/scenes/tile.toml"}
-          : o.scenes;
+  // The shipped scenes by default, found from any directory.
+  std::vector<std::string> paths = o.scenes;
+  if (paths.empty()) {
+    for (const char* name : {"bumpy-sphere.toml", "tile.toml"}) {
+      paths.push_back(shipped_path(std::filesystem::path("scenes") / name,
+                                   std::filesystem::path(SCATTERLAB_SOURCE_DATA) / "scenes" / name)
+                          .string());
+    }
+  }
   OutputPlan plan;
   for (const std::string& path : paths) plan.input("SCENE", path);
   plan.output_directory("--out", out_dir);

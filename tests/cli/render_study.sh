@@ -49,4 +49,16 @@ for name in bumpy-sphere tile; do
   done
 done
 
+# From any directory, without scenes: the shipped scenes are found (beside an installed program,
+# else in the source tree it was built from).
+if (cd "$work" && "$exe" render --study --quick --out elsewhere >"$work/stdout2" 2>"$work/stderr2"); then
+  pass
+else
+  fail "study from $work: $(cat "$work/stderr2")"
+fi
+for name in bumpy-sphere tile; do
+  [ "$(grep -c "^$name," "$work/elsewhere/render_study.csv" 2>/dev/null)" = 8 ] && pass ||
+    fail "the default study lacks $name"
+done
+
 report cli.render_study
