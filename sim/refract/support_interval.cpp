@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -16,6 +17,12 @@ using Vec2 = Eigen::Vector2d;
 
 // Splits of a triangle with interpolated normals in step 2's test (up to 4^k parts).
 constexpr int smooth_split_depth = 2;
+
+// Splits of a smooth triangle in step 3's shading-normal test (4^k parts at the finest level).
+// On the bumpy sphere at 16 samples per interval, depths 0 / 4 / 6 / 8 give an image error of
+// 0.16 / 0.069 / 0.060 / 0.038 (RMSE over the mean, against walter at 1024 samples) in 3.0 /
+// 4.4 / 7.2 / 12.7 s; the intervals hold the sampled support to 0.29 / 0.66 / 0.83 / 0.90.
+constexpr int shading_normal_depth = 6;
 
 // Largest turn refraction can give a ray, pi/2 - asin(1 / eta_max) (Walter §3.4; Holzschuch
 // §3.2.4's spindle-based test): the angle between omega_V and -omega_L is at most this.
@@ -282,6 +289,149 @@ class FlatSupport {
   mutable RefractionStats scratch_;
 };
 
+// Holzschuch §3.2.4, the shading-normal test, on the part of a smooth triangle with barycentric
+// corners ab: narrows [lo, hi] to the x at which the part can hold a refraction point for V(x);
+// false if it holds none there. With (C, r) a sphere around the part, omega_V lies in the cone
+// (u_V, theta_V = asin(r / d_min)) and omega_L in (u_L, theta_L); their unit tips lie within the
+// chords r_V = 2 sin(theta_V / 2) and r_L of the axes, so h = eta omega_V + omega_L lies within
+// eta r_V + r_L of eta u_V + u_L and its direction within theta_H = asin((eta r_V + r_L) / h_min)
+// of u_H. A path needs N_s = -s h (PathQuery's target sign s) with N_s in the normal cone
+// (u_n, theta_n): the angle between -s u_H and u_n is at most psi = theta_n + theta_H.
+// As V moves along the ray, u_V turns in the plane through C and the ray, so u_H runs along an
+// elliptic cone whose section by the plane u_n . M = 1 is the paper's hyperbola, and psi is a
+// disc about u_n in that plane. Rather than a distance to the curve by dichotomy, the interval's
+// ends are found on the curve's parameter phi (u_V = cos phi e1 + sin phi e2) with
+// F(phi) = -s h . u_n - cos psi |h|, which is >= 0 exactly where u_H lies in the disc: walking in
+// from each end by steps that cannot pass a zero of F (below) makes every end conservative.
+bool shading_normal_interval(const RefractiveTriangle& tri, const std::array<Vec2, 3>& ab,
+                             const EyeSegment& segment, const Light& light, double eta, double& lo,
+                             double& hi) {
+  const auto corners = part_corners(tri, ab);
+  DirectionCone normal_cone, l_cone;
+  if (!part_cones(tri, ab, corners, light, normal_cone, l_cone)) return true;
+  if (normal_cone.is_everything() || l_cone.is_everything()) return true;
+  const Vec3 c = (corners[0] + corners[1] + corners[2]) / 3.0;
+  double r = 0.0;
+  for (const Vec3& p : corners) r = std::max(r, (p - c).norm());
+  r *= 1.0 + 1e-8;  // accept_path's barycentric slack lets P lie just outside the part
+  // The ray's line about C: V(x) - C = rho e1 + (x - x_c) e2, so tan phi = (x - x_c) / rho.
+  const Vec3 w0 = segment.origin - c;
+  const double x_c = -w0.dot(segment.direction);
+  const Vec3 perpendicular = w0 + x_c * segment.direction;
+  const double rho = perpendicular.norm();
+  const double d_min = std::hypot(rho, std::clamp(x_c, lo, hi) - x_c);
+  if (!(d_min > r) || !(rho > 0.0)) return true;  // V may enter the sphere: no cone of omega_V
+  const Vec3 e1 = perpendicular / rho, e2 = segment.direction;
+  const Vec3& u_l = l_cone.axis;
+  const auto phi_of = [&](double x) { return std::atan2(x - x_c, rho); };
+  const double phi_lo = phi_of(lo), phi_hi = phi_of(hi);
+  // h_min: |eta u_V + u_L|^2 = eta^2 + 1 + 2 eta u_V . u_L, and u_V . u_L = k1 cos phi +
+  // k2 sin phi is least at an end of the arc or at its minimum, phi = atan2(-k2, -k1).
+  const double k1 = e1.dot(u_l), k2 = e2.dot(u_l);
+  double least = std::min(k1 * std::cos(phi_lo) + k2 * std::sin(phi_lo),
+                          k1 * std::cos(phi_hi) + k2 * std::sin(phi_hi));
+  if (const double phi_star = std::atan2(-k2, -k1); phi_lo <= phi_star && phi_star <= phi_hi) {
+    least = -std::hypot(k1, k2);
+  }
+  const double h_min = std::sqrt(std::max(0.0, eta * eta + 1.0 + 2.0 * eta * least));
+  const double spread =
+      eta * 2.0 * std::sin(0.5 * std::asin(r / d_min)) + 2.0 * std::sin(0.5 * l_cone.half_angle);
+  if (!(spread < h_min)) return true;
+  // Slack: rounding, and the normal just outside the part (accept_path's barycentric slack).
+  const double psi = normal_cone.half_angle + std::asin(spread / h_min) + 1e-8;
+  if (psi >= pi) return true;
+  const double cos_psi = std::cos(psi);
+  const double sign = eta > 1.0 ? 1.0 : -1.0;
+  const Vec3& u_n = normal_cone.axis;
+  // F and dF/dphi; with |h| >= h_min, |F''| <= M: |d^2(h . u_n) / d phi^2| = |eta u_V . u_n|
+  // <= eta and d^2|h| / d phi^2 = (|h'|^2 + h . h'') / |h| - (h . h')^2 / |h|^3 <= eta^2 / h_min
+  // + eta.
+  const auto f = [&](double phi, double& slope) {
+    const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
+    const Vec3 h = eta * (cos_phi * e1 + sin_phi * e2) + u_l;
+    const Vec3 dh = eta * (cos_phi * e2 - sin_phi * e1);
+    const double length = h.norm();
+    slope = -sign * dh.dot(u_n) - cos_psi * h.dot(dh) / length;
+    return -sign * h.dot(u_n) - cos_psi * length;
+  };
+  const double curvature = eta + std::abs(cos_psi) * (eta + eta * eta / h_min);
+  const double stop = 1e-6 * (phi_hi - phi_lo);
+  // Walks from an end towards `end` while F < 0. Where F < 0, F(phi + t) <= F + F' t + M t^2 / 2
+  // (t along the walk), so F has no zero before that parabola's positive root: each step is safe
+  // and, near a simple zero, about a Newton step.
+  const auto walk = [&](double phi, double direction, double end) {
+    for (int step = 0; step < 32 && direction * (end - phi) >= 0.0; ++step) {
+      double slope = 0.0;
+      const double value = f(phi, slope);
+      if (value >= 0.0) break;
+      const double rate = direction * slope;
+      const double t = (-rate + std::sqrt(rate * rate - 2.0 * curvature * value)) / curvature;
+      if (!(t >= stop)) break;
+      phi += direction * t;
+    }
+    return phi;
+  };
+  const double first = walk(phi_lo, 1.0, phi_hi);
+  if (first > phi_hi) return false;
+  const double last = walk(phi_hi, -1.0, first);
+  // Back to x, widened by rounding.
+  const double slack = 1e-12 * (std::abs(x_c) + rho + (hi - lo));
+  lo = std::max(lo, x_c + rho * std::tan(first) - slack);
+  hi = std::min(hi, x_c + rho * std::tan(last) + slack);
+  return lo <= hi;
+}
+
+// One end of a smooth triangle's support by branch and bound over its parts: the least x_min
+// (from_left) or the greatest x_max of the finest parts' intervals. A part's interval holds its
+// children's, so children are split best first and a part that cannot improve `best` is not.
+void extreme_part_end(const RefractiveTriangle& tri, const EyeSegment& segment, const Light& light,
+                      double eta, const std::array<Vec2, 3>& part, int level, double lo, double hi,
+                      bool from_left, double& best) {
+  if (level == shading_normal_depth) {
+    best = from_left ? std::min(best, lo) : std::max(best, hi);
+    return;
+  }
+  struct Child {
+    std::array<Vec2, 3> ab;
+    double lo, hi;
+  };
+  std::array<Child, 4> children;
+  std::size_t count = 0;
+  for (const auto& ab : quarters(part)) {
+    Child child{ab, lo, hi};
+    if (shading_normal_interval(tri, ab, segment, light, eta, child.lo, child.hi)) {
+      children[count++] = child;
+    }
+  }
+  const auto better = [from_left](double a, double b) { return from_left ? a < b : a > b; };
+  const auto end = [from_left](const Child& c) { return from_left ? c.lo : c.hi; };
+  for (std::size_t i = 1; i < count; ++i) {  // insertion sort, best end first
+    for (std::size_t j = i; j > 0 && better(end(children[j]), end(children[j - 1])); --j) {
+      std::swap(children[j], children[j - 1]);
+    }
+  }
+  for (std::size_t i = 0; i < count && better(end(children[i]), best); ++i) {
+    extreme_part_end(tri, segment, light, eta, children[i].ab, level + 1, children[i].lo,
+                     children[i].hi, from_left, best);
+  }
+}
+
+// Holzschuch §3.2.4's shading-normal test on a smooth triangle, refined over its parts (whose
+// normal cones narrow as they shrink): [lo, hi] becomes the hull of the finest parts' intervals;
+// false if no part can hold a path.
+bool tighten_smooth(const RefractiveTriangle& tri, const EyeSegment& segment, const Light& light,
+                    double eta, double& lo, double& hi) {
+  if (!shading_normal_interval(tri, whole_triangle, segment, light, eta, lo, hi)) return false;
+  double first = std::numeric_limits<double>::infinity();
+  extreme_part_end(tri, segment, light, eta, whole_triangle, 0, lo, hi, true, first);
+  if (!(first <= hi)) return false;
+  double last = -std::numeric_limits<double>::infinity();
+  extreme_part_end(tri, segment, light, eta, whole_triangle, 0, first, hi, false, last);
+  lo = first;
+  hi = last;
+  return lo <= hi;
+}
+
 // Step 2: the first (from_left) or last surviving leaf of the bisection of [lo, hi].
 std::optional<double> extreme_surviving_x(const RefractedLight& lit, std::uint32_t triangle,
                                           const EyeSegment& segment, double lo, double hi,
@@ -499,8 +649,9 @@ std::optional<SupportInterval> triangle_support_interval(const RefractedLight& l
     const auto last = extreme_surviving_x(lit, triangle, segment, lo, hi, leaf, false, 0, stats);
     lo = *first;
     hi = last ? *last : hi;
-    // Step 3: exact ends for flat triangles.
-    if (!tri.smooth && !FlatSupport(tri, segment, light, eta, stats).tighten(lo, hi)) {
+    // Step 3: exact ends for flat triangles; the shading-normal test for smooth ones.
+    if (tri.smooth ? !tighten_smooth(tri, segment, light, eta, lo, hi)
+                   : !FlatSupport(tri, segment, light, eta, stats).tighten(lo, hi)) {
       return std::nullopt;
     }
   }

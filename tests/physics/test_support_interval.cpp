@@ -1,8 +1,9 @@
 // Holzschuch 2013 §3.2: per-triangle support intervals along an eye ray and the pruning of a
 // whole segment. Every x at which a triangle contributes (dense sampling with the path finder)
 // must lie in its interval; flat triangles' intervals must be exact (the triangle contributes
-// just inside both ends); and single scattering integrated over the intervals only must equal
-// the integral over the whole segment with the same sample points.
+// just inside both ends) and smooth ones tight (Holzschuch's shading-normal test); and single
+// scattering integrated over the intervals only must equal the integral over the whole segment
+// with the same sample points.
 
 #include <gtest/gtest.h>
 
@@ -143,8 +144,10 @@ TEST_P(SupportContainment, IntervalsHoldEverySampleAtWhichATriangleContributes) 
   RecordProperty("pruned_fraction", std::to_string(pruned));
   RecordProperty("mean_interval_fraction", std::to_string(mean_length));
   EXPECT_GT(pruned, 0.8);  // not vacuous: most triangles cannot reach a given segment
-  // Interpolated normals keep the conservative outer bound; flat ones are exact.
-  EXPECT_LT(mean_length, smooth ? 0.75 : 0.2);
+  // Flat intervals are exact; interpolated normals' come from the shading-normal test (measured
+  // 0.68-0.94 of the interval sampled; 0.16-0.45 with step 2's cone bound alone).
+  EXPECT_LT(mean_length, smooth ? 0.4 : 0.2);
+  EXPECT_GT(observed_span / span_interval_length, smooth ? 0.6 : 0.95);
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, SupportContainment, ::testing::Range(0, 9));

@@ -23,8 +23,12 @@
 //     over where Newton fails. Exact (to the barycentric slack of accept_path) when the curve
 //     crosses each edge line at most once inside the window, which the small window of step 2
 //     makes the rule; a coordinate negative at both ends discards the triangle.
-//     Triangles with interpolated normals keep the outer bound of step 2: conservative, not tight
-//     (the curve may fold at caustics, so edge crossings alone do not bound the support there).
+//     Triangles with interpolated normals: the curve may fold at caustics, so edge crossings
+//     alone do not bound the support. Holzschuch §3.2.4's shading-normal test bounds it instead:
+//     around a sphere holding a part of the triangle, the half-vector's cone must meet the
+//     shading normals' cone, which along the ray is a point-to-hyperbola test giving an interval
+//     of x. The test is applied to the whole triangle and, by branch and bound, to its parts down
+//     to 4^6 of them, whose normal cones are narrow; the interval is the hull of theirs.
 //  eta = 1: V must see the light through the triangle, the intersection of three half-spaces
 //  (planes through the light and each edge), exact.
 //
