@@ -18,8 +18,12 @@ struct UnitCircle {
 
 inline UnitCircle azimuth(double u) {
   // Nearest quarter turn q and the signed remainder in radians.
+  // Rounding by adding and subtracting 1.5 * 2^52 (exact for |4u| < 2^51: the sum's unit in the
+  // last place is 1) is std::nearbyint in the default rounding mode, without the library call
+  // that the x86-64 baseline (no SSE4.1 roundsd) makes of it.
+  constexpr double round_shift = 0x1.8p52;
   const double quarters = 4.0 * u;
-  const double q = std::nearbyint(quarters);
+  const double q = (quarters + round_shift) - round_shift;
   const double x = (quarters - q) * (0.5 * std::numbers::pi);
   const double x2 = x * x;
   // Horner forms of the Taylor series of sin x / x and cos x about 0.
@@ -40,13 +44,13 @@ inline UnitCircle azimuth(double u) {
   c = c * -x2 + 1.0 / 24.0;
   c = c * -x2 + 0.5;
   c = c * -x2 + 1.0;
-  // Rotate by q quarter turns: (c, s) -> (-s, c) per turn.
-  switch (static_cast<int>(q) & 3) {
-    case 0: return {c, s};
-    case 1: return {-s, c};
-    case 2: return {-c, -s};
-    default: return {s, -c};
-  }
+  // Rotate by q quarter turns: (c, s) -> (-s, c) per turn. Odd turns swap the pair; the signs
+  // come from a table (times +-1 is exact), so that no branch depends on the random number.
+  constexpr double cos_sign[4] = {1.0, -1.0, -1.0, 1.0};
+  constexpr double sin_sign[4] = {1.0, 1.0, -1.0, -1.0};
+  const int turn = static_cast<int>(q) & 3;
+  const double pair[2] = {c, s};
+  return {pair[turn & 1] * cos_sign[turn], pair[(turn & 1) ^ 1] * sin_sign[turn]};
 }
 
 }  // namespace scatterlab
