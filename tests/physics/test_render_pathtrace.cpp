@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "scatterlab/core/procedural_meshes.hpp"
 #include "scatterlab/render/render_scene.hpp"
@@ -12,9 +13,34 @@
 namespace scatterlab {
 namespace {
 
-// `deterministic` against path tracing over the whole image and pixel by pixel; the number of
-// lit pixels.
-int expect_agreement(RenderScene scene, RenderMethod deterministic_method) {
+// A small sphere light over `mesh`, the medium and index of both tests, 8 x 8 pixels.
+RenderScene lit_scene(TriangleMesh mesh, const Vec3& light, const Vec3& camera, const Vec3& look_at,
+                      double fov_degrees) {
+  RenderScene scene;
+  scene.mesh = std::move(mesh);
+  scene.medium = Medium::from_coefficients(0.05, 0.5, 0.2, "mesh units");
+  scene.eta = 1.5;
+  scene.light.position = light;
+  scene.light.radius = 0.15;
+  scene.camera.position = camera;
+  scene.camera.look_at = look_at;
+  scene.camera.up = Vec3::UnitZ();
+  scene.camera.fov_degrees = fov_degrees;
+  scene.width = 8;
+  scene.height = 8;
+  scene.light_samples = 24;  // points on the sphere light's disc
+  scene.samples = 8;
+  scene.validate();
+  return scene;
+}
+
+struct Agreement {
+  int lit_pixels = 0;
+  RenderCounters deterministic;  // the deterministic render's work and paths
+};
+
+// `deterministic` against path tracing over the whole image and pixel by pixel.
+Agreement expect_agreement(RenderScene scene, RenderMethod deterministic_method) {
   RenderSettings deterministic;
   deterministic.method = deterministic_method;
   const RenderResult reference = render_single_scatter(scene, deterministic);
@@ -49,26 +75,14 @@ int expect_agreement(RenderScene scene, RenderMethod deterministic_method) {
   EXPECT_NEAR(mc_sum, ref_sum, 4.0 * sigma + 0.01 * ref_sum) << to_string(deterministic_method);
   EXPECT_LE(outside_4_sigma, 1) << "of " << lit << " lit pixels, "
                                 << to_string(deterministic_method);
-  return lit;
+  return {lit, reference.counters};
 }
 
 TEST(RenderPathtrace, ConvergesToTheRefractiveSolution) {
-  RenderScene scene;
-  scene.mesh = make_rounded_tile(1.0, 1.0, 0.25, 0.3, 12, 24);
-  scene.medium = Medium::from_coefficients(0.05, 0.5, 0.2, "mesh units");
-  scene.eta = 1.5;
-  scene.light.position = Vec3(0.0, 1.5, 2.5);
-  scene.light.radius = 0.15;
-  scene.camera.position = Vec3(0.0, -3.5, 2.5);
-  scene.camera.look_at = Vec3::Zero();
-  scene.camera.up = Vec3::UnitZ();
-  scene.camera.fov_degrees = 40.0;
-  scene.width = 8;
-  scene.height = 8;
-  scene.light_samples = 24;  // points on the sphere light's disc
-  scene.samples = 8;
-  scene.validate();
-  EXPECT_GT(expect_agreement(scene, RenderMethod::holzschuch), 10);
+  const RenderScene scene =
+      lit_scene(make_rounded_tile(1.0, 1.0, 0.25, 0.3, 12, 24), Vec3(0.0, 1.5, 2.5),
+                Vec3(0.0, -3.5, 2.5), Vec3::Zero(), 40.0);
+  EXPECT_GT(expect_agreement(scene, RenderMethod::holzschuch).lit_pixels, 10);
 }
 
 // Two tiles, the upper one shifted aside over the lower: light reaches the lower one past the
@@ -77,31 +91,17 @@ TEST(RenderPathtrace, ConvergesToTheRefractiveSolution) {
 // refract at the upper tile's top and run down through both, or refract at the lower tile's top
 // under the upper one.
 TEST(RenderPathtrace, AgreesOnAShapeThatShadowsItself) {
-  RenderScene scene;
   const TriangleMesh tile = make_rounded_tile(1.0, 1.0, 0.25, 0.3, 12, 24);
-  scene.mesh = tile;
-  append_mesh(scene.mesh, tile, Vec3(0.6, 0.0, 0.8));
-  scene.medium = Medium::from_coefficients(0.05, 0.5, 0.2, "mesh units");
-  scene.eta = 1.5;
-  scene.light.position = Vec3(0.3, 0.4, 3.0);
-  scene.light.radius = 0.15;
-  scene.camera.position = Vec3(0.3, -3.5, 1.6);
-  scene.camera.look_at = Vec3(0.3, 0.0, 0.35);
-  scene.camera.up = Vec3::UnitZ();
-  scene.camera.fov_degrees = 36.0;
-  scene.width = 8;
-  scene.height = 8;
-  scene.light_samples = 24;
-  scene.samples = 8;
-  scene.validate();
-
+  TriangleMesh tiles = tile;
+  append_mesh(tiles, tile, Vec3(0.6, 0.0, 0.8));
+  const RenderScene scene = lit_scene(std::move(tiles), Vec3(0.3, 0.4, 3.0), Vec3(0.3, -3.5, 1.6),
+                                      Vec3(0.3, 0.0, 0.35), 36.0);
   for (const RenderMethod method : {RenderMethod::walter, RenderMethod::holzschuch}) {
-    RenderSettings settings;
-    settings.method = method;
-    const RenderResult result = render_single_scatter(scene, settings);
+    const Agreement agreement = expect_agreement(scene, method);
+    EXPECT_GT(agreement.lit_pixels, 10);
     // The scene has teeth: a good part of the paths found are blocked.
-    EXPECT_GT(result.counters.blocked_paths, result.counters.paths / 5) << to_string(method);
-    EXPECT_GT(expect_agreement(scene, method), 10);
+    EXPECT_GT(agreement.deterministic.blocked_paths, agreement.deterministic.paths / 5)
+        << to_string(method);
   }
 }
 
