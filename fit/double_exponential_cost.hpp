@@ -17,6 +17,9 @@
 // dt1/dp, dt2/dp from Jets of width 3. The ridge (adexp_ridge) touches 2 of 36 columns of bins
 // and a product of row and column averages; it is evaluated in Jets over (a, ridge).
 //
+// adexp2_ridge adds a second adexp of its own parameters, whose average over a bin is the same
+// sum with the same gradient.
+//
 // dexp is adexp without eta, that is at eta = 0 (there S = |w - p|^2 / 2 for unit p: the same
 // lobe as lobe_model.hpp's DoubleExponential).
 
@@ -29,11 +32,12 @@
 namespace scatterlab::fit {
 
 // Parameter blocks: axis (3), shape (a, b, gamma) for dexp and (a, b, gamma, eta) for adexp
-// and adexp_ridge, and for adexp_ridge the ridge (7).
+// and the ridge models, for adexp_ridge and adexp2_ridge the ridge (7), and for adexp2_ridge the
+// second lobe's axis (3) and shape (4).
 class DoubleExponentialCost final : public ceres::CostFunction {
  public:
-  // `model`: dexp (or dexp_paper), adexp or adexp_ridge; throws std::invalid_argument for
-  // another model, or a grid of more nodes per bin than quadrature order 8 gives.
+  // `model`: dexp (or dexp_paper), adexp, adexp_ridge or adexp2_ridge; throws std::invalid_argument
+  // for another model, or a grid of more nodes per bin than quadrature order 8 gives.
   DoubleExponentialCost(const LobeGrid& grid, const LobeObservations& observations,
                         LobeModel model);
 
@@ -45,6 +49,7 @@ class DoubleExponentialCost final : public ceres::CostFunction {
   const LobeObservations& observations_;
   int shape_size_;
   bool with_ridge_;
+  bool two_lobes_;
 };
 
 }  // namespace scatterlab::fit

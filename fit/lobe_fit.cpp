@@ -23,6 +23,9 @@ constexpr double kNoiseFreeRelative = 1e-6, kNoiseFreeFloor = 1e-12;
 // its amplitude and onset come from the data (ridge_from_adexp).
 constexpr double kRidgeStartG = 0.8, kRidgeStartK = 0.5, kRidgeStartWidth = 0.05;
 constexpr double kRidgeStartKappa = 10.0;  // a spread of ~1/sqrt(10) rad, 18 degrees
+// The second lobe's starts (second_lobe_starts): e^{-30} of the first (a change of the chi-square
+// below 1e-12 of it), or tilted 0.3 rad towards e_r.
+constexpr double kFaintSecondLobe = 30.0, kSecondLobeTilt = 0.3;
 
 inline bool finite(double x) {
   return std::isfinite(x);
@@ -122,15 +125,18 @@ auto with_evaluator(LobeModel model, const LobeGrid& grid, const LobeParameters&
     case LobeModel::asg:
       return f(AnisotropicSphericalGaussian::Evaluator<double>(axis, shape));
     case LobeModel::adexp_ridge:
+      return f(AnisotropicRidge::Evaluator<double>(axis, shape, p.ridge.data(), grid));
+    case LobeModel::adexp2_ridge:
       break;
   }
-  return f(AnisotropicRidge::Evaluator<double>(axis, shape, p.ridge.data(), grid));
+  return f(TwoLobeRidge::Evaluator<double>(axis, shape, p.ridge.data(), grid, p.second_axis.data(),
+                                           p.second_shape.data()));
 }
 
-// A bound on one parameter: block 0 = shape, 1 = ridge. `artificial`: a fit that ends on it is
-// at_bound (lambda >= 0, c >= 0, k >= 0 and theta_on in [0, pi] are the models' own domains;
-// a ridge onset narrower than 1e-3 rad, or wider than 1 rad, cannot be told apart from one at
-// those widths on bins of a few degrees).
+// A bound on one parameter: block 0 = shape, 1 = ridge, 2 = the second lobe's shape. `artificial`:
+// a fit that ends on it is at_bound (lambda >= 0, c >= 0, k >= 0 and theta_on in [0, pi] are the
+// models' own domains; a ridge onset narrower than 1e-3 rad, or wider than 1 rad, cannot be told
+// apart from one at those widths on bins of a few degrees).
 struct Bound {
   int block;
   int index;
@@ -153,6 +159,12 @@ std::vector<Bound> bounds(LobeModel model) {
       return {gamma, eta};
     case LobeModel::asg:
       return {{0, 1, 0.0, kSharpnessBound, false, true}, {0, 2, 0.0, kSharpnessBound, false, true}};
+    case LobeModel::adexp2_ridge: {
+      std::vector<Bound> all = bounds(LobeModel::adexp_ridge);
+      all.push_back({2, 2, -kGammaBound, kGammaBound, true, true});
+      all.push_back({2, 3, -kEtaBound, kEtaBound, true, true});
+      return all;
+    }
     case LobeModel::adexp_ridge:
       return {gamma,
               eta,
@@ -169,12 +181,13 @@ std::vector<Bound> bounds(LobeModel model) {
 
 double& parameter(LobeParameters& p, const Bound& b) {
   const auto index = static_cast<std::size_t>(b.index);
-  return b.block == 0 ? p.shape[index] : p.ridge[index];
+  return b.block == 0 ? p.shape[index] : b.block == 1 ? p.ridge[index] : p.second_shape[index];
 }
 
 // Keeps a starting point inside the bounds (Ceres refuses infeasible ones).
 LobeParameters feasible(LobeModel model, LobeParameters start) {
   start.axis.normalize();
+  start.second_axis.normalize();
   for (const Bound& b : bounds(model)) {
     double& value = parameter(start, b);
     value = std::clamp(value, b.lower, b.upper);
@@ -193,9 +206,10 @@ bool on_artificial_bound(LobeModel model, LobeParameters p) {
   return false;
 }
 
-void set_bounds(LobeModel model, ceres::Problem& problem, double* shape, double* ridge) {
+void set_bounds(LobeModel model, ceres::Problem& problem, double* shape, double* ridge,
+                double* second_shape) {
   for (const Bound& b : bounds(model)) {
-    double* block = b.block == 0 ? shape : ridge;
+    double* block = b.block == 0 ? shape : b.block == 1 ? ridge : second_shape;
     if (std::isfinite(b.lower)) problem.SetParameterLowerBound(block, b.index, b.lower);
     if (std::isfinite(b.upper)) problem.SetParameterUpperBound(block, b.index, b.upper);
   }
@@ -209,6 +223,8 @@ LobeFit solve(LobeModel model, const LobeGrid& grid, const LobeObservations& o,
   double* axis = p.axis.data();
   double* shape = p.shape.data();
   double* ridge = p.ridge.data();
+  double* second_axis = p.second_axis.data();
+  double* second_shape = p.second_shape.data();
   const int residuals = static_cast<int>(o.radiance.size());
 
   ceres::Problem problem;
@@ -236,13 +252,18 @@ LobeFit solve(LobeModel model, const LobeGrid& grid, const LobeObservations& o,
       problem.AddResidualBlock(new DoubleExponentialCost(grid, o, model), nullptr, axis, shape,
                                ridge);
       break;
+    case LobeModel::adexp2_ridge:
+      problem.AddResidualBlock(new DoubleExponentialCost(grid, o, model), nullptr, axis, shape,
+                               ridge, second_axis, second_shape);
+      problem.SetManifold(second_axis, new ceres::SphereManifold<3>());
+      break;
   }
   if (model == LobeModel::sg) {
     problem.SetParameterBlockConstant(axis);  // p = E / |E| (Vavassori §4.2.1)
   } else {
     problem.SetManifold(axis, new ceres::SphereManifold<3>());
   }
-  set_bounds(model, problem, shape, ridge);
+  set_bounds(model, problem, shape, ridge, second_shape);
 
   // Ceres logs an error when it cannot evaluate the starting point; say it here instead.
   double start_cost = 0.0;
@@ -269,11 +290,14 @@ LobeFit solve(LobeModel model, const LobeGrid& grid, const LobeObservations& o,
   ceres::Solve(solver, &problem, &summary);
 
   p.axis.normalize();
+  p.second_axis.normalize();
   fit.cost = summary.final_cost;
   fit.iterations = static_cast<int>(summary.iterations.size());
   bool is_finite = std::isfinite(fit.cost) && p.axis.allFinite();
   for (const double value : p.shape) is_finite = is_finite && std::isfinite(value);
   for (const double value : p.ridge) is_finite = is_finite && std::isfinite(value);
+  for (const double value : p.second_shape) is_finite = is_finite && std::isfinite(value);
+  is_finite = is_finite && p.second_axis.allFinite();
   if (!is_finite) {
     fit.status = FitStatus::non_finite;
     fit.message = "non-finite parameters or cost after the solve";
@@ -538,6 +562,16 @@ LobeParameters asg_from_sg(const LobeParameters& sg) {
   const double half = std::min(0.5 * sg.shape[0], kSharpnessBound);
   asg.shape = {sg.shape[1], half, half, 0.0};
   return asg;
+}
+
+std::vector<LobeParameters> second_lobe_starts(const LobeParameters& ridge) {
+  LobeParameters tilted = ridge;
+  tilted.second_axis = (ridge.axis + Eigen::Vector3d(kSecondLobeTilt, 0.0, 0.0)).normalized();
+  tilted.second_shape = {ridge.shape[0] - std::log(2.0), 0.5 * ridge.shape[1], ridge.shape[2], 0.0};
+  // Not a copy of the first lobe: two identical lobes give the solver two equal columns.
+  LobeParameters faint = tilted;
+  faint.second_shape[0] = ridge.shape[0] - kFaintSecondLobe;
+  return {faint, tilted};
 }
 
 LobeParameters ridge_from_adexp(const LobeGrid& grid, const LobeObservations& o,

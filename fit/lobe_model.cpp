@@ -1,5 +1,6 @@
 #include "scatterlab/fit/lobe_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "scatterlab/core/error.hpp"
@@ -8,7 +9,8 @@ namespace scatterlab::fit {
 
 namespace {
 constexpr const char* kAccepted =
-    "a comma-separated list of sg, sg_free, dexp_paper, dexp, adexp, asg, adexp_ridge";
+    "a comma-separated list of sg, sg_free, dexp_paper, dexp, adexp, asg, adexp_ridge, "
+    "adexp2_ridge";
 }
 
 std::string to_string(LobeModel model) {
@@ -27,6 +29,8 @@ std::string to_string(LobeModel model) {
       return "asg";
     case LobeModel::adexp_ridge:
       return "adexp_ridge";
+    case LobeModel::adexp2_ridge:
+      return "adexp2_ridge";
   }
   return "unknown";
 }
@@ -75,6 +79,9 @@ std::string describe(LobeModel model) {
              "c e^a (1 - g^2) / (1 + g^2 - 2 g cos theta)^1.5 e^(-k tan(theta/2)) / "
              "(1 + e^(-(theta - theta_on) / w)), and its spread in phi, spread_c e^a R e^(kappa "
              "(cos phi - 1))";
+    case LobeModel::adexp2_ridge:
+      return "adexp_ridge plus a second anisotropic double exponential of its own axis and "
+             "shape (second_*)";
   }
   return "";
 }
@@ -94,6 +101,8 @@ int free_parameters(LobeModel model) {
       return 5;
     case LobeModel::adexp_ridge:
       return 11;
+    case LobeModel::adexp2_ridge:
+      return 17;
   }
   return 0;
 }
@@ -115,6 +124,13 @@ std::vector<std::string> parameter_names(LobeModel model) {
               "slope",       "p_r",     "p_phi",          "p_z",         "ridge_c",
               "ridge_g",     "ridge_k", "ridge_theta_on", "ridge_width", "spread_c",
               "spread_kappa"};
+    case LobeModel::adexp2_ridge: {
+      std::vector<std::string> names = parameter_names(LobeModel::adexp_ridge);
+      for (const std::string& name : parameter_names(LobeModel::adexp)) {
+        names.push_back("second_" + name);
+      }
+      return names;
+    }
   }
   return {};
 }
@@ -135,11 +151,21 @@ std::vector<double> reported_parameters(LobeModel model, const LobeParameters& p
       break;
     case LobeModel::adexp:
     case LobeModel::adexp_ridge:
+    case LobeModel::adexp2_ridge:
       values = {alpha, beta, s[2], s[3], s[0], s[1]};
       break;
     case LobeModel::asg:
       values = {std::exp(s[0]), s[1], s[2]};
       break;
+  }
+  if (model == LobeModel::adexp2_ridge) {
+    values = reported_parameters(LobeModel::adexp_ridge, parameters);
+    LobeParameters second;
+    second.axis = parameters.second_axis;
+    second.shape = parameters.second_shape;
+    const std::vector<double> more = reported_parameters(LobeModel::adexp, second);
+    values.insert(values.end(), more.begin(), more.end());
+    return values;
   }
   for (int i = 0; i < 3; ++i) values.push_back(parameters.axis[i]);
   if (model == LobeModel::adexp_ridge) {
@@ -169,6 +195,12 @@ double log_model_value(LobeModel model, const LobeParameters& parameters,
       return AnisotropicDoubleExponential::log_value(axis, shape, direction);
     case LobeModel::asg:
       return AnisotropicSphericalGaussian::log_value(axis, shape, direction);
+    case LobeModel::adexp2_ridge: {
+      const double one = AnisotropicDoubleExponential::log_value(axis, shape, direction);
+      const double two = AnisotropicDoubleExponential::log_value(
+          parameters.second_axis.data(), parameters.second_shape.data(), direction);
+      return std::max(one, two) + std::log1p(std::exp(-std::abs(one - two)));
+    }
   }
   return 0.0;
 }

@@ -130,7 +130,7 @@ def searchlight(scene: str | Path | None = None, *, out: str | Path | None = Non
 
 
 def fit(file: str | Path | Result, *,
-        models: str = "sg,sg_free,dexp_paper,dexp,adexp,asg,adexp_ridge",
+        models: str = "sg,sg_free,dexp_paper,dexp,adexp,asg,adexp_ridge,adexp2_ridge",
         csv: str | Path | None = None, quadrature: int = 3, threads: int = 0,
         progress: bool | Callable[[int, int], None] | None = None) -> Result:
     """Fits lobe models to every spatial bin of a file's radiance (Vavassori 2013, §4.2), as
@@ -138,7 +138,8 @@ def fit(file: str | Path | Result, *,
     (default: FILE-fits.csv). Returns the file read again; its ``fits`` hold the parameters.
 
     file:       a path, or a Result that has one (simulate(..., out=...)), with a radiance tally.
-    models:     comma-separated: sg, sg_free, dexp_paper, dexp, adexp, asg, adexp_ridge.
+    models:     comma-separated: sg, sg_free, dexp_paper, dexp, adexp, asg, adexp_ridge,
+                adexp2_ridge.
     quadrature: Gauss-Legendre points per angular bin and axis, in [1, 8].
     progress:   True prints the bins done; a callable gets (bins_done, bins). The fits cannot be
                 stopped part way: Ctrl-C is raised when they end.

@@ -21,7 +21,7 @@ namespace {
 
 struct FitCommandOptions {
   std::string path;
-  std::string models = "sg,sg_free,dexp_paper,dexp,adexp,asg,adexp_ridge";
+  std::string models = "sg,sg_free,dexp_paper,dexp,adexp,asg,adexp_ridge,adexp2_ridge";
   std::string csv;
   int threads = 0;
   int quadrature = 3;
@@ -45,7 +45,8 @@ Action add_fit_command(CLI::App& app) {
       "dexp_paper (the paper's four-step double-exponential estimate, not solved), "
       "dexp (double exponential), adexp (anisotropic double exponential), asg "
       "(anisotropic spherical Gaussian, Xu et al. 2013), adexp_ridge (adexp plus the "
-      "ridge of once-scattered light on phi = 0)");
+      "ridge of once-scattered light on phi = 0), adexp2_ridge (adexp_ridge plus a second "
+      "adexp)");
   command
       ->add_option("--csv", options->csv,
                    "Summary CSV path; for a directory DIR, DIR/fits-table.csv by default")

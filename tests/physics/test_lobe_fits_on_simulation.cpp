@@ -66,5 +66,49 @@ TEST(LobeFitsOnSimulation, DoubleExponentialBeatsSgAndAnisotropyBeatsBoth) {
   }
 }
 
+// Near the beam beyond a mean free path (r < 0.4, z = 1-2.2 mfp) the multiply scattered light
+// is two lobes, a forward cone about the beam beside the light spreading from the ridge:
+// adexp_ridge is off by up to several times the noise there, while adexp2_ridge, its superset
+// with a second lobe, comes within 2x of it (as on the README's 1e8-photon beam, whose grid
+// this one shares in r and z).
+TEST(LobeFitsOnSimulation, SecondLobeReachesTheNoiseNearTheBeam) {
+  SimulationSpec spec = testing::small_beam(0.5, 0.9, 100'000'000);
+  spec.grid.r = {0.0, 0.4, 4};
+  spec.grid.z = {1.0, 2.2, 12};
+  spec.grid.theta.bins = 18;
+  spec.grid.phi.bins = 36;
+  const SimulationOutput output = simulate(spec);
+  const TallyResult& radiance = testing::find_tally(output, "radiance");
+  const TallyResult& flux = testing::find_tally(output, "flux");
+
+  fit::RadianceLobes lobes;
+  lobes.r_edges = spec.grid.r.edges();
+  lobes.z_edges = spec.grid.z.edges();
+  lobes.theta_edges = spec.grid.theta.edges();
+  lobes.phi_edges = spec.grid.phi.edges();
+  lobes.mean = radiance.mean;
+  lobes.stderr_of_mean = radiance.stderr_of_mean;
+  for (std::size_t i = 0; i < flux.mean.size(); i += 2) {
+    lobes.flux.insert(lobes.flux.end(), {flux.mean[i], 0.0, flux.mean[i + 1]});
+  }
+  const fit::LobeGrid grid(lobes.theta_edges, lobes.phi_edges, false);
+  const fit::LobeFitRun run =
+      fit::fit_lobes(lobes, grid, {LobeModel::adexp_ridge, LobeModel::adexp2_ridge}, {}, 2);
+  const fit::ModelFits& one = model_fits(run, LobeModel::adexp_ridge);
+  const fit::ModelFits& two = model_fits(run, LobeModel::adexp2_ridge);
+  std::size_t one_within = 0, two_within = 0;
+  for (std::size_t bin = 0; bin < 48; ++bin) {
+    ASSERT_TRUE(fit::usable(two.fits[bin].status)) << two.fits[bin].message;
+    EXPECT_LE(two.fits[bin].cost, one.fits[bin].cost * (1.0 + 1e-9)) << bin;  // a superset
+    one_within += one.fits[bin].error_sphere <= 2.0 * one.fits[bin].noise;
+    two_within += two.fits[bin].error_sphere <= 2.0 * two.fits[bin].noise;
+  }
+  // Measured: 42 of the 48 bins for adexp2_ridge (the misses are bins at the grid's first z,
+  // which start without a neighbour's solution, and three at r = 0.3-0.4, z = 1.0-1.3), 3 for
+  // adexp_ridge.
+  EXPECT_GE(two_within, 40u);
+  EXPECT_LE(one_within, 12u);
+}
+
 }  // namespace
 }  // namespace scatterlab

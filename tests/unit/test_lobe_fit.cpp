@@ -287,7 +287,7 @@ TEST_F(LobeFitsFileTest, FitsAreWrittenWithNamesStatusAndNoNaN) {
   EXPECT_EQ(summary.models[0].fitted, 3u);
   EXPECT_EQ(summary.models[0].skipped, 3u);
   // Each model that contains another started from its solution: never a larger chi-square.
-  EXPECT_EQ(summary.supersets.size(), 4u);  // sg_free, dexp, adexp, adexp_ridge
+  EXPECT_EQ(summary.supersets.size(), 5u);  // sg_free, dexp, adexp, adexp_ridge, adexp2_ridge
   for (const fit::SupersetCheck& check : summary.supersets) {
     EXPECT_EQ(check.bins, 3u) << fit::to_string(check.superset);
     EXPECT_EQ(check.worse_chi2, 0u) << fit::to_string(check.superset);
@@ -304,12 +304,13 @@ TEST_F(LobeFitsFileTest, ResultsDoNotDependOnThreadsAndReRunsReplaceTheFits) {
       EXPECT_EQ(a.status, b.status);
       EXPECT_EQ(a.parameters.shape, b.parameters.shape);
       EXPECT_EQ(a.parameters.axis, b.parameters.axis);
+      EXPECT_EQ(a.parameters.second_shape, b.parameters.second_shape);
     }
   }
   const hdf5::File file = hdf5::File::open_read_only(path_);
   EXPECT_EQ(file.root().open_group("fits").member_names(),
             (std::vector<std::string>{"sg", "sg_free", "dexp_paper", "dexp", "adexp", "asg",
-                                      "adexp_ridge"}));
+                                      "adexp_ridge", "adexp2_ridge"}));
   // Nothing left beside the file.
   std::size_t entries = 0;
   for ([[maybe_unused]] const auto& entry : fs::directory_iterator(directory_)) ++entries;

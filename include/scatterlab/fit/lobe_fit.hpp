@@ -127,7 +127,8 @@ double fit_cost(LobeModel model, const LobeGrid& grid, const LobeObservations& o
 // Chi-square fit from `start` with Ceres (Levenberg-Marquardt, dense QR). The axis is held at
 // start.axis for sg and moves on the sphere otherwise; bounds: lambda, mu in [0, 1e5],
 // |gamma| <= 50, |eta| <= 8; for the ridge c >= 0, |g| <= 0.999, k in [0, 1e5],
-// theta_on in [0, pi], w in [1e-3, 1], spread c >= 0, kappa in [0, 1e5]. Fills the errors.
+// theta_on in [0, pi], w in [1e-3, 1], spread c >= 0, kappa in [0, 1e5]; adexp2_ridge's second
+// lobe as adexp's, its axis on the sphere too. Fills the errors.
 // `observations` must come from observe() and not be skipped. dexp_paper is not solved: its fit is
 // the start, with status estimate.
 LobeFit fit_lobe(LobeModel model, const LobeGrid& grid, const LobeData& data,
@@ -155,6 +156,12 @@ LobeParameters asg_from_sg(const LobeParameters& sg);
 // excess on the line (0 where there is none).
 LobeParameters ridge_from_adexp(const LobeGrid& grid, const LobeObservations& observations,
                                 const LobeParameters& adexp, bool with_ridge);
+
+// adexp2_ridge from an adexp_ridge solution: the second lobe as a copy of the first e^{-30} as
+// bright (adexp_ridge to within e^{-30}: a start no worse than the subset's solution), and as
+// one of half the first's height and slope, tilted 0.3 rad towards e_r, where the forward light
+// beside the beam lies.
+std::vector<LobeParameters> second_lobe_starts(const LobeParameters& ridge);
 
 // Relative L1 errors (sphere, plane), the noise level and chi^2 / dof (see the top of this
 // file); -1 where undefined.

@@ -62,9 +62,11 @@ struct LobeFitRun {
 // solution, so the result is the same for any number of threads. Each fit starts from the
 // lowest chi-square of: the data-only estimate, the same bin's solution of the model it
 // contains (sg for sg_free, the paper's estimate for dexp, dexp for adexp, adexp for
-// adexp_ridge; sg_free for asg, through asg_from_sg) and the previous z bin's solution.
-// Levenberg-Marquardt never raises the cost, so a model ends with a chi-square no larger than
-// the model it contains; those models are fitted too when only the larger one is asked for.
+// adexp_ridge, adexp_ridge for adexp2_ridge; sg_free for asg, through asg_from_sg) and the
+// previous z bin's solution; adexp2_ridge is solved from each of its starts and keeps the
+// lowest chi-square. Levenberg-Marquardt never raises the cost, so a model ends with a
+// chi-square no larger than the model it contains; those models are fitted too when only the
+// larger one is asked for.
 // progress(spatial bins fitted, bins) is called from one thread as bins finish.
 LobeFitRun fit_lobes(const RadianceLobes& lobes, const LobeGrid& grid,
                      const std::vector<LobeModel>& models, const FitOptions& options = {},

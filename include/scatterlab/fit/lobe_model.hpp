@@ -35,6 +35,10 @@
 //              lobe of finite width can follow (adexp runs its eta to the bound chasing it). The
 //              ridge is a line density R(theta) (ridge.hpp gives its form and derivation); its
 //              amplitude is c e^{a}, c >= 0 linear, so that c = 0 is adexp exactly.
+//   adexp2_ridge adexp_ridge plus a second adexp of its own axis and shape (this project): near
+//              the beam, beyond a mean free path, the multiply scattered light is a forward cone
+//              about the beam beside the light spreading from the ridge, two lobes that one
+//              adexp cannot both follow. shape and second_shape as adexp's.
 //
 // sqrt(1 - p.w) has an unbounded derivative at w = p when written that way. Written as a norm,
 // |w - p| / sqrt 2 (p and w unit), its gradient has length at most 1/sqrt 2 everywhere; only the
@@ -53,14 +57,14 @@
 
 namespace scatterlab::fit {
 
-enum class LobeModel { sg, sg_free, dexp_paper, dexp, adexp, asg, adexp_ridge };
+enum class LobeModel { sg, sg_free, dexp_paper, dexp, adexp, asg, adexp_ridge, adexp2_ridge };
 
 // In the order the fits run: each model may start from an earlier one's solution.
-inline constexpr std::array<LobeModel, 7> kAllLobeModels = {
-    LobeModel::sg,    LobeModel::sg_free, LobeModel::dexp_paper, LobeModel::dexp,
-    LobeModel::adexp, LobeModel::asg,     LobeModel::adexp_ridge};
+inline constexpr std::array<LobeModel, 8> kAllLobeModels = {
+    LobeModel::sg,    LobeModel::sg_free, LobeModel::dexp_paper,  LobeModel::dexp,
+    LobeModel::adexp, LobeModel::asg,     LobeModel::adexp_ridge, LobeModel::adexp2_ridge};
 
-// "sg", "sg_free", "dexp_paper", "dexp", "adexp", "asg", "adexp_ridge".
+// "sg", "sg_free", "dexp_paper", "dexp", "adexp", "asg", "adexp_ridge", "adexp2_ridge".
 std::string to_string(LobeModel model);
 // Throws InputError("models", ...) for an unknown name.
 LobeModel parse_lobe_model(const std::string& name);
@@ -69,12 +73,15 @@ std::vector<LobeModel> parse_lobe_models(const std::string& list);
 // One line: the formula and where it comes from.
 std::string describe(LobeModel model);
 
-// The parameters a Ceres problem moves: the axis and up to four shape parameters, and for
-// adexp_ridge the ridge's seven (c, g, k, theta_on, width, c_spread, kappa; ridge.hpp).
+// The parameters a Ceres problem moves: the axis and up to four shape parameters, for
+// adexp_ridge and adexp2_ridge the ridge's seven (c, g, k, theta_on, width, c_spread, kappa;
+// ridge.hpp), and for adexp2_ridge the second lobe's axis and shape.
 struct LobeParameters {
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
   std::array<double, 4> shape{};
   std::array<double, 7> ridge{};
+  Eigen::Vector3d second_axis = Eigen::Vector3d::UnitZ();
+  std::array<double, 4> second_shape{};
 };
 
 // Parameters a fit moves: shape parameters plus 2 for a free axis (per axis).
@@ -313,8 +320,36 @@ struct AnisotropicRidge {
   };
 };
 
-// log of the model at one direction, for doubles (tests, errors, estimates); for adexp_ridge
-// the smooth part (the ridge is a line: it has a density across it, not a value).
+// adexp_ridge plus a second adexp of its own axis and shape: near the source, where the
+// multiply scattered light is not one lobe (a forward cone about the beam beside the light
+// spreading from the ridge), the second lobe takes what the first leaves.
+struct TwoLobeRidge {
+  template <typename T>
+  class Evaluator {
+   public:
+    Evaluator(const T* axis, const T* shape, const T* ridge, const LobeGrid& grid,
+              const T* second_axis, const T* second_shape)
+        : first_(axis, shape, ridge, grid), second_(second_axis, second_shape) {}
+    // log(e^{l1} + e^{l2}), kept relative to the larger.
+    T log_value(const Eigen::Vector3d& w) const {
+      using std::exp;
+      using std::log1p;
+      const T one = first_.log_value(w), two = second_.log_value(w);
+      return one > two ? one + log1p(exp(two - one)) : two + log1p(exp(one - two));
+    }
+    T ridge_density(double theta) const { return first_.ridge_density(theta); }
+    T spread_average(std::size_t theta_bin, std::size_t phi_bin) const {
+      return first_.spread_average(theta_bin, phi_bin);
+    }
+
+   private:
+    AnisotropicRidge::Evaluator<T> first_;
+    AnisotropicDoubleExponential::Evaluator<T> second_;
+  };
+};
+
+// log of the model at one direction, for doubles (tests, errors, estimates); for the ridge
+// models the smooth part (the ridge is a line: it has a density across it, not a value).
 double log_model_value(LobeModel model, const LobeParameters& parameters,
                        const Eigen::Vector3d& direction);
 
