@@ -55,7 +55,10 @@ void FitOneLobe(benchmark::State& state) {
                                   ? fit::spherical_gaussian_estimate(grid, o, data.flux)
                                   : fit::double_exponential_estimate(grid, o);
   if (model == LobeModel::asg) start = fit::asg_from_sg(start);
-  if (model == LobeModel::adexp_ridge) start = fit::ridge_from_adexp(grid, o, start, true);
+  if (model == LobeModel::adexp_ridge || model == LobeModel::adexp2_ridge) {
+    start = fit::ridge_from_adexp(grid, o, start, true);
+  }
+  if (model == LobeModel::adexp2_ridge) start = fit::second_lobe_starts(start).back();
   std::int64_t iterations = 0;
   for (auto _ : state) {
     const fit::LobeFit result = fit::fit_lobe(model, grid, data, o, start);
@@ -69,7 +72,7 @@ void FitOneLobe(benchmark::State& state) {
       static_cast<double>(iterations) / static_cast<double>(state.iterations());
 }
 BENCHMARK(FitOneLobe)
-    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6}, {3}})
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7}, {3}})
     ->ArgsProduct({{4}, {1, 2, 5}})
     ->Unit(benchmark::kMillisecond);
 
