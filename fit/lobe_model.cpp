@@ -1,6 +1,5 @@
 #include "scatterlab/fit/lobe_model.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 #include "scatterlab/core/error.hpp"
@@ -199,7 +198,7 @@ double log_model_value(LobeModel model, const LobeParameters& parameters,
       const double one = AnisotropicDoubleExponential::log_value(axis, shape, direction);
       const double two = AnisotropicDoubleExponential::log_value(
           parameters.second_axis.data(), parameters.second_shape.data(), direction);
-      return std::max(one, two) + std::log1p(std::exp(-std::abs(one - two)));
+      return detail::log_add_exp(one, two);
     }
   }
   return 0.0;

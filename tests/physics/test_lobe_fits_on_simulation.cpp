@@ -19,16 +19,11 @@ const fit::ModelFits& model_fits(const fit::LobeFitRun& run, LobeModel model) {
   throw std::logic_error("model not run");
 }
 
-TEST(LobeFitsOnSimulation, DoubleExponentialBeatsSgAndAnisotropyBeatsBoth) {
-  SimulationSpec spec = testing::small_beam(0.5, 0.9, 1'000'000);
-  spec.grid.r = {0.0, 1.5, 5};
-  spec.grid.z = {-1.0, 3.0, 8};
-  spec.grid.theta.bins = 18;
-  spec.grid.phi.bins = 36;
+// The radiance and flux of a simulated beam, as scatterlab fit reads them from its file.
+fit::RadianceLobes simulated_lobes(const SimulationSpec& spec) {
   const SimulationOutput output = simulate(spec);
   const TallyResult& radiance = testing::find_tally(output, "radiance");
   const TallyResult& flux = testing::find_tally(output, "flux");
-
   fit::RadianceLobes lobes;
   lobes.r_edges = spec.grid.r.edges();
   lobes.z_edges = spec.grid.z.edges();
@@ -39,9 +34,19 @@ TEST(LobeFitsOnSimulation, DoubleExponentialBeatsSgAndAnisotropyBeatsBoth) {
   for (std::size_t i = 0; i < flux.mean.size(); i += 2) {
     lobes.flux.insert(lobes.flux.end(), {flux.mean[i], 0.0, flux.mean[i + 1]});
   }
+  return lobes;
+}
+
+TEST(LobeFitsOnSimulation, DoubleExponentialBeatsSgAndAnisotropyBeatsBoth) {
+  SimulationSpec spec = testing::small_beam(0.5, 0.9, 1'000'000);
+  spec.grid.r = {0.0, 1.5, 5};
+  spec.grid.z = {-1.0, 3.0, 8};
+  spec.grid.theta.bins = 18;
+  spec.grid.phi.bins = 36;
+  const fit::RadianceLobes lobes = simulated_lobes(spec);
   const fit::LobeGrid grid(lobes.theta_edges, lobes.phi_edges, false);
-  const fit::LobeFitRun run = fit::fit_lobes(
-      lobes, grid, {LobeModel::sg, LobeModel::dexp, LobeModel::adexp}, {}, 2);
+  const fit::LobeFitRun run =
+      fit::fit_lobes(lobes, grid, {LobeModel::sg, LobeModel::dexp, LobeModel::adexp}, {}, 2);
   const fit::LobeFitSummary summary = fit::summarize(run);
   ASSERT_EQ(summary.models.size(), 3u);
   for (const fit::ModelFitSummary& s : summary.models) {
@@ -77,20 +82,7 @@ TEST(LobeFitsOnSimulation, SecondLobeReachesTheNoiseNearTheBeam) {
   spec.grid.z = {1.0, 2.2, 12};
   spec.grid.theta.bins = 18;
   spec.grid.phi.bins = 36;
-  const SimulationOutput output = simulate(spec);
-  const TallyResult& radiance = testing::find_tally(output, "radiance");
-  const TallyResult& flux = testing::find_tally(output, "flux");
-
-  fit::RadianceLobes lobes;
-  lobes.r_edges = spec.grid.r.edges();
-  lobes.z_edges = spec.grid.z.edges();
-  lobes.theta_edges = spec.grid.theta.edges();
-  lobes.phi_edges = spec.grid.phi.edges();
-  lobes.mean = radiance.mean;
-  lobes.stderr_of_mean = radiance.stderr_of_mean;
-  for (std::size_t i = 0; i < flux.mean.size(); i += 2) {
-    lobes.flux.insert(lobes.flux.end(), {flux.mean[i], 0.0, flux.mean[i + 1]});
-  }
+  const fit::RadianceLobes lobes = simulated_lobes(spec);
   const fit::LobeGrid grid(lobes.theta_edges, lobes.phi_edges, false);
   const fit::LobeFitRun run =
       fit::fit_lobes(lobes, grid, {LobeModel::adexp_ridge, LobeModel::adexp2_ridge}, {}, 2);

@@ -123,6 +123,14 @@ T half_chord(const T* axis, const Eigen::Vector3d& w) {
   return sqrt_zero_safe(T(0.5) * (dx * dx + dy * dy + dz * dz));
 }
 
+// log(e^a + e^b), kept relative to the larger so that neither overflows.
+template <typename T>
+T log_add_exp(const T& a, const T& b) {
+  using std::exp;
+  using std::log1p;
+  return a > b ? a + log1p(exp(b - a)) : b + log1p(exp(a - b));
+}
+
 // (e^{gamma s} - 1) / gamma, continuous through gamma = 0 (where it is s).
 template <typename T>
 T exp_ramp(const T& gamma, const T& s) {
@@ -330,12 +338,8 @@ struct TwoLobeRidge {
     Evaluator(const T* axis, const T* shape, const T* ridge, const LobeGrid& grid,
               const T* second_axis, const T* second_shape)
         : first_(axis, shape, ridge, grid), second_(second_axis, second_shape) {}
-    // log(e^{l1} + e^{l2}), kept relative to the larger.
     T log_value(const Eigen::Vector3d& w) const {
-      using std::exp;
-      using std::log1p;
-      const T one = first_.log_value(w), two = second_.log_value(w);
-      return one > two ? one + log1p(exp(two - one)) : two + log1p(exp(one - two));
+      return detail::log_add_exp(first_.log_value(w), second_.log_value(w));
     }
     T ridge_density(double theta) const { return first_.ridge_density(theta); }
     T spread_average(std::size_t theta_bin, std::size_t phi_bin) const {
