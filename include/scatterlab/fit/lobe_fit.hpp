@@ -157,10 +157,10 @@ LobeParameters asg_from_sg(const LobeParameters& sg);
 LobeParameters ridge_from_adexp(const LobeGrid& grid, const LobeObservations& observations,
                                 const LobeParameters& adexp, bool with_ridge);
 
-// adexp2_ridge from an adexp_ridge solution: the second lobe as a copy of the first e^{-30} as
-// bright (adexp_ridge to within e^{-30}: a start no worse than the subset's solution), and as
-// one of half the first's height and slope, tilted 0.3 rad towards e_r, where the forward light
-// beside the beam lies.
+// adexp2_ridge from an adexp_ridge solution, two starts: the second lobe of half the first's
+// height and slope, tilted 0.3 rad towards e_r, where the forward light beside the beam lies;
+// and the same lobe e^{-30} as bright as the first (adexp_ridge to within e^{-30}: a start no
+// worse than the subset's solution), first.
 std::vector<LobeParameters> second_lobe_starts(const LobeParameters& ridge);
 
 // Relative L1 errors (sphere, plane), the noise level and chi^2 / dof (see the top of this
