@@ -2,11 +2,13 @@
 
 #include <ceres/ceres.h>
 #include <fmt/format.h>
+#include <glog/logging.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <utility>
 
 #include "double_exponential_cost.hpp"
@@ -215,8 +217,18 @@ void set_bounds(LobeModel model, ceres::Problem& problem, double* shape, double*
   }
 }
 
+// Ceres logs through glog, to stderr, things a fit's status already says or that do not change
+// its outcome (e.g. "Failed to extract eigenvalues from companion matrix" where the bounded line
+// search falls back to bisection), and they would be the only lines of a fit without a bin's
+// name. Only fatal ones still print; call_once orders the write before every thread's solve.
+void quiet_solver_log() {
+  static std::once_flag once;
+  std::call_once(once, [] { FLAGS_minloglevel = google::GLOG_FATAL; });
+}
+
 LobeFit solve(LobeModel model, const LobeGrid& grid, const LobeObservations& o,
               const LobeParameters& start, const FitOptions& options) {
+  quiet_solver_log();
   LobeFit fit;
   fit.parameters = feasible(model, start);
   LobeParameters& p = fit.parameters;

@@ -1,7 +1,8 @@
 // The chi-square objective of the lobe fits (lobe_fit.hpp): the floor on dark directions' standard
 // errors, chi^2/dof and the noise level of an exact model, the status of a fit that ends on a
-// bound, the anisotropic spherical Gaussian against Xu et al.'s formula written out, and the
-// ridge's bin averages against an independent integral.
+// bound, the solver's log kept off stderr, the anisotropic spherical Gaussian against Xu et al.'s
+// formula written out, and the ridge's bin averages against an independent integral.
+#include <glog/logging.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -92,6 +93,20 @@ TEST(LobeObjective, AFitThatEndsOnAnArtificialBoundIsAtBound) {
   EXPECT_NEAR(fitted.parameters.shape[3], -fit::kEtaBound, 1e-9);
   EXPECT_TRUE(fit::usable(fitted.status));
   EXPECT_NE(fit::fit_status_legend().find("4 at_bound"), std::string::npos);
+}
+
+// Ceres logs through glog to stderr; once a fit has run, such lines stay off it (the fit's
+// outcome is its status), so that nothing but the fit's own output reaches the terminal.
+TEST(LobeObjective, SolverLogLinesStayOffStderr) {
+  const fit::LobeGrid grid = angular_grid(18, 36, 3);
+  const auto truth =
+      parameters(direction(0.6, 0.0), fit::double_exponential_shape(-1.0, 4.0, -2.0, -10.0));
+  const testing::SyntheticLobe lobe = testing::synthesize(LobeModel::adexp, truth, grid, 0.02, 3);
+  const fit::LobeObservations o = fit::observe(grid, lobe.data(), {});
+  fit::fit_lobe(LobeModel::adexp, grid, lobe.data(), o, truth);
+  ::testing::internal::CaptureStderr();
+  LOG(ERROR) << "polynomial.cc:238] Failed to extract eigenvalues from companion matrix.";
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
 }
 
 // Xu et al. 2013's ASG written out for an axis in the plane of symmetry, p = (sin t, 0, cos t):
