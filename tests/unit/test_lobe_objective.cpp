@@ -81,7 +81,8 @@ TEST(LobeObjective, TheTrueModelShowsChiSquarePerDofOneAndTheNoiseLevel) {
   EXPECT_NEAR(fitted.cost, 0.5 * chi2_fit, 1e-6 * chi2_fit);
 }
 
-// eta beyond its bound: the fit converges onto eta = -8 and says so.
+// eta beyond its bound: the fit converges onto eta = -8 and says so, in its status alone: once a
+// fit has run, Ceres's own log lines (glog, to stderr) stay off the terminal.
 TEST(LobeObjective, AFitThatEndsOnAnArtificialBoundIsAtBound) {
   const fit::LobeGrid grid = angular_grid(18, 36, 3);
   const auto truth =
@@ -93,17 +94,6 @@ TEST(LobeObjective, AFitThatEndsOnAnArtificialBoundIsAtBound) {
   EXPECT_NEAR(fitted.parameters.shape[3], -fit::kEtaBound, 1e-9);
   EXPECT_TRUE(fit::usable(fitted.status));
   EXPECT_NE(fit::fit_status_legend().find("4 at_bound"), std::string::npos);
-}
-
-// Ceres logs through glog to stderr; once a fit has run, such lines stay off it (the fit's
-// outcome is its status), so that nothing but the fit's own output reaches the terminal.
-TEST(LobeObjective, SolverLogLinesStayOffStderr) {
-  const fit::LobeGrid grid = angular_grid(18, 36, 3);
-  const auto truth =
-      parameters(direction(0.6, 0.0), fit::double_exponential_shape(-1.0, 4.0, -2.0, -10.0));
-  const testing::SyntheticLobe lobe = testing::synthesize(LobeModel::adexp, truth, grid, 0.02, 3);
-  const fit::LobeObservations o = fit::observe(grid, lobe.data(), {});
-  fit::fit_lobe(LobeModel::adexp, grid, lobe.data(), o, truth);
   ::testing::internal::CaptureStderr();
   LOG(ERROR) << "polynomial.cc:238] Failed to extract eigenvalues from companion matrix.";
   EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
