@@ -23,7 +23,7 @@ class RenderSceneReader : public TomlReader {
       : TomlReader(origin), base_(std::move(base)) {}
 
   RenderScene read(const toml::table& root) const {
-    check_keys(root, "", {"mesh", "medium", "light", "camera", "image", "floor"});
+    check_keys(root, "", {"mesh", "medium", "light", "camera", "image", "floor", "environment"});
     RenderScene scene;
     const toml::table* mesh = subtable(root, "mesh", "");
     if (mesh == nullptr) {
@@ -37,6 +37,9 @@ class RenderSceneReader : public TomlReader {
     if (const auto* camera = subtable(root, "camera", "")) read_camera(*camera, scene.camera);
     if (const auto* image = subtable(root, "image", "")) read_image(*image, scene);
     if (const auto* floor = subtable(root, "floor", "")) scene.floor = read_floor(*floor);
+    if (const auto* environment = subtable(root, "environment", "")) {
+      scene.environment_radiance = read_environment(*environment);
+    }
     scene.validate();
     return scene;
   }
@@ -247,6 +250,18 @@ class RenderSceneReader : public TomlReader {
       }
     }
     return floor;
+  }
+
+  double read_environment(const toml::table& table) const {
+    const std::string path = "environment";
+    check_keys(table, path, {"radiance"});
+    const auto radiance = number(table, "radiance", path, "a finite number >= 0");
+    if (!radiance || !(*radiance >= 0.0) || !std::isfinite(*radiance)) {
+      throw InputError(
+          "environment.radiance", radiance ? fmt::format("got {}", *radiance) : "missing",
+          "a finite number >= 0 (radiance from every direction, in the image's units)");
+    }
+    return *radiance;
   }
 
   void read_light(const toml::table& table, RenderLight& light) const {

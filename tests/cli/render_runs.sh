@@ -63,6 +63,11 @@ printf '[mesh]\nshape = "sphere"\n[floor]\nheight = 0.5\n' >highfloor.toml
 expect_error floor-above floor.height highfloor.toml --method volumetric
 printf '[mesh]\nshape = "sphere"\n[camera]\nposition = [0.2, 0.1, 0.0]\n' >camera.toml
 expect_error camera-inside camera.position camera.toml --method volumetric
+printf '[mesh]\nshape = "sphere"\n[light]\nposition = [0, 0, 4]\nradius = 0.2\n' >lit.toml
+{ cat lit.toml; printf '[environment]\nradiance = 0.5\n'; } >environment.toml
+{ cat lit.toml; printf '[environment]\nradiance = -0.5\n'; } >darker.toml
+expect_error environment-single-scatter environment environment.toml --method walter
+expect_error environment-negative environment.radiance darker.toml --method volumetric
 expect_error missing-scene scene "$work/none.toml"
 if "$exe" render "$scene" --width 4 --height 4 --out "$work/no/such/dir/x.exr" >stdout 2>stderr; then
   fail "bad-dir: exited 0"

@@ -397,7 +397,22 @@ TEST(RenderVolumetric, BadScenesNameTheirKey) {
               parse_render_scene(sphere + light + "[medium]\nmaterial = \"wholemlik\"\n", "t.toml");
             }),
             "medium.material");
-  // Per-channel media and floors are for volumetric only; volumetric needs a sphere light.
+  EXPECT_EQ(field_of([&] {
+              parse_render_scene(sphere + light + "[environment]\nradiance = -1\n", "t.toml");
+            }),
+            "environment.radiance");
+  EXPECT_EQ(field_of([&] {
+              parse_render_scene(sphere + light + "[environment]\nradiance = nan\n", "t.toml");
+            }),
+            "environment.radiance");
+  EXPECT_EQ(
+      field_of([&] { parse_render_scene(sphere + light + "[environment]\nL = 1\n", "t.toml"); }),
+      "environment.L");
+  // Per-channel media, floors and environments are for volumetric only; volumetric needs a
+  // sphere light.
+  const RenderScene lit =
+      parse_render_scene(sphere + light + "[environment]\nradiance = 0.25\n", "t.toml");
+  EXPECT_EQ(lit.environment_radiance, 0.25);
   const RenderScene coloured = parse_render_scene(
       sphere + light + "[medium]\nmaterial = \"wholemilk\"\nlength_unit = \"mm\"\n", "t.toml");
   ASSERT_EQ(coloured.channel_media.size(), 3u);
@@ -406,6 +421,7 @@ TEST(RenderVolumetric, BadScenesNameTheirKey) {
   RenderSettings holzschuch;
   holzschuch.method = RenderMethod::holzschuch;
   EXPECT_EQ(field_of([&] { render_single_scatter(coloured, holzschuch); }), "medium");
+  EXPECT_EQ(field_of([&] { render_single_scatter(lit, holzschuch); }), "environment");
   RenderScene point = parse_render_scene(sphere, "t.toml");
   EXPECT_EQ(field_of([&] { render_volumetric(point, volumetric(1)); }), "light.radius");
 }

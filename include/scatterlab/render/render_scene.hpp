@@ -75,8 +75,8 @@ struct RenderScene {
   std::vector<Medium> channel_media;
   double eta = 1.5;  // n_inside / n_outside
   std::optional<RenderFloor> floor;
-  // Radiance arriving from every direction that leaves the scene (method volumetric; 0: black).
-  // Set in code only (the furnace tests), not read from scene files.
+  // Radiance arriving from every direction that leaves the scene, in the image's units
+  // ([environment] radiance; method volumetric only; 0: black).
   double environment_radiance = 0.0;
   RenderLight light;
   PinholeCamera camera;
