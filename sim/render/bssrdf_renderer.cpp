@@ -63,14 +63,7 @@ void check_bssrdf_work(const RenderScene& scene, const BssrdfSettings& settings,
 
 BssrdfResult render_bssrdf(const RenderScene& scene, const BssrdfSettings& settings,
                            const WorkProgress& progress) {
-  if (scene.floor) {
-    throw InputError("floor", "a floor with method bssrdf",
-                     "no [floor] table, or method volumetric");
-  }
-  if (scene.environment_radiance > 0.0) {
-    throw InputError("environment", "an environment with method bssrdf",
-                     "no [environment] table, or method volumetric");
-  }
+  refuse_volumetric_only(scene, "bssrdf");
   if (!(settings.cluster_angle >= 0.0) || !std::isfinite(settings.cluster_angle)) {
     throw InputError("cluster_angle", fmt::format("got {}", settings.cluster_angle),
                      "a solid angle >= 0 in sr (0: no clustering)");

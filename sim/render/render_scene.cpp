@@ -448,6 +448,17 @@ void RenderScene::validate() const {
   }
 }
 
+void refuse_volumetric_only(const RenderScene& scene, const std::string& method) {
+  if (scene.floor) {
+    throw InputError("floor", "a floor with method " + method,
+                     "no [floor] table, or method volumetric");
+  }
+  if (scene.environment_radiance > 0.0) {
+    throw InputError("environment", "an environment with method " + method,
+                     "no [environment] table, or method volumetric");
+  }
+}
+
 RenderScene parse_render_scene(std::string_view toml_text, const std::string& origin,
                                const std::filesystem::path& base) {
   return RenderSceneReader(origin, base).read(parse_toml(toml_text, origin));

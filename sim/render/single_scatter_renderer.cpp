@@ -503,14 +503,7 @@ RenderResult render_single_scatter(const RenderScene& scene, const RenderSetting
     throw InputError("medium", "a medium per channel with method " + to_string(settings.method),
                      "one medium (numbers, not [red, green, blue]), or method volumetric");
   }
-  if (scene.floor) {
-    throw InputError("floor", "a floor with method " + to_string(settings.method),
-                     "no [floor] table, or method volumetric");
-  }
-  if (scene.environment_radiance > 0.0) {
-    throw InputError("environment", "an environment with method " + to_string(settings.method),
-                     "no [environment] table, or method volumetric");
-  }
+  refuse_volumetric_only(scene, to_string(settings.method));
   if (settings.method == RenderMethod::pathtrace && !(scene.light.radius > 0.0)) {
     throw InputError("light.radius", "0 (a point light) with method pathtrace",
                      "a sphere light of radius > 0 for the path-traced reference");

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "input_error_field.hpp"
@@ -397,17 +398,12 @@ TEST(RenderVolumetric, BadScenesNameTheirKey) {
               parse_render_scene(sphere + light + "[medium]\nmaterial = \"wholemlik\"\n", "t.toml");
             }),
             "medium.material");
-  EXPECT_EQ(field_of([&] {
-              parse_render_scene(sphere + light + "[environment]\nradiance = -1\n", "t.toml");
-            }),
-            "environment.radiance");
-  EXPECT_EQ(field_of([&] {
-              parse_render_scene(sphere + light + "[environment]\nradiance = nan\n", "t.toml");
-            }),
-            "environment.radiance");
-  EXPECT_EQ(
-      field_of([&] { parse_render_scene(sphere + light + "[environment]\nL = 1\n", "t.toml"); }),
-      "environment.L");
+  for (const auto& [table, field] :
+       {std::pair{"radiance = -1", "environment.radiance"},
+        std::pair{"radiance = nan", "environment.radiance"}, std::pair{"L = 1", "environment.L"}}) {
+    const std::string text = sphere + light + "[environment]\n" + table + "\n";
+    EXPECT_EQ(field_of([&] { parse_render_scene(text, "t.toml"); }), field) << table;
+  }
   // Per-channel media, floors and environments are for volumetric only; volumetric needs a
   // sphere light.
   const RenderScene lit =

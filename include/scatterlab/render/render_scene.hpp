@@ -91,6 +91,10 @@ struct RenderScene {
   void validate() const;
 };
 
+// The floor and the environment light only the volumetric method's paths: any other method
+// refuses them (InputError naming the table) rather than leave them out of its image.
+void refuse_volumetric_only(const RenderScene& scene, const std::string& method);
+
 // The [mesh] table of any scene file (a lit object's, transport/lit_sphere.hpp), read as a render
 // scene's is, and what it is in words: the shape and its triangle count, or the OBJ file. Other
 // tables are left to the scene's own reader.
