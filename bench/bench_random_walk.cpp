@@ -8,6 +8,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <type_traits>
 
 #include "scatterlab/core/azimuth.hpp"
 #include "scatterlab/core/phase_function.hpp"
@@ -32,7 +33,7 @@ SimulationSpec scene(double g, double albedo, bool radiance, Estimator estimator
 }
 
 // The ceiling: per event one Philox call, a free path, an HG cosine, an azimuth and a frame
-// rotation; no tallies, no positions.
+// rotation (at g = 0 a direction drawn afresh, as the walk does); no tallies, no positions.
 template <class Phase>
 void BareLoop(benchmark::State& state, Phase phase, double albedo) {
   std::uint64_t photon = 0, scatterings = 0, photons = 0;
@@ -45,8 +46,12 @@ void BareLoop(benchmark::State& state, Phase phase, double albedo) {
         const auto u = random.next4();
         sink += -std::log(u[0]);
         if (u[1] >= albedo) break;
-        const UnitCircle phi = azimuth(u[3]);
-        direction = scatter_direction(direction, phase.sample_cos_theta(u[2]), phi.cos, phi.sin);
+        if constexpr (std::is_same_v<Phase, IsotropicPhase>) {
+          direction = isotropic_direction(u[2], u[3]);  // as the walk draws it
+        } else {
+          const UnitCircle phi = azimuth(u[3]);
+          direction = scatter_direction(direction, phase.sample_cos_theta(u[2]), phi.cos, phi.sin);
+        }
         ++scatterings;
       }
       sink += direction.z();

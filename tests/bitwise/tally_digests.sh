@@ -8,6 +8,9 @@
 #
 # tally_digests.txt beside this script holds the digests of the kernels as they stood before
 # the transport engine was unified; a refactor that should not change results must keep them.
+# The isotropic scenes' (beam_isotropic, point_collision, half_space_fresnel,
+# half_space_matched_oblique, half_space_conservative) are those of the walk that draws a
+# direction afresh at g = 0 instead of rotating the old one: the same law, other bits.
 set -euo pipefail
 scatterlab=$1 digest=$2
 work=$(mktemp -d)
