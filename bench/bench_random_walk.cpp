@@ -8,9 +8,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
-#include <type_traits>
 
-#include "scatterlab/core/azimuth.hpp"
 #include "scatterlab/core/phase_function.hpp"
 #include "scatterlab/core/random.hpp"
 #include "scatterlab/tally/scorer.hpp"
@@ -46,12 +44,7 @@ void BareLoop(benchmark::State& state, Phase phase, double albedo) {
         const auto u = random.next4();
         sink += -std::log(u[0]);
         if (u[1] >= albedo) break;
-        if constexpr (std::is_same_v<Phase, IsotropicPhase>) {
-          direction = isotropic_direction(u[2], u[3]);  // as the walk draws it
-        } else {
-          const UnitCircle phi = azimuth(u[3]);
-          direction = scatter_direction(direction, phase.sample_cos_theta(u[2]), phi.cos, phi.sin);
-        }
+        direction = scattered_direction(phase, direction, u[2], u[3]);  // as the walk draws it
         ++scatterings;
       }
       sink += direction.z();

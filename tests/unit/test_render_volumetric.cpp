@@ -398,11 +398,11 @@ TEST(RenderVolumetric, BadScenesNameTheirKey) {
               parse_render_scene(sphere + light + "[medium]\nmaterial = \"wholemlik\"\n", "t.toml");
             }),
             "medium.material");
-  for (const auto& [table, field] :
+  for (const auto& [line, field] :
        {std::pair{"radiance = -1", "environment.radiance"},
         std::pair{"radiance = nan", "environment.radiance"}, std::pair{"L = 1", "environment.L"}}) {
-    const std::string text = sphere + light + "[environment]\n" + table + "\n";
-    EXPECT_EQ(field_of([&] { parse_render_scene(text, "t.toml"); }), field) << table;
+    const std::string text = sphere + light + "[environment]\n" + line + "\n";
+    EXPECT_EQ(field_of([&] { parse_render_scene(text, "t.toml"); }), field) << line;
   }
   // Per-channel media, floors and environments are for volumetric only; volumetric needs a
   // sphere light.

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "scatterlab/core/azimuth.hpp"
+#include "scatterlab/core/phase_function.hpp"
 
 namespace scatterlab {
 
@@ -65,6 +66,21 @@ inline Vec3 scatter_direction(const Vec3& direction, double cos_theta, double co
   const Vec3 turned =
       Frame(direction).to_world(sin_theta * cos_phi, sin_theta * sin_phi, cos_theta);
   return turned * (0.5 * (3.0 - turned.squaredNorm()));
+}
+
+// The direction after scattering by `phase` from `direction`, from two uniforms: cos theta
+// from u_cos, the azimuth about the old direction from u_phi.
+template <class Phase>
+Vec3 scattered_direction(const Phase& phase, const Vec3& direction, double u_cos, double u_phi) {
+  const UnitCircle phi = azimuth(u_phi);
+  return scatter_direction(direction, phase.sample_cos_theta(u_cos), phi.cos, phi.sin);
+}
+
+// Isotropic scattering forgets the old direction: the new one is drawn afresh about +z (the same
+// cos theta and azimuth, measured from another axis), with no frame to build and no rotation.
+inline Vec3 scattered_direction(const IsotropicPhase& /*phase*/, const Vec3& /*direction*/,
+                                double u_cos, double u_phi) {
+  return isotropic_direction(u_cos, u_phi);
 }
 
 }  // namespace scatterlab

@@ -25,12 +25,10 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <type_traits>
 #include <vector>
 
 #include "scatterlab/core/azimuth.hpp"
 #include "scatterlab/core/frame.hpp"
-#include "scatterlab/core/phase_function.hpp"
 #include "scatterlab/core/random.hpp"
 #include "scatterlab/tally/scorer.hpp"
 #include "scatterlab/tally/surface_exit.hpp"
@@ -144,19 +142,12 @@ class RandomWalk {
           scorer_.absorption(buffer, position, order, layer);
           break;
         }
-        if constexpr (!Geometry::layered && std::is_same_v<Phase, IsotropicPhase>) {
-          // The new direction does not depend on the old: drawn about +z, with no frame to
-          // build and no rotation (the same cos theta and azimuth, measured from another axis).
-          direction = isotropic_direction(u[2], u[3]);
-        } else {
-          double cos_theta;
-          if constexpr (Geometry::layered) {
-            cos_theta = geometry_.sample_cos_theta(layer, u[2]);
-          } else {
-            cos_theta = phase_.sample_cos_theta(u[2]);
-          }
+        if constexpr (Geometry::layered) {
           const UnitCircle phi = azimuth(u[3]);
-          direction = scatter_direction(direction, cos_theta, phi.cos, phi.sin);
+          direction = scatter_direction(direction, geometry_.sample_cos_theta(layer, u[2]), phi.cos,
+                                        phi.sin);
+        } else {
+          direction = scattered_direction(phase_, direction, u[2], u[3]);
         }
         ++scatterings;
       }
