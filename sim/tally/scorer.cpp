@@ -72,6 +72,11 @@ void close_span(std::vector<double>& crossings, double t_lo, double t_hi) {
 
 Scorer::Scorer(const TallyAxes& axes, const TallyBook& book)
     : axes_(axes),
+      r_cells_(axes.r),
+      z_cells_(axes.z),
+      rho_cells_(axes.rho),
+      x_cells_(axes.x),
+      y_cells_(axes.y),
       book_(book),
       split_(book.split_by_order()),
       fluence_(book.offset(Score::fluence)),
@@ -174,7 +179,7 @@ void Scorer::flight_cylindrical(double* buffer, std::vector<double>& crossings, 
     const double tb = (axes_.z.max - start.z()) / direction.z();
     t_lo = std::max(t_lo, std::min(ta, tb));
     t_hi = std::min(t_hi, std::max(ta, tb));
-  } else if (axes_.z.index(start.z()) < 0) {
+  } else if (z_cells_.index(start.z()) < 0) {
     return;
   }
 
@@ -192,7 +197,7 @@ void Scorer::flight_cylindrical(double* buffer, std::vector<double>& crossings, 
     line = RadialLine{(start.x() * direction.x() + start.y() * direction.y()) / speed, speed,
                       std::abs(angular_momentum) / speed};
     if (!line.clip_inside(axes_.r.max, t_lo, t_hi)) return;
-  } else if (axes_.r.index(line.d) < 0) {
+  } else if (r_cells_.index(line.d) < 0) {
     return;
   }
   if (!(t_hi > t_lo)) return;

@@ -56,7 +56,7 @@ class Scorer {
     }
     if (exit_by_triangle_ != absent) add(buffer, exit_by_triangle_ + where.triangle, block, weight);
     if (exit_by_position_ != absent) {
-      const int ix = axes_.x.index(where.x), iy = axes_.y.index(where.y);
+      const int ix = x_cells_.index(where.x), iy = y_cells_.index(where.y);
       if (ix >= 0 && iy >= 0) {
         add(buffer,
             exit_by_position_ + static_cast<std::size_t>(ix) * y_bins_ +
@@ -71,7 +71,7 @@ class Scorer {
     }
     if (side.by_radius == absent && side.by_radius_angle == absent) return;
     const double x = where.x, y = where.y;
-    const int ir = axes_.r.index(std::sqrt(x * x + y * y));
+    const int ir = r_cells_.index(std::sqrt(x * x + y * y));
     if (ir < 0) return;
     const auto ring = static_cast<std::size_t>(ir);
     if (side.by_radius != absent) add(buffer, side.by_radius + ring, block, weight);
@@ -99,13 +99,13 @@ class Scorer {
       buffer[absorbed_by_layer_ + static_cast<std::size_t>(layer)] += weight;
     }
     if (absorbed_by_depth_ == absent && absorbed_by_radius_depth_ == absent) return;
-    const int iz = axes_.z.index(position.z());
+    const int iz = z_cells_.index(position.z());
     if (iz < 0) return;
     const auto slice = static_cast<std::size_t>(iz);
     if (absorbed_by_depth_ != absent) buffer[absorbed_by_depth_ + slice] += weight;
     if (absorbed_by_radius_depth_ != absent) {
       const int ir =
-          axes_.r.index(std::sqrt(position.x() * position.x() + position.y() * position.y()));
+          r_cells_.index(std::sqrt(position.x() * position.x() + position.y() * position.y()));
       if (ir >= 0) {
         buffer[absorbed_by_radius_depth_ + static_cast<std::size_t>(ir) * z_bins_ + slice] +=
             weight;
@@ -123,8 +123,8 @@ class Scorer {
   }
 
   bool in_grid(const Vec3& p) const {
-    return axes_.r.index(std::sqrt(p.x() * p.x() + p.y() * p.y())) >= 0 &&
-           axes_.z.index(p.z()) >= 0;
+    return r_cells_.index(std::sqrt(p.x() * p.x() + p.y() * p.y())) >= 0 &&
+           z_cells_.index(p.z()) >= 0;
   }
 
  private:
@@ -192,6 +192,8 @@ class Scorer {
                         const Vec3& direction, double length, std::size_t order_block) const;
 
   TallyAxes axes_;
+  // The hot axes' cell lookups (axis.hpp: no division per event).
+  AxisLookup r_cells_, z_cells_, rho_cells_, x_cells_, y_cells_;
   const TallyBook& book_;
   bool split_;
   bool fluence_only_;               // of the volume scores, only the fluence
@@ -223,20 +225,20 @@ class Scorer {
   const std::size_t block = split_ ? book_.order_block(order) : 0;
   const double r2 = position.x() * position.x() + position.y() * position.y();
   if (fluence_only_) {  // the half-space's one volume tally: a cell index and an add
-    const int ir = axes_.r.index(std::sqrt(r2));
-    const int iz = axes_.z.index(position.z());
+    const int ir = r_cells_.index(std::sqrt(r2));
+    const int iz = z_cells_.index(position.z());
     if (ir < 0 || iz < 0) return;
     add(buffer, fluence_ + static_cast<std::size_t>(ir) * z_bins_ + static_cast<std::size_t>(iz),
         block, 1.0);
     return;
   }
   if (fluence_spherical_ != absent) {
-    const int shell = axes_.rho.index(std::sqrt(r2 + position.z() * position.z()));
+    const int shell = rho_cells_.index(std::sqrt(r2 + position.z() * position.z()));
     if (shell >= 0) add(buffer, fluence_spherical_ + static_cast<std::size_t>(shell), block, 1.0);
   }
   const double r = std::sqrt(r2);
-  const int ir = axes_.r.index(r);
-  const int iz = axes_.z.index(position.z());
+  const int ir = r_cells_.index(r);
+  const int iz = z_cells_.index(position.z());
   if (ir < 0 || iz < 0) return;
   const std::size_t cell = static_cast<std::size_t>(ir) * z_bins_ + static_cast<std::size_t>(iz);
   if (fluence_ != absent) add(buffer, fluence_ + cell, block, 1.0);
