@@ -14,6 +14,7 @@
 #include "scatterlab/tally/scorer.hpp"
 #include "scatterlab/tally/tally_book.hpp"
 #include "scatterlab/transport/half_space.hpp"
+#include "scatterlab/transport/lane_walk.hpp"
 #include "scatterlab/transport/random_walk.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "walk_timing.hpp"
@@ -53,6 +54,20 @@ void HalfSpace(benchmark::State& state, Phase phase, SearchlightSpec spec) {
   run_walk<Phase, false, false>(state, phase, spec);
 }
 
+// The same scenes on the lane walk (lane_walk.hpp), which the engine runs for them.
+void HalfSpaceLanes(benchmark::State& state, SearchlightSpec spec) {
+  const TransportProblem problem = transport_problem(spec);
+  const TallyBook book(problem.tallies, problem.split_by_order);
+  const Scorer scorer(problem.axes, book);
+  const LaneWalk walk(
+      spec.eta == 1.0 ? LaneWalk::Geometry::half_space : LaneWalk::Geometry::fresnel_half_space,
+      spec.eta, scorer, problem.source, problem.albedo, problem.g,
+      spec.tallies.fluence ? VolumeEstimator::collision : VolumeEstimator::none,
+      problem.run.escape_radius, problem.run.seed);
+  bench::time_walk(state, walk, book.size());
+  state.counters["lanes"] = LaneWalk::lanes();
+}
+
 // The whole run through the batch runner on one thread, as `scatterlab searchlight` does it.
 void HalfSpaceWholeRun(benchmark::State& state) {
   SearchlightSpec spec = half_space(0.99, 0.0, 1.33, false);
@@ -83,6 +98,16 @@ BENCHMARK_CAPTURE(HalfSpace, hg_g0.75_albedo0.9_eta1.33, hg075, half_space(0.9, 
 // Forward scattering and long walks: g 0.9, albedo 0.999 (a skin-like reduced albedo 0.99).
 BENCHMARK_CAPTURE(HalfSpace, hg_g0.9_albedo0.999_eta1, hg09, half_space(0.999, 0.9, 1.0, false));
 BENCHMARK_CAPTURE(HalfSpace, hg_g0.9_albedo0.999_eta1.33, hg09, half_space(0.999, 0.9, 1.33, false));
+// MCML's cases a (albedo 0.99, g 0) and b (albedo 0.9, g 0.75), index matched, with the fluence.
+BENCHMARK_CAPTURE(HalfSpace, case_a_fluence, iso, half_space(0.99, 0.0, 1.0, true));
+BENCHMARK_CAPTURE(HalfSpace, case_b_fluence, hg075, half_space(0.9, 0.75, 1.0, true));
+BENCHMARK_CAPTURE(HalfSpaceLanes, case_a_fluence, half_space(0.99, 0.0, 1.0, true));
+BENCHMARK_CAPTURE(HalfSpaceLanes, case_b_fluence, half_space(0.9, 0.75, 1.0, true));
+BENCHMARK_CAPTURE(HalfSpaceLanes, iso_albedo0.99_eta1, half_space(0.99, 0.0, 1.0, false));
+BENCHMARK_CAPTURE(HalfSpaceLanes, iso_albedo0.99_eta1.33, half_space(0.99, 0.0, 1.33, false));
+BENCHMARK_CAPTURE(HalfSpaceLanes, iso_albedo0.99_eta1.33_fluence, half_space(0.99, 0.0, 1.33, true));
+BENCHMARK_CAPTURE(HalfSpaceLanes, hg_g0.75_albedo0.9_eta1.33, half_space(0.9, 0.75, 1.33, false));
+BENCHMARK_CAPTURE(HalfSpaceLanes, hg_g0.9_albedo0.999_eta1.33, half_space(0.999, 0.9, 1.33, false));
 BENCHMARK(HalfSpaceWholeRun)->Unit(benchmark::kMillisecond)->UseRealTime();
 // clang-format on
 

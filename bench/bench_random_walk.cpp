@@ -1,7 +1,8 @@
 // Cost of the infinite-medium random walk (issue: simulator performance): photons/s and ns per
 // scattering event per core, for (g = 0.9, albedo 0.5) and (g = 0, albedo 0.99), with the
-// fluence tallies alone and with the full radiance tally, next to a bare loop that only draws
-// the random numbers and samples free paths and directions (the ceiling), and the whole
+// fluence tallies alone and with the full radiance tally, on the one-photon RandomWalk (Walk)
+// and on the lane walk the engine runs (Lanes), next to a bare loop that only draws the random
+// numbers and samples free paths and directions (the one-photon ceiling), and the whole
 // multi-threaded run on 1 and 2 threads.
 //
 //   ./build/bench/scatterlab_bench --benchmark_counters_tabular=true
@@ -14,6 +15,7 @@
 #include "scatterlab/tally/scorer.hpp"
 #include "scatterlab/tally/tally_book.hpp"
 #include "scatterlab/transport/infinite_medium.hpp"
+#include "scatterlab/transport/lane_walk.hpp"
 #include "scatterlab/transport/random_walk.hpp"
 #include "scatterlab/transport/simulate.hpp"
 #include "walk_timing.hpp"
@@ -84,6 +86,19 @@ void Walk(benchmark::State& state, Phase phase, SimulationSpec spec) {
   }
 }
 
+// The same scenes on the lane walk (lane_walk.hpp), which the engine runs for them; `lanes` in
+// the counters is the vector width the machine's instruction set gives.
+void Lanes(benchmark::State& state, SimulationSpec spec) {
+  const TransportProblem problem = transport_problem(spec);
+  const TallyBook book(problem.tallies, problem.split_by_order);
+  const Scorer scorer(problem.axes, book);
+  const LaneWalk walk(LaneWalk::Geometry::infinite_medium, 1.0, scorer, problem.source,
+                      problem.albedo, problem.g, VolumeEstimator::collision,
+                      problem.run.escape_radius, problem.run.seed);
+  bench::time_walk(state, walk, book.size());
+  state.counters["lanes"] = LaneWalk::lanes();
+}
+
 void WholeRun(benchmark::State& state) {
   SimulationSpec spec = scene(0.9, 0.5, true, Estimator::collision);
   spec.run.photons = 10'000'000;  // batches of ~1.5e5 photons, as in the default job's regime
@@ -110,6 +125,10 @@ BENCHMARK_CAPTURE(Walk, fluence_iso_albedo0.99, isotropic, scene(0.0, 0.99, fals
 BENCHMARK_CAPTURE(Walk, radiance_iso_albedo0.99, isotropic, scene(0.0, 0.99, true, Estimator::collision));
 BENCHMARK_CAPTURE(Walk, track_fluence_hg_g0.9_albedo0.5, forward, scene(0.9, 0.5, false, Estimator::track_length));
 BENCHMARK_CAPTURE(Walk, track_radiance_hg_g0.9_albedo0.5, forward, scene(0.9, 0.5, true, Estimator::track_length));
+BENCHMARK_CAPTURE(Lanes, fluence_hg_g0.9_albedo0.5, scene(0.9, 0.5, false, Estimator::collision));
+BENCHMARK_CAPTURE(Lanes, radiance_hg_g0.9_albedo0.5, scene(0.9, 0.5, true, Estimator::collision));
+BENCHMARK_CAPTURE(Lanes, fluence_iso_albedo0.99, scene(0.0, 0.99, false, Estimator::collision));
+BENCHMARK_CAPTURE(Lanes, radiance_iso_albedo0.99, scene(0.0, 0.99, true, Estimator::collision));
 BENCHMARK(WholeRun)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 // clang-format on
 

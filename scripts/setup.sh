@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libhdf5-dev libceres-dev libfmt-dev libgtest-dev libgmock-dev
-  libcli11-dev libtomlplusplus-dev librandom123-dev libbenchmark-dev
+  libcli11-dev libtomlplusplus-dev librandom123-dev libbenchmark-dev libhwy-dev
   libopenmpi-dev openmpi-bin
   libembree-dev libtinyobjloader-dev libopenexr-dev libpng-dev
   clang-format

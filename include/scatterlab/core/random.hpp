@@ -12,8 +12,10 @@ namespace scatterlab {
 
 class PhotonRandom {
  public:
-  PhotonRandom(std::uint64_t seed, std::uint64_t photon_index)
-      : key_{{low(seed), high(seed)}}, counter_{{low(photon_index), high(photon_index), 0, 0}} {}
+  // `calls`: where the stream starts, for a walk that continues it after that many calls.
+  PhotonRandom(std::uint64_t seed, std::uint64_t photon_index, std::uint32_t calls = 0)
+      : key_{{low(seed), high(seed)}},
+        counter_{{low(photon_index), high(photon_index), calls, 0}} {}
 
   // Four independent uniforms in the open interval (0, 1): never 0, so -log(u) is finite, and
   // never 1, so a sampled cosine stays inside [-1, 1].
@@ -25,6 +27,10 @@ class PhotonRandom {
 
   // One uniform in (0, 1); spends a whole Philox call, so prefer next4() in hot loops.
   double next() { return next4()[0]; }
+
+  // The Philox calls made so far: the counter's third word, where the next call starts (the lane
+  // walk, transport/lane_walk.hpp, carries it between the calls it makes for all lanes at once).
+  std::uint32_t calls() const { return counter_[2]; }
 
  private:
   static std::uint32_t low(std::uint64_t v) { return static_cast<std::uint32_t>(v); }

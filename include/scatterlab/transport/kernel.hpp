@@ -10,12 +10,16 @@
 
 #include <functional>
 #include <stdexcept>
+#include <type_traits>
 
 #include "scatterlab/core/phase_function.hpp"
 #include "scatterlab/tally/scorer.hpp"
 #include "scatterlab/tally/tally_book.hpp"
 #include "scatterlab/transport/batch_runner.hpp"
 #include "scatterlab/transport/engine.hpp"
+#include "scatterlab/transport/half_space.hpp"
+#include "scatterlab/transport/infinite_medium.hpp"
+#include "scatterlab/transport/lane_walk.hpp"
 #include "scatterlab/transport/random_walk.hpp"
 
 namespace scatterlab {
@@ -32,9 +36,28 @@ struct Kernel {
   template <class Geometry, class Phase, VolumeEstimator estimator,
             Weighting weighting = Weighting::analog, class Light = Source>
   BatchOutcome run(const Geometry& geometry, const Phase& phase, const Light& light) const {
+    // The infinite medium's and the half-space's photons share vector lanes (lane_walk.hpp).
+    if constexpr (std::is_same_v<Light, Source> && weighting == Weighting::analog &&
+                  estimator != VolumeEstimator::track_length) {
+      if constexpr (std::is_same_v<Geometry, InfiniteMedium>) {
+        return run_lanes(LaneWalk::Geometry::infinite_medium, phase, light, estimator);
+      } else if constexpr (std::is_same_v<Geometry, HalfSpace<false>>) {
+        return run_lanes(LaneWalk::Geometry::half_space, phase, light, estimator);
+      } else if constexpr (std::is_same_v<Geometry, HalfSpace<true>>) {
+        return run_lanes(LaneWalk::Geometry::fresnel_half_space, phase, light, estimator);
+      }
+    }
     const RandomWalk<Geometry, Phase, estimator, weighting, Light> walk(
         geometry, phase, light, scorer, problem.albedo, problem.run.escape_radius,
         problem.run.seed);
+    return run_batches(problem.run, book.size(), walk, progress, control);
+  }
+
+  template <class Phase>
+  BatchOutcome run_lanes(LaneWalk::Geometry geometry, const Phase& phase, const Source& light,
+                         VolumeEstimator estimator) const {
+    const LaneWalk walk(geometry, problem.eta, scorer, light, problem.albedo, phase.mean_cosine(),
+                        estimator, problem.run.escape_radius, problem.run.seed);
     return run_batches(problem.run, book.size(), walk, progress, control);
   }
 

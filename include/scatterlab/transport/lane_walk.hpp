@@ -1,0 +1,71 @@
+#pragma once
+// The random walk of random_walk.hpp in the infinite medium, several photons at once in the lanes
+// of the CPU's vector registers (2 with SSE4, 4 with AVX2, 8 with AVX-512; Google Highway picks
+// the widest the machine has when the program runs, so one binary serves every x86-64).
+//
+// Each lane follows one photon through the same events as RandomWalk: a free path, the surface,
+// the collision scored, analog absorption, a new direction. What is done once for all lanes: the
+// Philox4x32-10 call (the same words, to the bit, as PhotonRandom's: each photon's stream is still
+// a pure function of (seed, photon index)), the log of the free path, the move, the phase
+// function's cos theta and azimuth and the turn of the direction. What stays one lane at a time:
+// launching a photon, the surface, scoring (Scorer, scattered into the tally buffer) and ending it.
+// A lane whose photon ends takes the next photon of the range at once, so the lanes stay full until
+// the range runs out.
+//
+// Same law, other bits than RandomWalk: the vector log is Highway's (within a few units in the
+// last place of the library's), the turn may fuse a multiply and an add, and the lanes' scores
+// reach the buffer in another order. The paths are the same photon by photon until a rounding
+// difference moves a collision across a bin edge; tests/unit/test_lane_walk.cpp holds the two
+// walks to each other on the same photons. A range's scores depend on the range alone, so a run
+// is still bitwise the same for any thread and rank count.
+//
+// For the infinite medium and the half-space with a beam or a point source, analog absorption
+// and the collision estimator (or none): the engine's choice there (kernel.hpp). The surface is
+// the geometry's own code (half_space.hpp), one lane at a time, on the lane's photon stream. The
+// track-length estimator, the sphere, the slab and meshes keep RandomWalk.
+
+#include <cstdint>
+#include <vector>
+
+#include "scatterlab/tally/scorer.hpp"
+#include "scatterlab/transport/random_walk.hpp"
+#include "scatterlab/transport/source.hpp"
+
+namespace scatterlab {
+
+class LaneWalk {
+ public:
+  // The geometries it runs: the infinite medium, and the half-space under index-matched (eta = 1,
+  // no Fresnel arithmetic) or mismatched boundaries, HalfSpace<false> and HalfSpace<true>(eta).
+  enum class Geometry { infinite_medium, half_space, fresnel_half_space };
+
+  // g = 0 samples isotropically (random_walk.hpp's IsotropicPhase), else Henyey-Greenstein g.
+  // `estimator` none or collision, `source` a beam or a point (std::invalid_argument otherwise).
+  LaneWalk(Geometry geometry, double eta, const Scorer& scorer, const Source& source, double albedo,
+           double g, VolumeEstimator estimator, double escape_radius, std::uint64_t seed);
+
+  std::vector<double> make_scratch() const { return {}; }
+
+  // Transports photons [first, last) into `buffer`; returns the number of scattering events.
+  std::uint64_t run(std::uint64_t first, std::uint64_t last, double* buffer,
+                    std::vector<double>& scratch) const;
+
+  // Photons in flight at once on this machine: the lanes of the instruction set chosen.
+  static int lanes();
+
+  // What the vector code reads (lane_walk.cpp).
+  struct Setup {
+    Geometry geometry;
+    double eta;
+    const Scorer* scorer;
+    Source source;
+    double albedo, g, escape_radius2;
+    bool scores_collisions;
+    std::uint64_t seed;
+  };
+
+ private:
+  Setup setup_;
+};
+
+}  // namespace scatterlab

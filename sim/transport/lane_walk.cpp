@@ -1,0 +1,371 @@
+// The lane walk (lane_walk.hpp), compiled once per instruction set by Highway's foreach_target
+// (this file includes itself through HWY_TARGET_INCLUDE) and dispatched at run time.
+#include "scatterlab/transport/lane_walk.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstddef>
+#include <numbers>
+#include <stdexcept>
+
+#include "scatterlab/transport/half_space.hpp"
+#include "scatterlab/transport/infinite_medium.hpp"
+
+// Highway's order: foreach_target, then highway.h, then its -inl.h headers.
+// clang-format off
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "sim/transport/lane_walk.cpp"
+#include <hwy/foreach_target.h>
+#include <hwy/highway.h>
+#include <hwy/contrib/math/math-inl.h>
+// clang-format on
+
+HWY_BEFORE_NAMESPACE();
+namespace scatterlab {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using D = hn::ScalableTag<double>;
+using DU = hn::RebindToUnsigned<D>;  // 64-bit lanes holding one 32-bit Philox word each
+using DI = hn::RebindToSigned<D>;
+using V = hn::Vec<D>;
+using VU = hn::Vec<DU>;
+
+// Lanes of the widest vector any target compiled here has.
+constexpr std::size_t kMaxLanes = HWY_MAX_BYTES / sizeof(double);
+
+// Philox4x32-10 (Salmon et al. 2011; Random123's philox.h, whose multipliers and key increments
+// these are) on the counters (photon low, photon high, call, 0) of every lane under one key: the
+// same four words PhotonRandom::next4 gives, since each round is integer arithmetic. A round:
+//   (hi0, lo0) = M0 c0, (hi1, lo1) = M1 c2 (32 x 32 -> 64 bits, the even-lane multiply),
+//   c = (hi1 ^ c1 ^ k0, lo1, hi0 ^ c3 ^ k1, lo0), and the key grows by (W0, W1) between rounds.
+struct PhiloxKeys {
+  std::array<std::uint32_t, 10> k0, k1;  // the key of each round
+};
+
+PhiloxKeys philox_keys(std::uint64_t seed) {
+  PhiloxKeys keys;
+  auto k0 = static_cast<std::uint32_t>(seed), k1 = static_cast<std::uint32_t>(seed >> 32);
+  for (std::size_t r = 0; r < 10; ++r) {
+    keys.k0[r] = k0;
+    keys.k1[r] = k1;
+    k0 += PHILOX_W32_0;
+    k1 += PHILOX_W32_1;
+  }
+  return keys;
+}
+
+// a b of lanes holding 32-bit values, in 64 bits: the even-lane multiply, or on a one-lane target
+// (no 32-bit lanes to pair) the plain one.
+HWY_INLINE VU multiply_32x32(VU a, VU b) {
+#if HWY_TARGET == HWY_SCALAR
+  const DU du;
+  return hn::Set(du, hn::GetLane(a) * hn::GetLane(b));
+#else
+  const hn::Repartition<std::uint32_t, DU> d32;
+  return hn::MulEven(hn::BitCast(d32, a), hn::BitCast(d32, b));
+#endif
+}
+
+// The four uniforms (k + 1/2) / 2^32 of each lane, as PhotonRandom::open_unit makes them.
+HWY_INLINE void philox_uniforms(const PhiloxKeys& keys, VU c0, VU c1, VU c2, V& u0, V& u1, V& u2,
+                                V& u3) {
+  const DU du;
+  const D d;
+  const VU low = hn::Set(du, 0xffffffffULL);
+  const VU m0 = hn::Set(du, PHILOX_M4x32_0), m1 = hn::Set(du, PHILOX_M4x32_1);
+  VU c3 = hn::Zero(du);
+  for (std::size_t r = 0; r < 10; ++r) {
+    const VU p0 = multiply_32x32(m0, c0);
+    const VU p1 = multiply_32x32(m1, c2);
+    const VU next0 = hn::Xor(hn::Xor(hn::ShiftRight<32>(p1), c1), hn::Set(du, keys.k0[r]));
+    const VU next2 = hn::Xor(hn::Xor(hn::ShiftRight<32>(p0), c3), hn::Set(du, keys.k1[r]));
+    c1 = hn::And(p1, low);
+    c3 = hn::And(p0, low);
+    c0 = next0;
+    c2 = next2;
+  }
+  const DI di;
+  const V half = hn::Set(d, 0.5), scale = hn::Set(d, 0x1p-32);
+  const auto unit = [&](VU word) {
+    return hn::Mul(hn::Add(hn::ConvertTo(d, hn::BitCast(di, word)), half), scale);
+  };
+  u0 = unit(c0);
+  u1 = unit(c1);
+  u2 = unit(c2);
+  u3 = unit(c3);
+}
+
+// (cos 2 pi u, sin 2 pi u) in every lane: core/azimuth.hpp's series about the nearest quarter
+// turn, the turn applied by masks instead of its sign table.
+HWY_INLINE void azimuth(V u, V& cos_phi, V& sin_phi) {
+  const D d;
+  const DI di;
+  const V quarters = hn::Mul(hn::Set(d, 4.0), u);
+  const V q = hn::Round(quarters);
+  const V x = hn::Mul(hn::Sub(quarters, q), hn::Set(d, 0.5 * std::numbers::pi));
+  const V x2 = hn::Neg(hn::Mul(x, x));
+  V s = hn::Set(d, 1.0 / 1307674368000.0);
+  for (const double c : {1.0 / 6227020800.0, 1.0 / 39916800.0, 1.0 / 362880.0, 1.0 / 5040.0,
+                         1.0 / 120.0, 1.0 / 6.0, 1.0}) {
+    s = hn::MulAdd(s, x2, hn::Set(d, c));
+  }
+  s = hn::Mul(s, x);
+  V c = hn::Set(d, 1.0 / 20922789888000.0);
+  for (const double k : {1.0 / 87178291200.0, 1.0 / 479001600.0, 1.0 / 3628800.0, 1.0 / 40320.0,
+                         1.0 / 720.0, 1.0 / 24.0, 0.5, 1.0}) {
+    c = hn::MulAdd(c, x2, hn::Set(d, k));
+  }
+  // Quarter turns t = q mod 4: (c, s) -> (-s, c) per turn.
+  const auto turn = hn::And(hn::ConvertTo(di, q), hn::Set(di, 3));
+  const auto odd = hn::RebindMask(d, hn::Eq(hn::And(turn, hn::Set(di, 1)), hn::Set(di, 1)));
+  const auto cos_negative =
+      hn::RebindMask(d, hn::Or(hn::Eq(turn, hn::Set(di, 1)), hn::Eq(turn, hn::Set(di, 2))));
+  const auto sin_negative = hn::RebindMask(d, hn::Gt(turn, hn::Set(di, 1)));
+  const V cos_abs = hn::IfThenElse(odd, s, c), sin_abs = hn::IfThenElse(odd, c, s);
+  cos_phi = hn::IfThenElse(cos_negative, hn::Neg(cos_abs), cos_abs);
+  sin_phi = hn::IfThenElse(sin_negative, hn::Neg(sin_abs), sin_abs);
+}
+
+// cos theta of Henyey-Greenstein g in every lane: core/phase_function.hpp's cancellation-free
+// inversion, mu = s + 2 a x (1 - x) ((1 - a)(3 + a) + 4 a x) / ((1 - a) + 2 a x)^2.
+HWY_INLINE V henyey_greenstein_cos(double g, V xi) {
+  const D d;
+  const double a = std::abs(g);
+  const V one = hn::Set(d, 1.0);
+  const V x = std::signbit(g) ? hn::Sub(one, xi) : xi;
+  const V s = hn::Sub(hn::Add(x, x), one);
+  const V den = hn::MulAdd(hn::Set(d, 2.0 * a), x, hn::Set(d, 1.0 - a));
+  const V num = hn::Mul(hn::Mul(hn::Mul(hn::Set(d, 2.0 * a), x), hn::Sub(one, x)),
+                        hn::MulAdd(hn::Set(d, 4.0 * a), x, hn::Set(d, (1.0 - a) * (3.0 + a))));
+  const V mu = hn::Min(hn::Max(hn::Add(s, hn::Div(num, hn::Mul(den, den))), hn::Neg(one)), one);
+  return g < 0.0 ? hn::Neg(mu) : mu;
+}
+
+// The direction at cos theta from (wx, wy, wz) and azimuth phi about it, in place: core/frame.hpp's
+// Frame (Duff et al. 2017) and its one Newton step back onto the unit sphere.
+HWY_INLINE void turn_direction(V cos_theta, V cos_phi, V sin_phi, V& wx, V& wy, V& wz) {
+  const D d;
+  const V one = hn::Set(d, 1.0);
+  const V sin_theta =
+      hn::Sqrt(hn::Max(hn::Zero(d), hn::Mul(hn::Sub(one, cos_theta), hn::Add(one, cos_theta))));
+  const V sign = hn::CopySign(one, wz);
+  const V a = hn::Neg(hn::Div(one, hn::Add(sign, wz)));
+  const V b = hn::Mul(hn::Mul(wx, wy), a);
+  const V tx = hn::MulAdd(hn::Mul(sign, hn::Mul(wx, wx)), a, one), ty = hn::Mul(sign, b),
+          tz = hn::Neg(hn::Mul(sign, wx));
+  const V bx = b, by = hn::MulAdd(hn::Mul(wy, wy), a, sign), bz = hn::Neg(wy);
+  const V along_t = hn::Mul(sin_theta, cos_phi), along_b = hn::Mul(sin_theta, sin_phi);
+  const V nx = hn::MulAdd(along_t, tx, hn::MulAdd(along_b, bx, hn::Mul(cos_theta, wx)));
+  const V ny = hn::MulAdd(along_t, ty, hn::MulAdd(along_b, by, hn::Mul(cos_theta, wy)));
+  const V nz = hn::MulAdd(along_t, tz, hn::MulAdd(along_b, bz, hn::Mul(cos_theta, wz)));
+  const V norm2 = hn::MulAdd(nx, nx, hn::MulAdd(ny, ny, hn::Mul(nz, nz)));
+  const V pull = hn::Mul(hn::Set(d, 0.5), hn::Sub(hn::Set(d, 3.0), norm2));
+  wx = hn::Mul(nx, pull);
+  wy = hn::Mul(ny, pull);
+  wz = hn::Mul(nz, pull);
+}
+
+// One photon per lane; the arrays are the lanes' state between vector steps.
+struct Lanes {
+  alignas(64) double x[kMaxLanes], y[kMaxLanes], z[kMaxLanes];     // position
+  alignas(64) double wx[kMaxLanes], wy[kMaxLanes], wz[kMaxLanes];  // direction
+  alignas(64) std::uint64_t photon_low[kMaxLanes], photon_high[kMaxLanes], call[kMaxLanes];
+  alignas(64) double u1[kMaxLanes], u2[kMaxLanes], u3[kMaxLanes];
+  alignas(64) double scatters[kMaxLanes];  // all ones (a mask) where the photon scatters now
+  alignas(64) double next_x[kMaxLanes], next_y[kMaxLanes], next_z[kMaxLanes];
+  alignas(64) double flight[kMaxLanes];  // mfp
+  int order[kMaxLanes];
+  bool busy[kMaxLanes];
+};
+
+template <class Geometry, bool isotropic, bool collisions>
+std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, std::uint64_t first,
+                        std::uint64_t last, double* buffer) {
+  const D d;
+  const DU du;
+  const std::size_t n = hn::Lanes(d);
+  const Scorer& scorer = *setup.scorer;
+  const PhiloxKeys keys = philox_keys(setup.seed);
+  Lanes lane{};
+  std::uint64_t next_photon = first, scatterings = 0;
+
+  // Gives `k` the next photon that enters (a source may reflect some off before they do);
+  // false when the range is done.
+  const auto launch = [&](std::size_t k) {
+    while (next_photon < last) {
+      const std::uint64_t photon = next_photon++;
+      PhotonRandom random(setup.seed, photon);
+      Vec3 start = Vec3::Zero(), heading = Vec3::UnitZ();
+      if (!setup.source.launch(random, start, heading)) {
+        scorer.reflection_at_entry(buffer);
+        continue;
+      }
+      lane.x[k] = start.x(), lane.y[k] = start.y(), lane.z[k] = start.z();
+      lane.wx[k] = heading.x(), lane.wy[k] = heading.y(), lane.wz[k] = heading.z();
+      lane.photon_low[k] = static_cast<std::uint32_t>(photon);
+      lane.photon_high[k] = photon >> 32;
+      lane.call[k] = random.calls();
+      lane.order[k] = 0;
+      return true;
+    }
+    // An idle lane keeps a unit direction, so that its (discarded) turns stay finite.
+    lane.wx[k] = 0.0, lane.wy[k] = 0.0, lane.wz[k] = 1.0;
+    return false;
+  };
+  std::size_t busy = 0;
+  for (std::size_t k = 0; k < n; ++k) busy += (lane.busy[k] = launch(k));
+
+  while (busy > 0) {
+    // The event's four uniforms, the free path and the move, for every lane at once.
+    V u0, u1, u2, u3;
+    const VU call = hn::Load(du, lane.call);
+    philox_uniforms(keys, hn::Load(du, lane.photon_low), hn::Load(du, lane.photon_high), call, u0,
+                    u1, u2, u3);
+    hn::Store(hn::Add(call, hn::Set(du, 1)), du, lane.call);
+    hn::Store(u1, d, lane.u1);
+    hn::Store(u2, d, lane.u2);
+    hn::Store(u3, d, lane.u3);
+    const V flight = hn::Neg(hn::Log(d, u0));
+    hn::Store(flight, d, lane.flight);
+    const V wx = hn::Load(d, lane.wx), wy = hn::Load(d, lane.wy), wz = hn::Load(d, lane.wz);
+    hn::Store(hn::MulAdd(flight, wx, hn::Load(d, lane.x)), d, lane.next_x);
+    hn::Store(hn::MulAdd(flight, wy, hn::Load(d, lane.y)), d, lane.next_y);
+    hn::Store(hn::MulAdd(flight, wz, hn::Load(d, lane.z)), d, lane.next_z);
+
+    // Each lane's surface, escape, collision and absorption, in lane order (the buffer's order of
+    // adds), as RandomWalk::run has them.
+    for (std::size_t k = 0; k < n; ++k) {
+      lane.scatters[k] = 0.0;
+      if (!lane.busy[k]) continue;
+      Vec3 next(lane.next_x[k], lane.next_y[k], lane.next_z[k]);
+      bool left = false;
+      if constexpr (Geometry::has_surface) {
+        // The geometry's own code on the lane's stream (a Fresnel choice draws from it).
+        Vec3 position(lane.x[k], lane.y[k], lane.z[k]);
+        Vec3 direction(lane.wx[k], lane.wy[k], lane.wz[k]);
+        PhotonRandom random(setup.seed, lane.photon_low[k] | lane.photon_high[k] << 32,
+                            static_cast<std::uint32_t>(lane.call[k]));
+        SurfaceExit exit;
+        left = geometry.leaves(position, direction, next, lane.flight[k], random, exit);
+        if (left) {
+          scorer.exit(buffer, exit, lane.order[k]);
+        } else {
+          lane.wx[k] = direction.x(), lane.wy[k] = direction.y(), lane.wz[k] = direction.z();
+          lane.call[k] = random.calls();
+        }
+      }
+      if (!left && next.squaredNorm() > setup.escape_radius2) {
+        scorer.escape(buffer);
+      } else if (!left) {
+        lane.x[k] = next.x(), lane.y[k] = next.y(), lane.z[k] = next.z();
+        if constexpr (collisions) {
+          scorer.collision(buffer, next, Vec3(lane.wx[k], lane.wy[k], lane.wz[k]), lane.order[k]);
+        }
+        if (lane.u1[k] < setup.albedo) {
+          lane.scatters[k] = std::bit_cast<double>(~std::uint64_t{0});
+          ++lane.order[k];
+          ++scatterings;
+          continue;
+        }
+        scorer.absorption(buffer, next, lane.order[k]);
+      }
+      if (!(lane.busy[k] = launch(k))) --busy;
+    }
+
+    // The scattered lanes' new directions; the others (new photons, idle lanes) keep theirs. (A
+    // surface may have turned a direction since the move.)
+    V nx = hn::Load(d, lane.wx), ny = hn::Load(d, lane.wy), nz = hn::Load(d, lane.wz), cos_phi,
+      sin_phi;
+    azimuth(hn::Load(d, lane.u3), cos_phi, sin_phi);
+    if constexpr (isotropic) {
+      // Drawn afresh about +z (core/frame.hpp: isotropic scattering forgets the old direction).
+      const V one = hn::Set(d, 1.0);
+      nz = hn::Sub(hn::Add(hn::Load(d, lane.u2), hn::Load(d, lane.u2)), one);
+      const V s = hn::Sqrt(hn::Max(hn::Zero(d), hn::Mul(hn::Sub(one, nz), hn::Add(one, nz))));
+      nx = hn::Mul(s, cos_phi);
+      ny = hn::Mul(s, sin_phi);
+    } else {
+      turn_direction(henyey_greenstein_cos(setup.g, hn::Load(d, lane.u2)), cos_phi, sin_phi, nx, ny,
+                     nz);
+    }
+    const auto scatters = hn::MaskFromVec(hn::Load(d, lane.scatters));
+    hn::Store(hn::IfThenElse(scatters, nx, hn::Load(d, lane.wx)), d, lane.wx);
+    hn::Store(hn::IfThenElse(scatters, ny, hn::Load(d, lane.wy)), d, lane.wy);
+    hn::Store(hn::IfThenElse(scatters, nz, hn::Load(d, lane.wz)), d, lane.wz);
+  }
+  return scatterings;
+}
+
+template <class Geometry>
+std::uint64_t run_on(const Geometry& geometry, const LaneWalk::Setup& setup, std::uint64_t first,
+                     std::uint64_t last, double* buffer) {
+  const bool isotropic = setup.g == 0.0;
+  if (setup.scores_collisions) {
+    return isotropic ? run_lanes<Geometry, true, true>(geometry, setup, first, last, buffer)
+                     : run_lanes<Geometry, false, true>(geometry, setup, first, last, buffer);
+  }
+  return isotropic ? run_lanes<Geometry, true, false>(geometry, setup, first, last, buffer)
+                   : run_lanes<Geometry, false, false>(geometry, setup, first, last, buffer);
+}
+
+std::uint64_t RunLanes(const LaneWalk::Setup& setup, std::uint64_t first, std::uint64_t last,
+                       double* buffer) {
+  switch (setup.geometry) {
+    case LaneWalk::Geometry::infinite_medium:
+      return run_on(InfiniteMedium{}, setup, first, last, buffer);
+    case LaneWalk::Geometry::half_space:
+      return run_on(HalfSpace<false>(setup.eta), setup, first, last, buffer);
+    case LaneWalk::Geometry::fresnel_half_space:
+      return run_on(HalfSpace<true>(setup.eta), setup, first, last, buffer);
+  }
+  return 0;
+}
+
+int LaneCount() {
+  return static_cast<int>(hn::Lanes(D()));
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace scatterlab
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace scatterlab {
+
+HWY_EXPORT(RunLanes);
+HWY_EXPORT(LaneCount);
+
+LaneWalk::LaneWalk(Geometry geometry, double eta, const Scorer& scorer, const Source& source,
+                   double albedo, double g, VolumeEstimator estimator, double escape_radius,
+                   std::uint64_t seed)
+    : setup_{geometry,
+             eta,
+             &scorer,
+             source,
+             albedo,
+             g,
+             escape_radius * escape_radius,
+             estimator == VolumeEstimator::collision,
+             seed} {
+  if (estimator == VolumeEstimator::track_length) {
+    throw std::invalid_argument("LaneWalk: the track-length estimator runs on RandomWalk");
+  }
+  if (source.kind == Source::Kind::sphere_light) {
+    throw std::invalid_argument("LaneWalk: a sphere light needs the sphere's geometry");
+  }
+}
+
+std::uint64_t LaneWalk::run(std::uint64_t first, std::uint64_t last, double* buffer,
+                            std::vector<double>& /*scratch*/) const {
+  return HWY_DYNAMIC_DISPATCH(RunLanes)(setup_, first, last, buffer);
+}
+
+int LaneWalk::lanes() {
+  return HWY_DYNAMIC_DISPATCH(LaneCount)();
+}
+
+}  // namespace scatterlab
+#endif
