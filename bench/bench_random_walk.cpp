@@ -2,8 +2,8 @@
 // scattering event per core, for (g = 0.9, albedo 0.5) and (g = 0, albedo 0.99), with the
 // fluence tallies alone and with the full radiance tally, on the one-photon RandomWalk (Walk)
 // and on the lane walk the engine runs (Lanes), next to a bare loop that only draws the random
-// numbers and samples free paths and directions (the one-photon ceiling), and the whole
-// multi-threaded run on 1 and 2 threads.
+// numbers and samples free paths and directions (the one-photon ceiling) and the lane walk with
+// no tally (LaneLoop, the lanes' ceiling), and the whole multi-threaded run on 1 and 2 threads.
 //
 //   ./build/bench/scatterlab_bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
@@ -99,6 +99,20 @@ void Lanes(benchmark::State& state, SimulationSpec spec) {
   state.counters["lanes"] = LaneWalk::lanes();
 }
 
+// The lane walk's ceiling: its loop with no tally at all (no volume estimator, no declared score),
+// beside BareLoop, the one-photon ceiling.
+void LaneLoop(benchmark::State& state, SimulationSpec spec) {
+  TransportProblem problem = transport_problem(spec);
+  problem.tallies.clear();
+  const TallyBook book(problem.tallies, false);
+  const Scorer scorer(problem.axes, book);
+  const LaneWalk walk(LaneWalk::Geometry::infinite_medium, 1.0, scorer, problem.source,
+                      problem.albedo, problem.g, VolumeEstimator::none, problem.run.escape_radius,
+                      problem.run.seed);
+  bench::time_walk(state, walk, book.size());
+  state.counters["lanes"] = LaneWalk::lanes();
+}
+
 void WholeRun(benchmark::State& state) {
   SimulationSpec spec = scene(0.9, 0.5, true, Estimator::collision);
   spec.run.photons = 10'000'000;  // batches of ~1.5e5 photons, as in the default job's regime
@@ -125,6 +139,8 @@ BENCHMARK_CAPTURE(Walk, fluence_iso_albedo0.99, isotropic, scene(0.0, 0.99, fals
 BENCHMARK_CAPTURE(Walk, radiance_iso_albedo0.99, isotropic, scene(0.0, 0.99, true, Estimator::collision));
 BENCHMARK_CAPTURE(Walk, track_fluence_hg_g0.9_albedo0.5, forward, scene(0.9, 0.5, false, Estimator::track_length));
 BENCHMARK_CAPTURE(Walk, track_radiance_hg_g0.9_albedo0.5, forward, scene(0.9, 0.5, true, Estimator::track_length));
+BENCHMARK_CAPTURE(LaneLoop, hg_g0.9_albedo0.5, scene(0.9, 0.5, false, Estimator::collision));
+BENCHMARK_CAPTURE(LaneLoop, iso_albedo0.99, scene(0.0, 0.99, false, Estimator::collision));
 BENCHMARK_CAPTURE(Lanes, fluence_hg_g0.9_albedo0.5, scene(0.9, 0.5, false, Estimator::collision));
 BENCHMARK_CAPTURE(Lanes, radiance_hg_g0.9_albedo0.5, scene(0.9, 0.5, true, Estimator::collision));
 BENCHMARK_CAPTURE(Lanes, fluence_iso_albedo0.99, scene(0.0, 0.99, false, Estimator::collision));
