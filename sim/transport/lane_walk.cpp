@@ -70,11 +70,12 @@ HWY_INLINE VU multiply_32x32(VU a, VU b) {
 }
 
 // The four uniforms (k + 1/2) / 2^32 of each lane, as PhotonRandom::open_unit makes them.
-HWY_INLINE void philox_uniforms(const PhiloxKeys& keys, VU c0, VU c1, VU c2, V& u0, V& u1, V& u2,
+HWY_INLINE void philox_uniforms(const PhiloxKeys& keys, VU photon, VU c2, V& u0, V& u1, V& u2,
                                 V& u3) {
   const DU du;
   const D d;
   const VU low = hn::Set(du, 0xffffffffULL);
+  VU c0 = hn::And(photon, low), c1 = hn::ShiftRight<32>(photon);
   const VU m0 = hn::Set(du, PHILOX_M4x32_0), m1 = hn::Set(du, PHILOX_M4x32_1);
   VU c3 = hn::Zero(du);
   for (std::size_t r = 0; r < 10; ++r) {
@@ -172,7 +173,7 @@ HWY_INLINE void turn_direction(V cos_theta, V cos_phi, V sin_phi, V& wx, V& wy, 
 struct Lanes {
   alignas(64) double x[kMaxLanes], y[kMaxLanes], z[kMaxLanes];     // position
   alignas(64) double wx[kMaxLanes], wy[kMaxLanes], wz[kMaxLanes];  // direction
-  alignas(64) std::uint64_t photon_low[kMaxLanes], photon_high[kMaxLanes], call[kMaxLanes];
+  alignas(64) std::uint64_t photon[kMaxLanes], call[kMaxLanes];    // Philox counter words 0-1, 2
   alignas(64) double u1[kMaxLanes], u2[kMaxLanes], u3[kMaxLanes];
   alignas(64) double scatters[kMaxLanes];  // all ones (a mask) where the photon scatters now
   alignas(64) double next_x[kMaxLanes], next_y[kMaxLanes], next_z[kMaxLanes];
@@ -205,8 +206,7 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
       }
       lane.x[k] = start.x(), lane.y[k] = start.y(), lane.z[k] = start.z();
       lane.wx[k] = heading.x(), lane.wy[k] = heading.y(), lane.wz[k] = heading.z();
-      lane.photon_low[k] = static_cast<std::uint32_t>(photon);
-      lane.photon_high[k] = photon >> 32;
+      lane.photon[k] = photon;
       lane.call[k] = random.calls();
       lane.order[k] = 0;
       return true;
@@ -222,8 +222,7 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
     // The event's four uniforms, the free path and the move, for every lane at once.
     V u0, u1, u2, u3;
     const VU call = hn::Load(du, lane.call);
-    philox_uniforms(keys, hn::Load(du, lane.photon_low), hn::Load(du, lane.photon_high), call, u0,
-                    u1, u2, u3);
+    philox_uniforms(keys, hn::Load(du, lane.photon), call, u0, u1, u2, u3);
     hn::Store(hn::Add(call, hn::Set(du, 1)), du, lane.call);
     hn::Store(u1, d, lane.u1);
     hn::Store(u2, d, lane.u2);
@@ -246,8 +245,7 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
         // The geometry's own code on the lane's stream (a Fresnel choice draws from it).
         Vec3 position(lane.x[k], lane.y[k], lane.z[k]);
         Vec3 direction(lane.wx[k], lane.wy[k], lane.wz[k]);
-        PhotonRandom random(setup.seed, lane.photon_low[k] | lane.photon_high[k] << 32,
-                            static_cast<std::uint32_t>(lane.call[k]));
+        PhotonRandom random(setup.seed, lane.photon[k], static_cast<std::uint32_t>(lane.call[k]));
         SurfaceExit exit;
         left = geometry.leaves(position, direction, next, lane.flight[k], random, exit);
         if (left) {
