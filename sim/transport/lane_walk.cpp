@@ -108,16 +108,14 @@ HWY_INLINE void azimuth(V u, V& cos_phi, V& sin_phi) {
   const V q = hn::Round(quarters);
   const V x = hn::Mul(hn::Sub(quarters, q), hn::Set(d, 0.5 * std::numbers::pi));
   const V x2 = hn::Neg(hn::Mul(x, x));
-  V s = hn::Set(d, 1.0 / 1307674368000.0);
-  for (const double c : {1.0 / 6227020800.0, 1.0 / 39916800.0, 1.0 / 362880.0, 1.0 / 5040.0,
-                         1.0 / 120.0, 1.0 / 6.0, 1.0}) {
-    s = hn::MulAdd(s, x2, hn::Set(d, c));
+  V s = hn::Set(d, azimuth_sin_series[0]);
+  for (std::size_t i = 1; i < azimuth_sin_series.size(); ++i) {
+    s = hn::MulAdd(s, x2, hn::Set(d, azimuth_sin_series[i]));
   }
   s = hn::Mul(s, x);
-  V c = hn::Set(d, 1.0 / 20922789888000.0);
-  for (const double k : {1.0 / 87178291200.0, 1.0 / 479001600.0, 1.0 / 3628800.0, 1.0 / 40320.0,
-                         1.0 / 720.0, 1.0 / 24.0, 0.5, 1.0}) {
-    c = hn::MulAdd(c, x2, hn::Set(d, k));
+  V c = hn::Set(d, azimuth_cos_series[0]);
+  for (std::size_t i = 1; i < azimuth_cos_series.size(); ++i) {
+    c = hn::MulAdd(c, x2, hn::Set(d, azimuth_cos_series[i]));
   }
   // Quarter turns t = q mod 4: (c, s) -> (-s, c) per turn.
   const auto turn = hn::And(hn::ConvertTo(di, q), hn::Set(di, 3));

@@ -6,7 +6,9 @@
 // quadrant is the integer part of 4u and the remainder maps exactly to [-pi/4, pi/4], where
 // Taylor series to x^15 and x^16 are accurate to a few 1e-17 ((pi/4)^17 / 17! = 4.4e-17).
 
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 
 namespace scatterlab {
@@ -15,6 +17,23 @@ struct UnitCircle {
   double cos;
   double sin;
 };
+
+// 1 / n!, with n! exact in a double for n <= 18 (below 2^53), so the quotient is the literal's.
+constexpr double inverse_factorial(int n) {
+  double factorial = 1.0;
+  for (int k = 2; k <= n; ++k) factorial *= k;
+  return 1.0 / factorial;
+}
+
+// Horner coefficients, highest power first, of the Taylor series of sin x / x and cos x about 0
+// in powers of -x^2 (also the lane walk's, transport/lane_walk.hpp).
+inline constexpr std::array<double, 8> azimuth_sin_series{
+    inverse_factorial(15), inverse_factorial(13), inverse_factorial(11), inverse_factorial(9),
+    inverse_factorial(7),  inverse_factorial(5),  inverse_factorial(3),  1.0};
+inline constexpr std::array<double, 9> azimuth_cos_series{
+    inverse_factorial(16), inverse_factorial(14), inverse_factorial(12),
+    inverse_factorial(10), inverse_factorial(8),  inverse_factorial(6),
+    inverse_factorial(4),  inverse_factorial(2),  1.0};
 
 inline UnitCircle azimuth(double u) {
   // Nearest quarter turn q and the signed remainder in radians.
@@ -26,24 +45,11 @@ inline UnitCircle azimuth(double u) {
   const double q = (quarters + round_shift) - round_shift;
   const double x = (quarters - q) * (0.5 * std::numbers::pi);
   const double x2 = x * x;
-  // Horner forms of the Taylor series of sin x / x and cos x about 0.
-  double s = 1.0 / 1307674368000.0;  // 1/15!
-  s = s * -x2 + 1.0 / 6227020800.0;  // 1/13!
-  s = s * -x2 + 1.0 / 39916800.0;
-  s = s * -x2 + 1.0 / 362880.0;
-  s = s * -x2 + 1.0 / 5040.0;
-  s = s * -x2 + 1.0 / 120.0;
-  s = s * -x2 + 1.0 / 6.0;
-  s = (s * -x2 + 1.0) * x;
-  double c = 1.0 / 20922789888000.0;  // 1/16!
-  c = c * -x2 + 1.0 / 87178291200.0;  // 1/14!
-  c = c * -x2 + 1.0 / 479001600.0;
-  c = c * -x2 + 1.0 / 3628800.0;
-  c = c * -x2 + 1.0 / 40320.0;
-  c = c * -x2 + 1.0 / 720.0;
-  c = c * -x2 + 1.0 / 24.0;
-  c = c * -x2 + 0.5;
-  c = c * -x2 + 1.0;
+  double s = azimuth_sin_series[0];
+  for (std::size_t i = 1; i < azimuth_sin_series.size(); ++i) s = s * -x2 + azimuth_sin_series[i];
+  s *= x;
+  double c = azimuth_cos_series[0];
+  for (std::size_t i = 1; i < azimuth_cos_series.size(); ++i) c = c * -x2 + azimuth_cos_series[i];
   // Rotate by q quarter turns: (c, s) -> (-s, c) per turn. Odd turns swap the pair; the signs
   // come from a table (times +-1 is exact), so that no branch depends on the random number.
   constexpr double cos_sign[4] = {1.0, -1.0, -1.0, 1.0};
