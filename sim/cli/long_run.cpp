@@ -222,7 +222,7 @@ int LongRun::finish(std::uint64_t batches_done, std::uint64_t batches,
   if (world_.is_root()) {
     if (batches_done == 0) {
       fmt::print(stderr,
-                 "scatterlab: interrupted before the first round of batches was complete: wrote "
+                 "scatterlab: interrupted before the first batch was complete: wrote "
                  "no file and no checkpoint; rerun the same command to start again\n");
       return kInterruptedExit;
     }

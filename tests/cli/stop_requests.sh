@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Usage: stop_requests.sh SCATTERLAB SAME_TALLIES [MPIEXEC]
-# A stop request is honoured within 2 s even when one round of batches would take many minutes:
-# the unfinished round is dropped, nothing partial is written when no batch was whole, and a run
-# stopped in mid-round (on one process, or on two ranks that see the signal at different times)
+# A stop request is honoured within 2 s even when one batch would take many minutes: the
+# unfinished batches are dropped, nothing partial is written when no batch was whole, and a run
+# stopped in mid-batch (on one process, or on two ranks that see the signal at different times)
 # resumes to the same bits as an uninterrupted run.
 set -u
 exe=$(realpath "$1")
@@ -34,29 +34,30 @@ stop_within() {
   fi
 }
 
-# One round of two batches of 5e9 photons: hours. Stopped in it, nothing is whole: no file, no
+# Two batches of 5e9 photons on two threads: hours. Stopped in them, nothing is whole: no file, no
 # checkpoint, and the message says so.
 "$exe" simulate --photons 1e10 --batches 2 --threads 2 --seed 3 --theta-bins 6 --phi-bins 8 \
   --out long.h5 --checkpoint-interval 1b >/dev/null 2>long.err &
 pid=$!
 sleep 2  # the signal handlers are in place well before
-stop_within "single long round" INT $pid
-if grep -q "interrupted before the first round" long.err && [ "$(grep -c . long.err)" -eq 1 ] &&
+stop_within "first batches" INT $pid
+if grep -q "interrupted before the first batch" long.err && [ "$(grep -c . long.err)" -eq 1 ] &&
   [ -z "$(ls -A | grep long.h5)" ]; then pass; else
-  fail "single long round: $(cat long.err; ls)"; fi
+  fail "first batches: $(cat long.err; ls)"; fi
 
-# Stopped in the second round: keeps the first, and --resume ends as an uninterrupted run.
+# Stopped in batches 2 and 3, which the two threads take once batches 0 and 1 are done and saved:
+# keeps the first two, and --resume ends as an uninterrupted run.
 run=(simulate --photons 24000000 --batches 4 --threads 2 --seed 4 --theta-bins 6 --phi-bins 8)
 "$exe" "${run[@]}" --out full.h5 >/dev/null || fail "uninterrupted run"
-"$exe" "${run[@]}" --out part.h5 --checkpoint-interval 1b >/dev/null 2>part.err &
+"$exe" "${run[@]}" --out part.h5 --checkpoint-interval 2b >/dev/null 2>part.err &
 pid=$!
-wait_for part.h5.checkpoint || fail "no checkpoint after the first round"
-stop_within "second round" TERM $pid
+wait_for part.h5.checkpoint || fail "no checkpoint after the first two batches"
+stop_within "batches 2 and 3" TERM $pid
 if grep -q "interrupted after 2 of 4 batches" part.err && "$exe" info part.h5 | grep -q PARTIAL &&
   "$exe" "${run[@]}" --out part.h5 --resume >/dev/null 2>&1 && "$same" full.h5 part.h5 >/dev/null
-then pass; else fail "resume after a stop in mid-round: $(cat part.err)"; fi
+then pass; else fail "resume after a stop in mid-batch: $(cat part.err)"; fi
 
-# Two ranks: mpirun forwards SIGUSR1; every rank drops the same round.
+# Two ranks: mpirun forwards SIGUSR1; every rank drops the same group of batches (one per rank).
 if [ -n "$mpiexec" ]; then
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
   export OMPI_MCA_btl_vader_single_copy_mechanism=none OMPI_MCA_rmaps_base_oversubscribe=1
@@ -69,7 +70,7 @@ if [ -n "$mpiexec" ]; then
   if grep -q "interrupted after 2 of 4 batches" ranks.err &&
     "$exe" "${run[@]}" --out ranks.h5 --resume >/dev/null 2>&1 &&
     "$same" full.h5 ranks.h5 >/dev/null
-  then pass; else fail "two ranks stopped in mid-round: $(cat ranks.err)"; fi
+  then pass; else fail "two ranks stopped in mid-batch: $(cat ranks.err)"; fi
 fi
 
 report "stop requests"

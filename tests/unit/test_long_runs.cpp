@@ -60,7 +60,9 @@ SimulationOutput run_on_ranks(const SimulationSpec& spec, int ranks,
   return outputs.front();
 }
 
-// Stops once `stop_at` of the batches are done and returns the state saved on stopping.
+// Stops once `stop_at` of the batches are done and returns the state saved on stopping. On one
+// thread the stop is deterministic: the progress after batch k raises the flag, and batch k + 1 is
+// cut before its first photon.
 RunState interrupted(const SimulationSpec& spec, double stop_at, SimulationOutput* output) {
   std::atomic<bool> stop{false};
   RunState saved;
@@ -93,9 +95,9 @@ TEST(DistributedRuns, MoreRanksThanBatchesStillFoldEveryBatch) {
 TEST(Checkpoints, StoppedRunResumesToTheSameBits) {
   const SimulationOutput uninterrupted = simulate(small_run(2));
   SimulationOutput partial;
-  const RunState state = interrupted(small_run(2), 0.3, &partial);
-  // Progress reports 4 of 12 batches (2 threads) and raises the flag; the runner sees it in the
-  // next round's batches and abandons that round: 4 batches.
+  const RunState state = interrupted(small_run(1), 0.3, &partial);
+  // Progress reports 4 of 12 batches and raises the flag; the runner cuts batch 4 before its
+  // first photon and abandons it: 4 batches.
   EXPECT_EQ(partial.batches_done, 4u);
   EXPECT_FALSE(partial.complete(small_run(2)));
   EXPECT_EQ(partial.photons, 4'000u);
@@ -115,7 +117,7 @@ TEST(Checkpoints, StoppedRunResumesToTheSameBits) {
 // file count the whole run; its progress says which batches were resumed.
 TEST(Checkpoints, ResumedRunCountsTheEarlierRunsWork) {
   SimulationOutput partial;
-  RunState state = interrupted(small_run(2), 0.3, &partial);
+  RunState state = interrupted(small_run(1), 0.3, &partial);
   EXPECT_GT(state.wall_seconds, 0.0);
   EXPECT_LE(state.wall_seconds, partial.wall_seconds);
   state.wall_seconds = 100.0;  // as if the earlier run had been slow
@@ -123,7 +125,7 @@ TEST(Checkpoints, ResumedRunCountsTheEarlierRunsWork) {
   control.resume_from = &state;
   BatchProgress first{};
   const SimulationOutput resumed = simulate(
-      small_run(2),
+      small_run(1),
       [&first](const BatchProgress& done) {
         if (first.batches == 0) first = done;
       },
@@ -135,8 +137,8 @@ TEST(Checkpoints, ResumedRunCountsTheEarlierRunsWork) {
   EXPECT_EQ(resumed.run_wall_seconds(), 100.0 + resumed.wall_seconds);
   EXPECT_EQ(first.batches_resumed, 4u);
   EXPECT_EQ(first.photons_resumed, 4'000u);
-  EXPECT_EQ(first.batches_done, 6u);  // one round of 2 threads after the 4 resumed
-  EXPECT_EQ(first.photons_done, 6'000u);
+  EXPECT_EQ(first.batches_done, 5u);  // one batch after the 4 resumed
+  EXPECT_EQ(first.photons_done, 5'000u);
 }
 
 TEST(Checkpoints, PartialRunIsTheMeanOfItsBatches) {
@@ -144,7 +146,7 @@ TEST(Checkpoints, PartialRunIsTheMeanOfItsBatches) {
   first_four.run.photons = 4'000;  // batches 0-3 of the 12-batch run, photon for photon
   first_four.run.batches = 4;
   SimulationOutput partial;
-  interrupted(small_run(2), 0.3, &partial);
+  interrupted(small_run(1), 0.3, &partial);
   expect_same_tallies(simulate(first_four), partial);
 }
 
@@ -182,7 +184,7 @@ class CheckpointFileTest : public ::testing::Test {
 
 TEST_F(CheckpointFileTest, RoundTripIsExact) {
   SimulationOutput partial;
-  const RunState state = interrupted(small_run(2), 0.5, &partial);
+  const RunState state = interrupted(small_run(1), 0.5, &partial);
   const auto path = default_checkpoint_path(directory_ / "run.h5");
   EXPECT_EQ(path.filename(), "run.h5.checkpoint");
   write_checkpoint(path, fingerprint(small_run(2)), state);
@@ -200,7 +202,7 @@ TEST_F(CheckpointFileTest, RoundTripIsExact) {
 TEST_F(CheckpointFileTest, AnotherRunsCheckpointIsRefused) {
   const auto path = directory_ / "run.h5.checkpoint";
   SimulationOutput partial;
-  write_checkpoint(path, fingerprint(small_run(2)), interrupted(small_run(2), 0.5, &partial));
+  write_checkpoint(path, fingerprint(small_run(2)), interrupted(small_run(1), 0.5, &partial));
   SimulationSpec other_seed = small_run(2);
   other_seed.run.seed = 8;
   try {

@@ -1,11 +1,12 @@
-// A stop request is honoured inside a batch, not only between rounds, and the run keeps exactly
-// the whole rounds folded before it, on every rank alike; a state that does not fit the run is
-// refused on every rank (none is left waiting).
+// A stop request is honoured inside a batch, not only between batches, and the run keeps exactly
+// the whole groups of batches folded before it, on every rank alike; a state that does not fit the
+// run is refused on every rank (none is left waiting).
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <cstdint>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "scatterlab/core/error.hpp"
@@ -16,17 +17,24 @@ namespace scatterlab {
 namespace {
 
 // Scores one per photon in cell 0 and counts each photon as one scattering; raises `stop` when
-// it reaches photon `stop_at` (as a signal would, from outside the runner) and counts the photons
-// it ran after that.
+// it reaches photon `stop_at` (as a signal would, from outside the runner), once every photon
+// below `whole_below` has run (so that the batches before the stop are whole whatever thread runs
+// them), and counts the photons it ran after that.
 struct CountingWalk {
   std::atomic<bool>* stop;
   std::uint64_t stop_at;
   std::atomic<std::uint64_t>* after_stop;
+  std::uint64_t whole_below = 0;
+  std::atomic<std::uint64_t>* ran_below = nullptr;
 
   int make_scratch() const { return 0; }
   std::uint64_t run(std::uint64_t first, std::uint64_t last, double* sums, int&) const {
     for (std::uint64_t photon = first; photon < last; ++photon) {
-      if (photon == stop_at) stop->store(true);
+      if (photon < whole_below) ++*ran_below;
+      if (photon == stop_at) {
+        while (whole_below > 0 && ran_below->load() < whole_below) std::this_thread::yield();
+        stop->store(true);
+      }
       if (stop->load()) ++*after_stop;
       sums[0] += 1.0;
       sums[1] += static_cast<double>(photon % 7);
@@ -37,24 +45,24 @@ struct CountingWalk {
 
 RunSettings four_batches() {
   RunSettings run;
-  run.photons = 4'000'000;  // 1e6 per batch: a stop honoured only between rounds costs 1e6 more
+  run.photons = 4'000'000;  // 1e6 per batch: a stop honoured only between batches costs 1e6 more
   run.batches = 4;
   run.threads = 2;
   return run;
 }
 
-TEST(StopRequests, HonouredInsideABatchAndTheRoundAbandoned) {
+TEST(StopRequests, HonouredInsideABatchAndTheBatchAbandoned) {
   std::atomic<bool> stop{false};
-  std::atomic<std::uint64_t> after_stop{0};
+  std::atomic<std::uint64_t> after_stop{0}, ran_below{0};
   std::vector<std::uint64_t> saved;
   RunControl control;
   control.stop_requested = &stop;
   control.save_checkpoint = [&](const RunState& state) {
     saved.push_back(state.batches_folded);
-    EXPECT_EQ(state.scattering_events, 2'000'000u);  // the abandoned round's are not counted
+    EXPECT_EQ(state.scattering_events, 2'000'000u);  // the abandoned batches' are not counted
   };
-  // Photon 2.3e6 lies in batch 2, in the second round (batches 2 and 3).
-  const CountingWalk walk{&stop, 2'300'000, &after_stop};
+  // Photon 2.3e6 lies in batch 2; batches 0 and 1 are whole by then, batch 3 is cut or not begun.
+  const CountingWalk walk{&stop, 2'300'000, &after_stop, 2'000'000, &ran_below};
   const BatchOutcome out = run_batches(four_batches(), 2, walk, {}, control);
   EXPECT_EQ(out.batches_done, 2u);
   EXPECT_EQ(out.photons_done, 2'000'000u);
@@ -65,7 +73,7 @@ TEST(StopRequests, HonouredInsideABatchAndTheRoundAbandoned) {
   EXPECT_LE(after_stop.load(), 2 * detail::kStopPollPhotons);
 }
 
-TEST(StopRequests, StoppedInTheFirstRoundHoldsNothingAndSavesNothing) {
+TEST(StopRequests, StoppedInTheFirstBatchHoldsNothingAndSavesNothing) {
   std::atomic<bool> stop{false};
   std::atomic<std::uint64_t> after_stop{0};
   bool saved = false;
@@ -81,15 +89,15 @@ TEST(StopRequests, StoppedInTheFirstRoundHoldsNothingAndSavesNothing) {
 }
 
 TEST(StopRequests, EveryRankKeepsTheSameBatchesWhenOneStopsMidBatch) {
-  // Only rank 1 sees a stop, inside its batch of the second round; rank 0 finishes its batch.
-  // Both must abandon that round.
+  // Only rank 1 sees a stop, inside its batch of the second group; rank 0 finishes its batch.
+  // Both must abandon that group.
   std::vector<std::uint64_t> done(2), events(2);
   testing::run_ranks(2, [&](Communicator& communicator) {
     const auto rank = static_cast<std::size_t>(communicator.rank());
     std::atomic<bool> stop{false};
     std::atomic<std::uint64_t> after_stop{0};
     RunSettings run = four_batches();
-    run.threads = 1;  // rounds of 2 batches, one per rank: batch 3 is rank 1's
+    run.threads = 1;  // groups of 2 batches, one per rank: batch 3 is rank 1's
     RunControl control;
     control.communicator = &communicator;
     control.stop_requested = &stop;

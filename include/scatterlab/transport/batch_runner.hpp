@@ -8,16 +8,19 @@
 // transported by one thread in photon order into a zeroed buffer, and every cell folds the batches
 // with the same Welford arithmetic in batch order.
 //
-// Work is dealt in rounds of ranks x threads batches: thread t of rank q transports batch
-// (first of round + q * threads + t). Each rank owns a contiguous slice of the cells; after a
-// round the per-batch sums are exchanged so that each rank holds its slice of every batch of the
-// round, and its threads fold sub-slices in batch order. Memory per rank is independent of the
-// rank count: a buffer per thread, the round's received slices (threads x cells values) and the
-// statistics of its slice.
+// Batches go to ranks in groups: group g holds batch (first + g * ranks + q) of each rank q. On a
+// rank, threads take the groups from a shared counter as they become free, so a slow or
+// descheduled thread holds up no other, each into one of a ring of score buffers: 2 x threads - 1
+// of them, so that a thread may run up to threads - 1 groups ahead of the slowest before it waits.
+// Groups are folded strictly in order, by whichever thread finds the next one complete. With
+// several ranks it first exchanges the group's sums, so that each rank holds its contiguous slice
+// of the cells of every batch of the group, and folds those in batch order: memory per rank is
+// independent of the rank count.
 //
-// A stop request is read between slices of every batch (detail::transport_batch), not only
-// between rounds: a round that a stop cuts short on any rank is abandoned on all of them, so a
-// stopped run holds exactly the whole rounds folded before it, and resumes to the same bits.
+// A stop request is read between slices of every batch (detail::transport_batch). A batch cut
+// short on any rank abandons its group on all of them (the group's flags are combined across
+// ranks before anything is folded), so a stopped run holds exactly the whole groups folded before
+// it, and resumes to the same bits.
 
 #include <fmt/format.h>
 #include <omp.h>
@@ -25,10 +28,12 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -41,7 +46,7 @@
 
 namespace scatterlab {
 
-// Where a run stands after a round of batches: how many of its batches (and the photons in them)
+// Where a run stands after a group of batches: how many of its batches (and the photons in them)
 // are done, and how many of those were done before this process started (resumed from a
 // checkpoint), so that a rate or an ETA can count this process's own work only.
 struct BatchProgress {
@@ -56,7 +61,9 @@ struct BatchProgress {
   }
 };
 
-// Called on the calling thread (the root rank's master) after every round of batches.
+// Called on the calling thread (each rank's master) with the latest folded state, after each
+// batch that thread transports and once at the end, so that a callback may poll for signals (as
+// Python's does) within a batch's time.
 using ProgressCallback = std::function<void(const BatchProgress&)>;
 
 // Photons [first, last) of batch b: the first N mod B batches hold one photon more.
@@ -95,20 +102,29 @@ inline int batch_threads(const RunSettings& run) {
   return static_cast<int>(std::min<std::uint64_t>(run.batches, static_cast<std::uint64_t>(asked)));
 }
 
-// What run_batches holds at its peak on the root rank, for `cells` values per batch: a score
-// buffer per thread; the statistics of the rank's slice (mean and sum of squares); at the end the
-// whole state gathered on the root and its standard error; with several ranks, the round's send
-// and receive buffers (a thread's worth of every cell each); when resuming, the saved state the
-// caller holds (RunControl::resume_from).
-inline MemoryEstimate batch_memory(std::size_t cells, int threads, int ranks, bool resuming) {
+// The ring of score buffers of each rank: 2 x threads - 1, never more than the rank's groups.
+inline std::size_t score_buffers(int threads, std::uint64_t batches, int ranks) {
+  const auto per_rank = static_cast<std::uint64_t>(ranks);
+  const std::uint64_t groups = (batches + per_rank - 1) / per_rank;
+  const std::uint64_t ring = 2 * static_cast<std::uint64_t>(threads) - 1;
+  return static_cast<std::size_t>(std::max<std::uint64_t>(1, std::min(ring, groups)));
+}
+
+// What run_batches holds at its peak on the root rank, for `cells` values per batch: the ring of
+// score buffers; the statistics of the rank's slice (mean and sum of squares); at the end the
+// whole state gathered on the root and its standard error; with several ranks, a group's send and
+// receive buffers (a batch's worth of every cell each); when resuming, the saved state the caller
+// holds (RunControl::resume_from).
+inline MemoryEstimate batch_memory(std::size_t cells, int threads, std::uint64_t batches, int ranks,
+                                   bool resuming) {
   const auto values = static_cast<std::uint64_t>(cells);
-  const auto per_rank = static_cast<std::uint64_t>(threads);
   MemoryEstimate need;
-  need.add_doubles(fmt::format("score buffers of {} tally values (one per thread)", values), values,
-                   per_rank);
+  need.add_doubles(
+      fmt::format("score buffers of {} tally values (2 per thread but one)", values), values,
+      score_buffers(threads, batches, ranks));
   need.add_doubles(fmt::format("arrays of {} tally values (batch statistics and results)", values),
                    values, 5);
-  if (ranks > 1) need.add_doubles("exchange buffers (two per thread)", values, 2 * per_rank);
+  if (ranks > 1) need.add_doubles("exchange buffers (send and receive)", values, 2);
   if (resuming) need.add_doubles("arrays of the checkpoint resumed from", values, 2);
   return need;
 }
@@ -131,13 +147,16 @@ constexpr std::uint64_t kStopFlag = 1, kCheckpointFlag = 2, kAbandonFlag = 4;
 constexpr std::uint64_t kStopPollPhotons = 1024;
 
 // Transports one batch into `sums` in slices of kStopPollPhotons photons, in photon order (the
-// same arithmetic as one call, so the same bits). Returns false when a stop was requested before
-// the batch was complete: its sums are then partial and must not be folded.
+// same arithmetic as one call, so the same bits). Returns false when a stop was requested (from
+// outside, or by the runner itself once it has decided to end) before the batch was complete: its
+// sums are then partial and must not be folded.
 template <class Walk, class Scratch>
 bool transport_batch(const Walk& walk, BatchRange range, double* sums, Scratch& scratch,
-                     const std::atomic<bool>* stop_requested, std::uint64_t& scatterings) {
+                     const std::atomic<bool>* stop_requested, const std::atomic<bool>& halted,
+                     std::uint64_t& scatterings) {
   for (std::uint64_t first = range.first; first < range.last; first += kStopPollPhotons) {
-    if (stop_requested != nullptr && stop_requested->load(std::memory_order_relaxed)) {
+    if ((stop_requested != nullptr && stop_requested->load(std::memory_order_relaxed)) ||
+        halted.load(std::memory_order_relaxed)) {
       return false;
     }
     const std::uint64_t last = std::min(range.last, first + kStopPollPhotons);
@@ -145,6 +164,14 @@ bool transport_batch(const Walk& walk, BatchRange range, double* sums, Scratch& 
   }
   return true;
 }
+
+// One buffer of the ring: the group whose batch it last received, and how that batch ended.
+struct RingSlot {
+  enum class State { empty, whole, cut };
+  std::uint64_t group = ~std::uint64_t{0};
+  State state = State::empty;
+  std::uint64_t scatterings = 0;
+};
 
 }  // namespace detail
 
@@ -160,13 +187,12 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
   Communicator& world = control.communicator != nullptr ? *control.communicator : serial;
   const int ranks = world.size();
   const auto rank = static_cast<std::size_t>(world.rank());
+  const auto rank_count = static_cast<std::uint64_t>(ranks);
   const std::uint64_t photons = run.photons;
   const std::uint64_t batches = run.batches;
-  // Every rank uses the root's thread count, so that all agree on which batch is whose.
+  // Every rank uses the root's thread count, so that all hold rings of the same size.
   const int threads =
       static_cast<int>(world.broadcast_from_root(static_cast<std::uint64_t>(batch_threads(run))));
-  const auto thread_count = static_cast<std::size_t>(threads);
-  const std::uint64_t per_round = static_cast<std::uint64_t>(ranks) * thread_count;
 
   const std::vector<std::size_t> slices = detail::cell_slices(cells, ranks);
   const std::size_t slice = slices[rank];
@@ -199,35 +225,59 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
     statistics = BatchStatistics(std::move(mean), std::move(squares));
   }
 
-  // One score buffer per thread; with several ranks, the round's slices of every batch.
-  std::vector<std::vector<double>> sums(thread_count, std::vector<double>(cells, 0.0));
-  std::vector<std::uint64_t> scatterings(thread_count, 0);
-  std::vector<int> abandoned(thread_count, 0);  // by thread: its batch of the round was cut short
-  if (resume != nullptr) scatterings[0] = resume->scattering_events;
+  const std::uint64_t groups = (batches - start + rank_count - 1) / rank_count;
+  const std::size_t slots = score_buffers(threads, batches - start, ranks);
+  std::vector<std::vector<double>> ring(slots);
+  std::vector<detail::RingSlot> ring_state(slots);
   std::vector<double> send, received;
-  std::vector<std::size_t> send_counts, receive_counts;
+  std::vector<std::size_t> send_counts(slices), receive_counts;
   if (ranks > 1) {
-    send.resize(thread_count * cells);
-    received.resize(per_round * slice);
-    for (const std::size_t count : slices) send_counts.push_back(thread_count * count);
-    receive_counts.assign(static_cast<std::size_t>(ranks), thread_count * slice);
+    send.resize(cells);
+    received.resize(rank_count * slice);
+    receive_counts.assign(static_cast<std::size_t>(ranks), slice);
   }
 
+  // Shared by the threads: the next group to take; under ring_mutex, the ring's states and the
+  // next group to fold (a group's buffer is free once it is folded); `halted` once the run ends
+  // early, so that no thread takes or finishes another batch.
+  std::atomic<std::uint64_t> next_group{0};
+  std::atomic<bool> halted{false};  // set, under ring_mutex, when the ranks agree to stop
+  std::mutex ring_mutex;
+  std::condition_variable buffer_freed;
+  std::uint64_t next_to_fold = 0;
+
+  // Held by the thread that folds; everything below it is touched under fold_mutex only (or on
+  // the calling thread before and after the parallel region).
+  std::mutex fold_mutex;
+  std::uint64_t scatterings = resume != nullptr ? resume->scattering_events : 0;
   const auto clock_start = std::chrono::steady_clock::now();
   const double resumed_wall_seconds = resume != nullptr ? resume->wall_seconds : 0.0;
   auto last_checkpoint = clock_start;
   std::uint64_t last_checkpoint_batches = start;
   std::uint64_t done = start;
-  std::uint64_t round_flags = 0;  // written by the master before the round's second barrier
   std::exception_ptr failure;
+
+  // The latest folded state, for the calling thread to report (ProgressCallback).
+  std::mutex progress_mutex;
+  BatchProgress latest;
+  bool unreported = false;
+  auto report_progress = [&]() {
+    if (!progress) return;
+    BatchProgress now;
+    {
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      if (!unreported) return;
+      now = latest;
+      unreported = false;
+    }
+    progress(now);
+  };
 
   // The whole state, gathered on the root (a collective: every rank calls it).
   auto gather_state = [&]() {
     RunState state;
     state.batches_folded = done;
-    std::uint64_t local = 0;
-    for (const std::uint64_t s : scatterings) local += s;
-    state.scattering_events = world.sum(local);
+    state.scattering_events = world.sum(scatterings);
     state.wall_seconds =
         resumed_wall_seconds +
         std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
@@ -236,111 +286,143 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
     return state;
   };
 
+  // Folds group g, whose batch on this rank ended as `state` (cut for one never run because the
+  // run was halted). Every rank folds the same groups in the same order: the flags are combined
+  // first, so that a batch cut short anywhere abandons the group everywhere.
+  auto fold_group = [&](std::uint64_t g, detail::RingSlot::State state,
+                        std::uint64_t batch_scatterings, std::vector<double>& sums) {
+    const std::uint64_t first = start + g * rank_count;
+    const std::uint64_t end_of_group = std::min(batches, first + rank_count);
+    std::uint64_t flags = 0;
+    // A stop request shows as a cut batch: every batch in flight is cut short, and any taken
+    // after it is cut before its first photon, so the whole batches before it are still folded.
+    if (state == detail::RingSlot::State::cut) flags |= detail::kStopFlag | detail::kAbandonFlag;
+    if (failure != nullptr) flags |= detail::kStopFlag;
+    const auto now = std::chrono::steady_clock::now();
+    const CheckpointPolicy& policy = control.checkpoint;
+    const bool due =
+        (policy.every_batches > 0 &&
+         end_of_group - last_checkpoint_batches >= policy.every_batches) ||
+        (policy.every_seconds > 0.0 &&
+         std::chrono::duration<double>(now - last_checkpoint).count() >= policy.every_seconds);
+    if (world.is_root() && due && end_of_group < batches && control.save_checkpoint) {
+      flags |= detail::kCheckpointFlag;
+    }
+    flags = world.bitwise_or(flags);
+    const bool abandon = (flags & detail::kAbandonFlag) != 0;
+    if (abandon) flags &= ~detail::kCheckpointFlag;
+    // Stopping early saves the state too, so that the run can be resumed from there, unless the
+    // last checkpoint (or the one resumed from) already holds it.
+    const std::uint64_t held = abandon ? done : end_of_group;
+    if ((flags & detail::kStopFlag) && held < batches && held > last_checkpoint_batches &&
+        control.save_checkpoint) {
+      flags |= detail::kCheckpointFlag;
+    }
+    if (!abandon) {
+      double* group_sums = sums.data();
+      if (ranks > 1) {
+        // This rank's batch, cut into the owners' slices (cleared for its buffer's next batch);
+        // back come this rank's slices of every batch of the group, in rank order.
+        std::copy(sums.begin(), sums.end(), send.begin());
+        std::fill(sums.begin(), sums.end(), 0.0);
+        world.all_to_all(send, send_counts, received, receive_counts);
+        group_sums = received.data();
+      }
+      for (std::uint64_t b = first; b < end_of_group; ++b) {
+        const BatchRange range = batch_range(photons, batches, b);
+        statistics.add_batch(b, group_sums + (b - first) * slice,
+                             static_cast<double>(range.last - range.first), 0, slice);
+      }
+      scatterings += batch_scatterings;
+      done = end_of_group;
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      latest = {done, batches, start, batch_range(photons, batches, done).first,
+                batch_range(photons, batches, start).first};
+      unreported = true;
+    }
+    if (flags & detail::kCheckpointFlag) {
+      try {
+        const RunState saved = gather_state();
+        if (world.is_root()) control.save_checkpoint(saved);
+      } catch (...) {
+        failure = std::current_exception();  // stops every rank after the next group
+      }
+      last_checkpoint = std::chrono::steady_clock::now();
+      last_checkpoint_batches = done;
+    }
+    if (flags & detail::kStopFlag) {
+      std::lock_guard<std::mutex> lock(ring_mutex);
+      halted = true;
+    }
+  };
+
+  // Folds every group that is next in order and complete, unless another thread is folding: that
+  // one looks again after it lets go, so that a group completed meanwhile is never left behind
+  // and every complete group is folded before the threads leave the parallel region.
+  auto fold_ready = [&]() {
+    auto next_is_complete = [&] {
+      return !halted && next_to_fold < groups &&
+             ring_state[next_to_fold % slots].group == next_to_fold;
+    };
+    for (;;) {
+      std::unique_lock<std::mutex> folding(fold_mutex, std::try_to_lock);
+      if (!folding.owns_lock()) return;
+      for (;;) {
+        detail::RingSlot slot;
+        {
+          std::lock_guard<std::mutex> lock(ring_mutex);
+          if (!next_is_complete()) break;
+          slot = ring_state[next_to_fold % slots];
+        }
+        fold_group(slot.group, slot.state, slot.scatterings, ring[slot.group % slots]);
+        {
+          std::lock_guard<std::mutex> lock(ring_mutex);
+          ++next_to_fold;
+        }
+        buffer_freed.notify_all();
+      }
+      folding.unlock();
+      std::lock_guard<std::mutex> lock(ring_mutex);
+      if (!next_is_complete()) return;
+    }
+  };
+
 #pragma omp parallel num_threads(threads)
   {
+    // Each thread first touches its own share of the ring.
     const auto t = static_cast<std::size_t>(omp_get_thread_num());
+    for (std::size_t s = t; s < slots; s += static_cast<std::size_t>(threads)) {
+      ring[s].assign(cells, 0.0);
+    }
+#pragma omp barrier
     auto scratch = walk.make_scratch();
-    // Each thread folds its own part of the rank's slice, over the round's batches in order.
-    const std::size_t part = (slice + thread_count - 1) / thread_count;
-    const std::size_t begin = std::min(slice, part * t);
-    const std::size_t end = std::min(slice, begin + part);
-    for (std::uint64_t first = start; first < batches; first += per_round) {
-      const std::uint64_t batch = first + rank * thread_count + t;
-      const std::uint64_t end_of_round = std::min(batches, first + per_round);
+    for (;;) {
+      const std::uint64_t g = next_group.fetch_add(1);
+      if (g >= groups) break;
+      {
+        std::unique_lock<std::mutex> lock(ring_mutex);
+        buffer_freed.wait(lock, [&] { return g < next_to_fold + slots || halted; });
+      }
+      if (halted) break;
+      const std::uint64_t batch = start + g * rank_count + rank;
       std::uint64_t batch_scatterings = 0;
-      bool stopped = false;
+      bool whole = true;
       if (batch < batches) {
-        stopped =
-            !detail::transport_batch(walk, batch_range(photons, batches, batch), sums[t].data(),
-                                     scratch, control.stop_requested, batch_scatterings);
+        whole = detail::transport_batch(walk, batch_range(photons, batches, batch),
+                                        ring[g % slots].data(), scratch, control.stop_requested,
+                                        halted, batch_scatterings);
       }
-      abandoned[t] = stopped ? 1 : 0;
-#pragma omp barrier
-      // The master decides for the round on every rank at once, before anything is folded: a
-      // batch cut short anywhere abandons the round everywhere, so that all ranks fold the same
-      // batches and a stopped run holds whole batches only.
-#pragma omp master
       {
-        std::uint64_t flags = 0;
-        if (std::find(abandoned.begin(), abandoned.end(), 1) != abandoned.end()) {
-          flags |= detail::kStopFlag | detail::kAbandonFlag;
-        }
-        if ((control.stop_requested != nullptr && control.stop_requested->load()) ||
-            failure != nullptr) {
-          flags |= detail::kStopFlag;
-        }
-        const auto now = std::chrono::steady_clock::now();
-        const CheckpointPolicy& policy = control.checkpoint;
-        const bool due =
-            (policy.every_batches > 0 &&
-             end_of_round - last_checkpoint_batches >= policy.every_batches) ||
-            (policy.every_seconds > 0.0 &&
-             std::chrono::duration<double>(now - last_checkpoint).count() >= policy.every_seconds);
-        if (world.is_root() && due && end_of_round < batches && control.save_checkpoint) {
-          flags |= detail::kCheckpointFlag;
-        }
-        flags = world.bitwise_or(flags);
-        const std::uint64_t held = (flags & detail::kAbandonFlag) ? done : end_of_round;
-        if (flags & detail::kAbandonFlag) flags &= ~detail::kCheckpointFlag;
-        // Stopping early saves the state too, so that the run can be resumed from there, unless
-        // the last checkpoint (or the one resumed from) already holds it.
-        if ((flags & detail::kStopFlag) && held < batches && held > last_checkpoint_batches &&
-            control.save_checkpoint) {
-          flags |= detail::kCheckpointFlag;
-        }
-        if (ranks > 1 && !(flags & detail::kAbandonFlag)) {
-          // Pack [owner][thread][owner's cells], clearing the buffers for the next round.
-          double* out = send.data();
-          std::size_t offset = 0;
-          for (const std::size_t count : slices) {
-            for (std::vector<double>& buffer : sums) {
-              std::copy_n(buffer.begin() + static_cast<std::ptrdiff_t>(offset), count, out);
-              std::fill_n(buffer.begin() + static_cast<std::ptrdiff_t>(offset), count, 0.0);
-              out += count;
-            }
-            offset += count;
-          }
-          world.all_to_all(send, send_counts, received, receive_counts);
-        }
-        round_flags = flags;
+        std::lock_guard<std::mutex> lock(ring_mutex);
+        ring_state[g % slots] = {
+            g, whole ? detail::RingSlot::State::whole : detail::RingSlot::State::cut,
+            batch_scatterings};
       }
-#pragma omp barrier
-      const bool folding = !(round_flags & detail::kAbandonFlag);
-      if (folding) {
-        scatterings[t] += batch_scatterings;
-        for (std::uint64_t k = 0; k < per_round && first + k < batches; ++k) {
-          const BatchRange range = batch_range(photons, batches, first + k);
-          double* batch_sums = ranks > 1 ? received.data() + k * slice : sums[k].data();
-          statistics.add_batch(first + k, batch_sums, static_cast<double>(range.last - range.first),
-                               begin, end);
-        }
-        // Every thread folds (and clears) parts of every buffer: all are done before any thread
-        // scores its next batch, or the master reads the state for a checkpoint.
-#pragma omp barrier
-      }
-#pragma omp master
-      {
-        if (folding) {
-          done = end_of_round;
-          if (progress) {
-            progress({done, batches, start, batch_range(photons, batches, done).first,
-                      batch_range(photons, batches, start).first});
-          }
-        }
-        if (round_flags & detail::kCheckpointFlag) {
-          try {
-            const RunState state = gather_state();
-            if (world.is_root()) control.save_checkpoint(state);
-          } catch (...) {
-            failure = std::current_exception();  // stops every rank after the next round
-          }
-          last_checkpoint = std::chrono::steady_clock::now();
-          last_checkpoint_batches = done;
-        }
-      }
-      if (round_flags & detail::kStopFlag) break;
+      fold_ready();
+      if (t == 0) report_progress();
     }
   }
+  report_progress();
 
   RunState state = gather_state();
   if (failure) std::rethrow_exception(failure);

@@ -1,8 +1,8 @@
 #pragma once
 // The few collective operations the batch runner needs between processes (ranks). A run on one
 // process uses SerialCommunicator; `mpirun` runs get an MPI implementation from
-// scatterlab/parallel/world.hpp. Collectives are called by every rank, in the same order, from
-// one thread per rank.
+// scatterlab/parallel/world.hpp. Collectives are called by every rank, in the same order, by one
+// thread of a rank at a time (not always the same one).
 
 #include <algorithm>
 #include <cstddef>

@@ -28,8 +28,8 @@ struct RunState {
   std::vector<double> squares;  // Welford's running sum of squared deviations
 };
 
-// When to save the state. Either bound triggers a checkpoint at the end of the round of batches
-// that crosses it; both zero means never.
+// When to save the state. Either bound triggers a checkpoint once the group of batches that
+// crosses it is folded; both zero means never.
 struct CheckpointPolicy {
   double every_seconds = 0.0;
   std::uint64_t every_batches = 0;
@@ -52,9 +52,9 @@ struct RunControl {
   // Where resume_from was read (the checkpoint's path), for the error when it does not fit.
   std::string resume_source;
 
-  // Polled every thousand photons or so within each batch and at the end of every round, on every
-  // rank. Once any rank sees it set, all ranks stop: a round that was cut short is abandoned
-  // everywhere, and the outcome holds the whole rounds folded before it.
+  // Polled every thousand photons or so within each batch, on every rank. Once any rank sees it
+  // set, all ranks stop: the first group of batches with a batch cut short is abandoned
+  // everywhere, and the outcome holds the whole groups before it.
   const std::atomic<bool>* stop_requested = nullptr;
 };
 
