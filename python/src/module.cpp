@@ -39,9 +39,9 @@ namespace scatterlab::python {
 namespace {
 
 // Runs `work(progress, control, stopped)` (transport, write) without the GIL. After each batch that
-// the calling thread transports, the progress callback takes the GIL back to call `progress(batches_done, batches)`
-// (when given) and to let Python see a signal: Ctrl-C stops the run within a batch and raises
-// KeyboardInterrupt, and no file is written.
+// the calling thread transports, the progress callback takes the GIL back to call
+// `progress(batches_done, batches)` (when given) and to let Python see a signal: Ctrl-C stops the
+// run within a batch and raises KeyboardInterrupt, and no file is written.
 template <class Work>
 void without_gil(const py::object& progress, Work&& work) {
   std::atomic<bool> stop{false};

@@ -58,8 +58,8 @@ BatchOutcome select_kernel(const detail::Kernel& kernel) {
 
 MemoryEstimate transport_memory(const TransportProblem& problem, int ranks, bool resuming) {
   const TallyBook book(problem.tallies, problem.split_by_order);
-  MemoryEstimate need = batch_memory(book.size(), batch_threads(problem.run), problem.run.batches,
-                                     ranks, resuming);
+  MemoryEstimate need =
+      batch_memory(book.size(), batch_threads(problem.run), problem.run.batches, ranks, resuming);
   // The declarations' bin measures, held by the problem and by the book.
   std::uint64_t measures = 0;
   for (const TallyDeclaration& d : problem.tallies) {

@@ -90,7 +90,7 @@ struct BatchOutcome {
   std::uint64_t batches_resumed = 0;
   std::uint64_t photons_resumed = 0;
   double resumed_wall_seconds = 0.0;
-  int threads = 1;                 // per rank
+  int threads = 1;  // per rank
   int ranks = 1;
 
   bool complete(const RunSettings& run) const { return batches_done == run.batches; }
@@ -119,9 +119,8 @@ inline MemoryEstimate batch_memory(std::size_t cells, int threads, std::uint64_t
                                    bool resuming) {
   const auto values = static_cast<std::uint64_t>(cells);
   MemoryEstimate need;
-  need.add_doubles(
-      fmt::format("score buffers of {} tally values (2 per thread but one)", values), values,
-      score_buffers(threads, batches, ranks));
+  need.add_doubles(fmt::format("score buffers of {} tally values (2 per thread but one)", values),
+                   values, score_buffers(threads, batches, ranks));
   need.add_doubles(fmt::format("arrays of {} tally values (batch statistics and results)", values),
                    values, 5);
   if (ranks > 1) need.add_doubles("exchange buffers (send and receive)", values, 2);
