@@ -3,7 +3,8 @@
 // fluence tallies alone and with the full radiance tally, on the one-photon RandomWalk (Walk)
 // and on the lane walk the engine runs (Lanes), next to a bare loop that only draws the random
 // numbers and samples free paths and directions (the one-photon ceiling) and the lane walk with
-// no tally (LaneLoop, the lanes' ceiling), and the whole multi-threaded run on 1 and 2 threads.
+// no tally (LaneLoop, the lanes' ceiling), and the whole multi-threaded run on 1, 2, 3 and 8
+// threads.
 //
 //   ./build/bench/scatterlab_bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
@@ -145,9 +146,9 @@ BENCHMARK_CAPTURE(Lanes, fluence_hg_g0.9_albedo0.5, scene(0.9, 0.5, false, Estim
 BENCHMARK_CAPTURE(Lanes, radiance_hg_g0.9_albedo0.5, scene(0.9, 0.5, true, Estimator::collision));
 BENCHMARK_CAPTURE(Lanes, fluence_iso_albedo0.99, scene(0.0, 0.99, false, Estimator::collision));
 BENCHMARK_CAPTURE(Lanes, radiance_iso_albedo0.99, scene(0.0, 0.99, true, Estimator::collision));
-// More threads than cores (on a 2-core machine: 4, 8, 16) stand for threads that the system
-// deschedules: dealt dynamically, the run should keep the cores' throughput.
-BENCHMARK(WholeRun)->Arg(1)->Arg(2)->Arg(4)->Arg(8)->Arg(16)->Unit(benchmark::kMillisecond)->UseRealTime();
+// More threads than cores (on a 2-core machine: 3 and 8) stand for threads that the system
+// deschedules: dealt as they come free, batches keep the cores' throughput.
+BENCHMARK(WholeRun)->Arg(1)->Arg(2)->Arg(3)->Arg(8)->Unit(benchmark::kMillisecond)->UseRealTime();
 // clang-format on
 
 }  // namespace
