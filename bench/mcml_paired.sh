@@ -42,7 +42,8 @@ EOF
   ratios=()
   for ((i = 0; i < reps; i++)); do
     a=$(seconds "$mcml" "case_$name.mci")
-    b=$(seconds "$scatterlab" searchlight --eta 1 --albedo "$albedo" --g "$g" \
+    # One thread for the models' integrals too (OpenMP's count), as for the transport.
+    b=$(OMP_NUM_THREADS=1 seconds "$scatterlab" searchlight --eta 1 --albedo "$albedo" --g "$g" \
       --photons "$photons" --threads 1 --r-max 10 --r-bins 100 --z-max 10 --z-bins 100 \
       --log-interval 0 --out "case_$name.h5")
     rm -f "case_$name.h5" "case_$name.mco"

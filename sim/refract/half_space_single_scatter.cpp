@@ -1,10 +1,10 @@
 #include "scatterlab/refract/half_space_single_scatter.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "scatterlab/core/constants.hpp"
 #include "scatterlab/core/error.hpp"
@@ -39,8 +39,12 @@ Setup make_setup(const Medium& medium, double eta) {
   if (!(eta > 0.0) || !std::isfinite(eta)) {
     throw InputError("eta", fmt::format("got {}", eta), "a finite number > 0");
   }
-  Setup s{medium.sigma_t, medium.sigma_s(), fresnel_dielectric_transmittance(1.0, eta), eta,
-          eta > 1.0 ? std::asin(1.0 / eta) : 0.5 * pi, HenyeyGreenstein{medium.g}};
+  Setup s{medium.sigma_t,
+          medium.sigma_s(),
+          fresnel_dielectric_transmittance(1.0, eta),
+          eta,
+          eta > 1.0 ? std::asin(1.0 / eta) : 0.5 * pi,
+          HenyeyGreenstein{medium.g}};
   return s;
 }
 
@@ -63,8 +67,13 @@ SingleScatterReflectance half_space_single_scatter_reflectance(const Medium& med
   const QuadratureOptions outer{0.0, rel_tol, 400};
   const double tan_critical = std::tan(s.critical_angle);
 
+  // The annuli are independent: one thread each, so the figures do not depend on the thread count.
+  const std::size_t bins = r_edges.size() - 1;
   SingleScatterReflectance result;
-  for (std::size_t bin = 0; bin + 1 < r_edges.size(); ++bin) {
+  result.mean.resize(bins);
+  result.error.resize(bins);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::size_t bin = 0; bin < bins; ++bin) {
     const double r0 = r_edges[bin], r1 = r_edges[bin + 1];
     double inner_error = 0.0;
     // Power leaving through the annulus from depth z, per unit depth.
@@ -82,7 +91,8 @@ SingleScatterReflectance half_space_single_scatter_reflectance(const Medium& med
     // Kinks where a bin edge crosses the critical angle; the profile's scale r0, r1 and 1/sigma_t.
     std::vector<double> breaks{0.0, z_max};
     for (const double candidate : {r0 / tan_critical, r1 / tan_critical, r0, r1, 1.0 / s.sigma_t}) {
-      if (candidate > 0.0 && candidate < z_max && std::isfinite(candidate)) breaks.push_back(candidate);
+      if (candidate > 0.0 && candidate < z_max && std::isfinite(candidate))
+        breaks.push_back(candidate);
     }
     std::sort(breaks.begin(), breaks.end());
     breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
@@ -91,8 +101,8 @@ SingleScatterReflectance half_space_single_scatter_reflectance(const Medium& med
     // The outer estimate plus the inner errors integrated over depth, estimated with the mean
     // quadrature weight z_max / evaluations.
     const double inner_share = inner_error * z_max / std::max(q.evaluations, 1);
-    result.mean.push_back(q.value / area);
-    result.error.push_back((q.error + inner_share) / area);
+    result.mean[bin] = q.value / area;
+    result.error[bin] = (q.error + inner_share) / area;
   }
   // Over all r the depth integral is exact: int sigma_s T_in exp(-sigma_t z (1 + 1/c)) dz =
   // albedo T_in c / (1 + c), leaving one integral over the exit angle.
