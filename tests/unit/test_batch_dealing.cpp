@@ -32,6 +32,22 @@ struct ScrambledWalk {
   }
 };
 
+// Scores a few cells per photon, scattered over a tally of several fold parts
+// (detail::kFoldPart cells each), so that waiting threads fold parts of it.
+struct WideWalk {
+  static constexpr std::size_t kCells = 3 * detail::kFoldPart + 17;
+
+  int make_scratch() const { return 0; }
+  std::uint64_t run(std::uint64_t first, std::uint64_t last, double* sums, int&) const {
+    for (std::uint64_t photon = first; photon < last; ++photon) {
+      for (std::uint64_t j = 0; j < 8; ++j) {
+        sums[(photon * 7919 + j * 104729) % kCells] += std::sin(0.37 * static_cast<double>(photon));
+      }
+    }
+    return last - first;
+  }
+};
+
 RunSettings thirteen_batches(int threads) {
   RunSettings run;
   run.photons = 20'011;
@@ -40,13 +56,12 @@ RunSettings thirteen_batches(int threads) {
   return run;
 }
 
-TEST(BatchDealing, SameBitsForAnyThreadAndRankCount) {
-  const BatchOutcome one =
-      run_batches(thirteen_batches(1), ScrambledWalk::kCells, ScrambledWalk{}, {});
+template <class Walk>
+void expect_same_bits_for_any_thread_and_rank_count() {
+  const BatchOutcome one = run_batches(thirteen_batches(1), Walk::kCells, Walk{}, {});
   ASSERT_EQ(one.batches_done, 13u);
   for (const int threads : {2, 3, 5, 8, 13}) {
-    const BatchOutcome many =
-        run_batches(thirteen_batches(threads), ScrambledWalk::kCells, ScrambledWalk{}, {});
+    const BatchOutcome many = run_batches(thirteen_batches(threads), Walk::kCells, Walk{}, {});
     EXPECT_EQ(many.mean, one.mean) << threads << " threads";
     EXPECT_EQ(many.standard_error, one.standard_error) << threads << " threads";
     EXPECT_EQ(many.scattering_events, one.scattering_events);
@@ -57,8 +72,8 @@ TEST(BatchDealing, SameBitsForAnyThreadAndRankCount) {
       testing::run_ranks(ranks, [&](Communicator& communicator) {
         RunControl control;
         control.communicator = &communicator;
-        const BatchOutcome out = run_batches(thirteen_batches(threads), ScrambledWalk::kCells,
-                                             ScrambledWalk{}, {}, control);
+        const BatchOutcome out =
+            run_batches(thirteen_batches(threads), Walk::kCells, Walk{}, {}, control);
         if (communicator.is_root()) {
           mean = out.mean;
           error = out.standard_error;
@@ -68,6 +83,15 @@ TEST(BatchDealing, SameBitsForAnyThreadAndRankCount) {
       EXPECT_EQ(error, one.standard_error) << ranks << " ranks of " << threads << " threads";
     }
   }
+}
+
+TEST(BatchDealing, SameBitsForAnyThreadAndRankCount) {
+  expect_same_bits_for_any_thread_and_rank_count<ScrambledWalk>();
+}
+
+// Folded in parts by several threads: each cell's arithmetic is the same whoever folds it.
+TEST(BatchDealing, SameBitsWhenFoldedInParts) {
+  expect_same_bits_for_any_thread_and_rank_count<WideWalk>();
 }
 
 // Holds batch 0 until the photons of batches 1 to `ahead` have run (or `patience` has passed),

@@ -12,10 +12,12 @@
 // rank, threads take the groups from a shared counter as they become free, so a slow or
 // descheduled thread holds up no other, each into one of a ring of score buffers: 2 x threads - 1
 // of them, so that a thread may run up to threads - 1 groups ahead of the slowest before it waits.
-// Groups are folded strictly in order, by whichever thread finds the next one complete. With
-// several ranks it first exchanges the group's sums, so that each rank holds its contiguous slice
-// of the cells of every batch of the group, and folds those in batch order: memory per rank is
-// independent of the rank count.
+// Groups are folded strictly in order, by whichever thread finds the next one complete; threads
+// that wait for a buffer, or have no batch left, fold parts of the cells beside it (a cell's
+// arithmetic does not depend on who folds it). With several ranks the folding thread first
+// exchanges the group's sums, so that each rank holds its contiguous slice of the cells of every
+// batch of the group, and folds those in batch order: memory per rank is independent of the rank
+// count.
 //
 // A stop request is read between slices of every batch (detail::transport_batch). A batch cut
 // short on any rank abandons its group on all of them (the group's flags are combined across
@@ -35,6 +37,7 @@
 #include <functional>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "scatterlab/core/error.hpp"
@@ -172,6 +175,16 @@ struct RingSlot {
   std::uint64_t scatterings = 0;
 };
 
+// A batch being folded in parts of kFoldPart cells (about 30 us each), so that threads waiting
+// for a buffer, or done with their batches, fold parts of it beside the folding thread.
+constexpr std::size_t kFoldPart = std::size_t{1} << 15;
+struct FoldJob {
+  double* sums = nullptr;
+  std::uint64_t batch = 0;
+  double photons = 0.0;
+  std::size_t parts = 0;
+};
+
 }  // namespace detail
 
 // `Walk` provides
@@ -244,6 +257,14 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
   std::mutex ring_mutex;
   std::condition_variable buffer_freed;
   std::uint64_t next_to_fold = 0;
+  // The batch being folded in parts: under ring_mutex its job and generation (open while parts
+  // are left); the next part to take, tagged with the generation in its high 32 bits so that a
+  // thread holding an earlier job's copy takes nothing; the parts done.
+  detail::FoldJob job;
+  std::uint64_t job_generation = 0;
+  bool job_open = false;
+  std::atomic<std::uint64_t> job_next{0};
+  std::atomic<std::size_t> job_done{0};
 
   // Held by the thread that folds; everything below it is touched under fold_mutex only (or on
   // the calling thread before and after the parallel region).
@@ -283,6 +304,65 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
     state.mean = world.gather_to_root(statistics.mean(), slices);
     state.squares = world.gather_to_root(statistics.squares(), slices);
     return state;
+  };
+
+  // Folds the parts of `work` (generation `generation`) that no thread has taken yet.
+  auto fold_parts = [&](const detail::FoldJob& work, std::uint64_t generation) {
+    const std::uint64_t tag = (generation & 0xffffffffu) << 32;
+    for (;;) {
+      std::uint64_t next = job_next.load();
+      do {
+        if ((next & ~std::uint64_t{0xffffffffu}) != tag || (next & 0xffffffffu) >= work.parts) {
+          return;
+        }
+      } while (!job_next.compare_exchange_weak(next, next + 1));
+      const std::size_t begin = static_cast<std::size_t>(next & 0xffffffffu) * detail::kFoldPart;
+      statistics.add_batch(work.batch, work.sums, work.photons, begin,
+                           std::min(slice, begin + detail::kFoldPart));
+      job_done.fetch_add(1);
+    }
+  };
+
+  // Folds batch b's sums into the statistics, with the help of any thread that is waiting.
+  auto fold_batch = [&](std::uint64_t b, double* sums) {
+    const BatchRange range = batch_range(photons, batches, b);
+    const auto batch_photons = static_cast<double>(range.last - range.first);
+    const std::size_t parts = (slice + detail::kFoldPart - 1) / detail::kFoldPart;
+    if (threads == 1 || parts < 2) {
+      statistics.add_batch(b, sums, batch_photons, 0, slice);
+      return;
+    }
+    detail::FoldJob work{sums, b, batch_photons, parts};
+    std::uint64_t generation = 0;
+    {
+      std::lock_guard<std::mutex> lock(ring_mutex);
+      generation = ++job_generation;
+      job = work;
+      job_done = 0;
+      job_next = (generation & 0xffffffffu) << 32;
+      job_open = true;
+    }
+    buffer_freed.notify_all();
+    fold_parts(work, generation);
+    while (job_done.load() < parts) std::this_thread::yield();  // parts others took
+    std::lock_guard<std::mutex> lock(ring_mutex);
+    job_open = false;
+  };
+
+  // Waits under ring_mutex until ready() or the run halts, folding parts of the batch being
+  // folded meanwhile.
+  auto wait_helping = [&](auto ready) {
+    std::unique_lock<std::mutex> lock(ring_mutex);
+    const auto parts_left = [&] { return job_open && (job_next.load() & 0xffffffffu) < job.parts; };
+    for (;;) {
+      buffer_freed.wait(lock, [&] { return ready() || halted || parts_left(); });
+      if (ready() || halted) return;
+      const detail::FoldJob work = job;
+      const std::uint64_t generation = job_generation;
+      lock.unlock();
+      fold_parts(work, generation);
+      lock.lock();
+    }
   };
 
   // Folds group g, whose batch on this rank ended as `state` (cut for one never run because the
@@ -328,9 +408,7 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
         group_sums = received.data();
       }
       for (std::uint64_t b = first; b < end_of_group; ++b) {
-        const BatchRange range = batch_range(photons, batches, b);
-        statistics.add_batch(b, group_sums + (b - first) * slice,
-                             static_cast<double>(range.last - range.first), 0, slice);
+        fold_batch(b, group_sums + (b - first) * slice);
       }
       scatterings += batch_scatterings;
       done = end_of_group;
@@ -397,11 +475,11 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
     auto scratch = walk.make_scratch();
     for (;;) {
       const std::uint64_t g = next_group.fetch_add(1);
-      if (g >= groups) break;
-      {
-        std::unique_lock<std::mutex> lock(ring_mutex);
-        buffer_freed.wait(lock, [&] { return g < next_to_fold + slots || halted; });
+      if (g >= groups) {
+        wait_helping([&] { return next_to_fold >= groups; });  // help fold the last batches
+        break;
       }
+      wait_helping([&] { return g < next_to_fold + slots; });
       if (halted) break;
       const std::uint64_t batch = start + g * rank_count + rank;
       std::uint64_t batch_scatterings = 0;
