@@ -12,8 +12,8 @@ source "$(dirname "$0")/harness.sh"
 run=(simulate --photons 12000000 --batches 24 --threads 1 --seed 5 --theta-bins 6 --phi-bins 8)
 line='^simulate: [0-9]+/24 batches, [0-9.e+-]+ photons/s, [0-9.]+ (s|min|h) elapsed, ETA ([0-9.]+ (s|min|h)|--)$'
 
-# Lines every 0.05 s, off a terminal (standard error is a file here): a line at the end of the
-# first round after each interval, so between 2 and 24 of them.
+# Lines every 0.05 s, off a terminal (standard error is a file here): a line after the first
+# batch to end after each interval, so between 2 and 24 of them.
 "$exe" "${run[@]}" --out logged.h5 --log-interval 0.05 >logged.out 2>logged.err ||
   fail "logged run: $(cat logged.err)"
 lines=$(grep -cE "$line" logged.err)

@@ -79,7 +79,7 @@ TEST(DistributedRuns, AnyRanksAndThreadsGiveTheSameBits) {
   expect_same_tallies(one, simulate(small_run(2)));
   expect_same_tallies(one, run_on_ranks(small_run(1), 2));
   expect_same_tallies(one, run_on_ranks(small_run(2), 2));
-  // 3 ranks x 2 threads: rounds of 6 batches, ranks owning uneven cell slices.
+  // 3 ranks x 2 threads: groups of 3 batches, ranks owning uneven cell slices.
   const SimulationOutput three = run_on_ranks(small_run(2), 3);
   expect_same_tallies(one, three);
   EXPECT_EQ(three.ranks, 3);
