@@ -1,10 +1,10 @@
 #include "scatterlab/refract/half_space_single_scatter.hpp"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <cmath>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "scatterlab/core/constants.hpp"
 #include "scatterlab/core/error.hpp"
@@ -39,12 +39,8 @@ Setup make_setup(const Medium& medium, double eta) {
   if (!(eta > 0.0) || !std::isfinite(eta)) {
     throw InputError("eta", fmt::format("got {}", eta), "a finite number > 0");
   }
-  Setup s{medium.sigma_t,
-          medium.sigma_s(),
-          fresnel_dielectric_transmittance(1.0, eta),
-          eta,
-          eta > 1.0 ? std::asin(1.0 / eta) : 0.5 * pi,
-          HenyeyGreenstein{medium.g}};
+  Setup s{medium.sigma_t, medium.sigma_s(), fresnel_dielectric_transmittance(1.0, eta), eta,
+          eta > 1.0 ? std::asin(1.0 / eta) : 0.5 * pi, HenyeyGreenstein{medium.g}};
   return s;
 }
 
@@ -91,8 +87,7 @@ SingleScatterReflectance half_space_single_scatter_reflectance(const Medium& med
     // Kinks where a bin edge crosses the critical angle; the profile's scale r0, r1 and 1/sigma_t.
     std::vector<double> breaks{0.0, z_max};
     for (const double candidate : {r0 / tan_critical, r1 / tan_critical, r0, r1, 1.0 / s.sigma_t}) {
-      if (candidate > 0.0 && candidate < z_max && std::isfinite(candidate))
-        breaks.push_back(candidate);
+      if (candidate > 0.0 && candidate < z_max && std::isfinite(candidate)) breaks.push_back(candidate);
     }
     std::sort(breaks.begin(), breaks.end());
     breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());

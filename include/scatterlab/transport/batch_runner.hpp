@@ -167,11 +167,11 @@ bool transport_batch(const Walk& walk, BatchRange range, double* sums, Scratch& 
   return true;
 }
 
-// One buffer of the ring: the group whose batch it last received, and how that batch ended.
+// One buffer of the ring: the group whose batch it last received (none yet: ~0), whether that
+// batch was whole or cut short, and its scattering events.
 struct RingSlot {
-  enum class State { empty, whole, cut };
   std::uint64_t group = ~std::uint64_t{0};
-  State state = State::empty;
+  bool whole = false;
   std::uint64_t scatterings = 0;
 };
 
@@ -257,12 +257,11 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
   std::mutex ring_mutex;
   std::condition_variable buffer_freed;
   std::uint64_t next_to_fold = 0;
-  // The batch being folded in parts: under ring_mutex its job and generation (open while parts
-  // are left); the next part to take, tagged with the generation in its high 32 bits so that a
-  // thread holding an earlier job's copy takes nothing; the parts done.
+  // The batch being folded in parts: under ring_mutex its job and generation; the next part to
+  // take, tagged with the generation in its high 32 bits so that a thread holding an earlier
+  // job's copy takes nothing (parts are left while it is below job.parts); the parts done.
   detail::FoldJob job;
   std::uint64_t job_generation = 0;
-  bool job_open = false;
   std::atomic<std::uint64_t> job_next{0};
   std::atomic<std::size_t> job_done{0};
 
@@ -340,20 +339,17 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
       job = work;
       job_done = 0;
       job_next = (generation & 0xffffffffu) << 32;
-      job_open = true;
     }
     buffer_freed.notify_all();
     fold_parts(work, generation);
     while (job_done.load() < parts) std::this_thread::yield();  // parts others took
-    std::lock_guard<std::mutex> lock(ring_mutex);
-    job_open = false;
   };
 
   // Waits under ring_mutex until ready() or the run halts, folding parts of the batch being
   // folded meanwhile.
   auto wait_helping = [&](auto ready) {
     std::unique_lock<std::mutex> lock(ring_mutex);
-    const auto parts_left = [&] { return job_open && (job_next.load() & 0xffffffffu) < job.parts; };
+    const auto parts_left = [&] { return (job_next.load() & 0xffffffffu) < job.parts; };
     for (;;) {
       buffer_freed.wait(lock, [&] { return ready() || halted || parts_left(); });
       if (ready() || halted) return;
@@ -365,17 +361,17 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
     }
   };
 
-  // Folds group g, whose batch on this rank ended as `state` (cut for one never run because the
-  // run was halted). Every rank folds the same groups in the same order: the flags are combined
-  // first, so that a batch cut short anywhere abandons the group everywhere.
-  auto fold_group = [&](std::uint64_t g, detail::RingSlot::State state,
-                        std::uint64_t batch_scatterings, std::vector<double>& sums) {
+  // Folds group g, whose batch on this rank is in `sums` (`whole`, or cut short by a stop).
+  // Every rank folds the same groups in the same order: the flags are combined first, so that a
+  // batch cut short anywhere abandons the group everywhere.
+  auto fold_group = [&](std::uint64_t g, bool whole, std::uint64_t batch_scatterings,
+                        std::vector<double>& sums) {
     const std::uint64_t first = start + g * rank_count;
     const std::uint64_t end_of_group = std::min(batches, first + rank_count);
     std::uint64_t flags = 0;
     // A stop request shows as a cut batch: every batch in flight is cut short, and any taken
     // after it is cut before its first photon, so the whole batches before it are still folded.
-    if (state == detail::RingSlot::State::cut) flags |= detail::kStopFlag | detail::kAbandonFlag;
+    if (!whole) flags |= detail::kStopFlag | detail::kAbandonFlag;
     if (failure != nullptr) flags |= detail::kStopFlag;
     const auto now = std::chrono::steady_clock::now();
     const CheckpointPolicy& policy = control.checkpoint;
@@ -451,7 +447,7 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
           if (!next_is_complete()) break;
           slot = ring_state[next_to_fold % slots];
         }
-        fold_group(slot.group, slot.state, slot.scatterings, ring[slot.group % slots]);
+        fold_group(slot.group, slot.whole, slot.scatterings, ring[slot.group % slots]);
         {
           std::lock_guard<std::mutex> lock(ring_mutex);
           ++next_to_fold;
@@ -491,9 +487,7 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
       }
       {
         std::lock_guard<std::mutex> lock(ring_mutex);
-        ring_state[g % slots] = {
-            g, whole ? detail::RingSlot::State::whole : detail::RingSlot::State::cut,
-            batch_scatterings};
+        ring_state[g % slots] = {g, whole, batch_scatterings};
       }
       fold_ready();
       if (t == 0) report_progress();
