@@ -146,8 +146,8 @@ TEST(MemoryBudget, EveryThreadAndRankAddsItsBuffers) {
   const std::uint64_t ranks = transport_memory(transport_problem(spec), 4, false).bytes();
   const std::uint64_t resumed = transport_memory(transport_problem(spec), 1, true).bytes();
   const std::uint64_t cells = 15 * 40 * (18 * 36 + 1 + 2) + 3;  // radiance, fluence, flux, scalars
-  EXPECT_EQ(eight - one, 14 * cells * sizeof(double));   // a ring of 2 x 8 - 1 buffers, not 1
-  EXPECT_EQ(ranks - eight, 2 * cells * sizeof(double));  // a group's send and receive buffers
+  EXPECT_EQ(eight - one, 14 * cells * sizeof(double));  // a ring of 2 x 8 - 1 buffers, not 1
+  EXPECT_EQ(ranks - eight, cells * sizeof(double));     // a group's received slices
   EXPECT_EQ(resumed - eight, 2 * cells * sizeof(double));
 }
 

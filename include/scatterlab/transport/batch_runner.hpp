@@ -115,8 +115,8 @@ inline std::size_t score_buffers(int threads, std::uint64_t batches, int ranks) 
 
 // What run_batches holds at its peak on the root rank, for `cells` values per batch: the ring of
 // score buffers; the statistics of the rank's slice (mean and sum of squares); at the end the
-// whole state gathered on the root and its standard error; with several ranks, a group's send and
-// receive buffers (a batch's worth of every cell each); when resuming, the saved state the caller
+// whole state gathered on the root and its standard error; with several ranks, a group's
+// received slices (a batch's worth of cells); when resuming, the saved state the caller
 // holds (RunControl::resume_from).
 inline MemoryEstimate batch_memory(std::size_t cells, int threads, std::uint64_t batches, int ranks,
                                    bool resuming) {
@@ -126,7 +126,7 @@ inline MemoryEstimate batch_memory(std::size_t cells, int threads, std::uint64_t
                    values, score_buffers(threads, batches, ranks));
   need.add_doubles(fmt::format("arrays of {} tally values (batch statistics and results)", values),
                    values, 5);
-  if (ranks > 1) need.add_doubles("exchange buffers (send and receive)", values, 2);
+  if (ranks > 1) need.add_doubles("exchange buffer (a group's slices)", values, 1);
   if (resuming) need.add_doubles("arrays of the checkpoint resumed from", values, 2);
   return need;
 }
@@ -241,10 +241,10 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
   const std::size_t slots = score_buffers(threads, batches - start, ranks);
   std::vector<std::vector<double>> ring(slots);
   std::vector<detail::RingSlot> ring_state(slots);
-  std::vector<double> send, received;
-  std::vector<std::size_t> send_counts(slices), receive_counts;
+  // A buffer holds the cells in owner order, so it is sent as it is: slices[p] values to rank p.
+  std::vector<double> received;
+  std::vector<std::size_t> receive_counts;
   if (ranks > 1) {
-    send.resize(cells);
     received.resize(rank_count * slice);
     receive_counts.assign(static_cast<std::size_t>(ranks), slice);
   }
@@ -396,11 +396,10 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
     if (!abandon) {
       double* group_sums = sums.data();
       if (ranks > 1) {
-        // This rank's batch, cut into the owners' slices (cleared for its buffer's next batch);
-        // back come this rank's slices of every batch of the group, in rank order.
-        std::copy(sums.begin(), sums.end(), send.begin());
+        // This rank's batch goes out in the owners' slices (and is cleared for its buffer's next
+        // batch); back come this rank's slices of every batch of the group, in rank order.
+        world.all_to_all(sums, slices, received, receive_counts);
         std::fill(sums.begin(), sums.end(), 0.0);
-        world.all_to_all(send, send_counts, received, receive_counts);
         group_sums = received.data();
       }
       for (std::uint64_t b = first; b < end_of_group; ++b) {
