@@ -16,6 +16,7 @@
 #include "scatterlab/io/mcml_input.hpp"
 #include "scatterlab/tally/scorer.hpp"
 #include "scatterlab/tally/tally_book.hpp"
+#include "scatterlab/transport/lane_walk.hpp"
 #include "scatterlab/transport/layered_slab.hpp"
 #include "scatterlab/transport/random_walk.hpp"
 #include "scatterlab/transport/slab.hpp"
@@ -49,6 +50,16 @@ void SlabWalk(benchmark::State& state, const std::string& name, Weighting weight
   time_slab_walk<Weighting::analog>(state, name);
 }
 
+void SlabLanes(benchmark::State& state, const std::string& name, Weighting weighting) {
+  const TransportProblem problem = transport_problem(mcml_spec(name, weighting));
+  const TallyBook book(problem.tallies, problem.split_by_order);
+  const Scorer scorer(problem.axes, book);
+  const LaneWalk walk(Slab(problem.layers, problem.n_above, problem.n_below), weighting, scorer,
+                      problem.source, problem.run.escape_radius, problem.run.seed);
+  bench::time_walk(state, walk, book.size());
+  state.counters["lanes"] = LaneWalk::lanes();
+}
+
 void SlabRun(benchmark::State& state, const std::string& name, Weighting weighting) {
   LayeredSlabSpec spec = mcml_spec(name, weighting);
   spec.run.photons = 200'000;
@@ -67,6 +78,10 @@ BENCHMARK_CAPTURE(SlabWalk, sample_analog, "sample.mci", Weighting::analog);
 BENCHMARK_CAPTURE(SlabWalk, sample_implicit, "sample.mci", Weighting::implicit_capture);
 BENCHMARK_CAPTURE(SlabWalk, skin_analog, "skin.mci", Weighting::analog);
 BENCHMARK_CAPTURE(SlabWalk, skin_implicit, "skin.mci", Weighting::implicit_capture);
+BENCHMARK_CAPTURE(SlabLanes, sample_analog, "sample.mci", Weighting::analog);
+BENCHMARK_CAPTURE(SlabLanes, sample_implicit, "sample.mci", Weighting::implicit_capture);
+BENCHMARK_CAPTURE(SlabLanes, skin_analog, "skin.mci", Weighting::analog);
+BENCHMARK_CAPTURE(SlabLanes, skin_implicit, "skin.mci", Weighting::implicit_capture);
 BENCHMARK_CAPTURE(SlabRun, sample_implicit, "sample.mci", Weighting::implicit_capture)
     ->Arg(1)
     ->Arg(2)

@@ -12,6 +12,7 @@
 
 #include "scatterlab/transport/half_space.hpp"
 #include "scatterlab/transport/infinite_medium.hpp"
+#include "scatterlab/transport/slab.hpp"
 
 // Highway's order: foreach_target, then highway.h, then its -inl.h headers.
 // clang-format off
@@ -128,19 +129,25 @@ HWY_INLINE void azimuth(V u, V& cos_phi, V& sin_phi) {
   sin_phi = hn::IfThenElse(sin_negative, hn::Neg(sin_abs), sin_abs);
 }
 
-// cos theta of Henyey-Greenstein g in every lane: core/phase_function.hpp's cancellation-free
-// inversion, mu = s + 2 a x (1 - x) ((1 - a)(3 + a) + 4 a x) / ((1 - a) + 2 a x)^2.
-HWY_INLINE V henyey_greenstein_cos(double g, V xi) {
+// cos theta of Henyey-Greenstein in every lane, each lane's g its own (the slab's layers differ):
+// core/phase_function.hpp's cancellation-free inversion,
+//   mu = s + 2 a x (1 - x) ((1 - a)(3 + a) + 4 a x) / ((1 - a) + 2 a x)^2,
+// with a = |g|, x = xi, or 1 - xi and mu negated where g < 0.
+HWY_INLINE V henyey_greenstein_cos(V g, V xi) {
   const D d;
-  const double a = std::abs(g);
-  const V one = hn::Set(d, 1.0);
-  const V x = std::signbit(g) ? hn::Sub(one, xi) : xi;
+  const V one = hn::Set(d, 1.0), two = hn::Set(d, 2.0);
+  const V a = hn::Abs(g);
+  const auto negative = hn::Lt(g, hn::Zero(d));
+  const V x = hn::IfThenElse(negative, hn::Sub(one, xi), xi);
   const V s = hn::Sub(hn::Add(x, x), one);
-  const V den = hn::MulAdd(hn::Set(d, 2.0 * a), x, hn::Set(d, 1.0 - a));
-  const V num = hn::Mul(hn::Mul(hn::Mul(hn::Set(d, 2.0 * a), x), hn::Sub(one, x)),
-                        hn::MulAdd(hn::Set(d, 4.0 * a), x, hn::Set(d, (1.0 - a) * (3.0 + a))));
+  const V one_minus_a = hn::Sub(one, a), two_a = hn::Mul(two, a);
+  const V den = hn::MulAdd(two_a, x, one_minus_a);
+  const V num =
+      hn::Mul(hn::Mul(hn::Mul(two_a, x), hn::Sub(one, x)),
+              hn::MulAdd(hn::Mul(hn::Set(d, 4.0), a), x,
+                         hn::Mul(one_minus_a, hn::Add(hn::Set(d, 3.0), a))));
   const V mu = hn::Min(hn::Max(hn::Add(s, hn::Div(num, hn::Mul(den, den))), hn::Neg(one)), one);
-  return g < 0.0 ? hn::Neg(mu) : mu;
+  return hn::IfThenElse(negative, hn::Neg(mu), mu);
 }
 
 // The direction at cos theta from (wx, wy, wz) and azimuth phi about it, in place: core/frame.hpp's
@@ -175,14 +182,20 @@ struct Lanes {
   alignas(64) double u1[kMaxLanes], u2[kMaxLanes], u3[kMaxLanes];
   alignas(64) double scatters[kMaxLanes];  // all ones (a mask) where the photon scatters now
   alignas(64) double next_x[kMaxLanes], next_y[kMaxLanes], next_z[kMaxLanes];
-  alignas(64) double flight[kMaxLanes];  // mfp
+  alignas(64) double flight[kMaxLanes];  // mfp, or optical depth in the slab
+  alignas(64) double g[kMaxLanes];       // the slab: the Henyey-Greenstein g of the lane's layer
+  double weight[kMaxLanes];              // implicit capture
   int order[kMaxLanes];
+  int layer[kMaxLanes];  // the slab
   bool busy[kMaxLanes];
 };
 
-template <class Geometry, bool isotropic, bool collisions>
+// `isotropic`: g = 0 everywhere (never in the slab, whose g is per layer); `collisions`: the
+// collision estimator; `implicit`: implicit capture (the slab alone).
+template <class Geometry, bool isotropic, bool collisions, bool implicit>
 std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, std::uint64_t first,
                         std::uint64_t last, double* buffer) {
+  static_assert(!(Geometry::layered && (isotropic || collisions)));
   const D d;
   const DU du;
   const std::size_t n = hn::Lanes(d);
@@ -207,6 +220,8 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
       lane.photon[k] = photon;
       lane.call[k] = random.calls();
       lane.order[k] = 0;
+      if constexpr (Geometry::layered) lane.layer[k] = geometry.layer_of(start, heading);
+      if constexpr (implicit) lane.weight[k] = 1.0;
       return true;
     }
     // An idle lane keeps a unit direction, so that its (discarded) turns stay finite.
@@ -217,7 +232,8 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
   for (std::size_t k = 0; k < n; ++k) busy += (lane.busy[k] = launch(k));
 
   while (busy > 0) {
-    // The event's four uniforms, the free path and the move, for every lane at once.
+    // The event's four uniforms and the free path for every lane at once, and outside the slab
+    // (which spends a free path layer by layer) the move.
     V u0, u1, u2, u3;
     const VU call = hn::Load(du, lane.call);
     philox_uniforms(keys, hn::Load(du, lane.photon), call, u0, u1, u2, u3);
@@ -227,17 +243,22 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
     hn::Store(u3, d, lane.u3);
     const V flight = hn::Neg(hn::Log(d, u0));
     hn::Store(flight, d, lane.flight);
-    const V wx = hn::Load(d, lane.wx), wy = hn::Load(d, lane.wy), wz = hn::Load(d, lane.wz);
-    hn::Store(hn::MulAdd(flight, wx, hn::Load(d, lane.x)), d, lane.next_x);
-    hn::Store(hn::MulAdd(flight, wy, hn::Load(d, lane.y)), d, lane.next_y);
-    hn::Store(hn::MulAdd(flight, wz, hn::Load(d, lane.z)), d, lane.next_z);
+    if constexpr (!Geometry::layered) {
+      const V wx = hn::Load(d, lane.wx), wy = hn::Load(d, lane.wy), wz = hn::Load(d, lane.wz);
+      hn::Store(hn::MulAdd(flight, wx, hn::Load(d, lane.x)), d, lane.next_x);
+      hn::Store(hn::MulAdd(flight, wy, hn::Load(d, lane.y)), d, lane.next_y);
+      hn::Store(hn::MulAdd(flight, wz, hn::Load(d, lane.z)), d, lane.next_z);
+    }
 
     // Each lane's surface, escape, collision and absorption, in lane order (the buffer's order of
     // adds), as RandomWalk::run has them.
     for (std::size_t k = 0; k < n; ++k) {
       lane.scatters[k] = 0.0;
       if (!lane.busy[k]) continue;
-      Vec3 next(lane.next_x[k], lane.next_y[k], lane.next_z[k]);
+      // Constant 1 under analog absorption, where the compiler folds it away.
+      double weight = 1.0;
+      if constexpr (implicit) weight = lane.weight[k];
+      Vec3 next;
       bool left = false;
       if constexpr (Geometry::has_surface) {
         // The geometry's own code on the lane's stream (a Fresnel choice draws from it).
@@ -245,28 +266,57 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
         Vec3 direction(lane.wx[k], lane.wy[k], lane.wz[k]);
         PhotonRandom random(setup.seed, lane.photon[k], static_cast<std::uint32_t>(lane.call[k]));
         SurfaceExit exit;
-        left = geometry.leaves(position, direction, next, lane.flight[k], random, exit);
+        if constexpr (Geometry::layered) {
+          left = geometry.leaves(position, direction, lane.layer[k], lane.flight[k], random, exit);
+          next = position;
+        } else {
+          next = Vec3(lane.next_x[k], lane.next_y[k], lane.next_z[k]);
+          left = geometry.leaves(position, direction, next, lane.flight[k], random, exit);
+        }
         if (left) {
-          scorer.exit(buffer, exit, lane.order[k]);
+          scorer.exit(buffer, exit, lane.order[k], weight);
         } else {
           lane.wx[k] = direction.x(), lane.wy[k] = direction.y(), lane.wz[k] = direction.z();
           lane.call[k] = random.calls();
         }
+      } else {
+        next = Vec3(lane.next_x[k], lane.next_y[k], lane.next_z[k]);
       }
       if (!left && next.squaredNorm() > setup.escape_radius2) {
-        scorer.escape(buffer);
+        scorer.escape(buffer, weight);
       } else if (!left) {
         lane.x[k] = next.x(), lane.y[k] = next.y(), lane.z[k] = next.z();
         if constexpr (collisions) {
           scorer.collision(buffer, next, Vec3(lane.wx[k], lane.wy[k], lane.wz[k]), lane.order[k]);
         }
-        if (lane.u1[k] < setup.albedo) {
+        double albedo = setup.albedo;
+        int layer = 0;
+        if constexpr (Geometry::layered) {
+          layer = lane.layer[k];
+          albedo = geometry.albedo(layer);
+          lane.g[k] = geometry.g(layer);
+        }
+        bool scatters = lane.u1[k] < albedo;
+        if constexpr (implicit) {
+          // RandomWalk's drop and roulette (weighting.hpp), with u1 for the roulette.
+          const double deposited = weight * (1.0 - albedo);
+          scorer.absorption(buffer, next, lane.order[k], layer, deposited);
+          weight -= deposited;
+          scatters = true;
+          if (weight < roulette_threshold) {
+            scatters = weight > 0.0 && lane.u1[k] < roulette_chance;
+            weight /= roulette_chance;
+          }
+          lane.weight[k] = weight;
+        } else if (!scatters) {
+          scorer.absorption(buffer, next, lane.order[k], layer);
+        }
+        if (scatters) {
           lane.scatters[k] = std::bit_cast<double>(~std::uint64_t{0});
           ++lane.order[k];
           ++scatterings;
           continue;
         }
-        scorer.absorption(buffer, next, lane.order[k]);
       }
       if (!(lane.busy[k] = launch(k))) --busy;
     }
@@ -284,8 +334,8 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
       nx = hn::Mul(s, cos_phi);
       ny = hn::Mul(s, sin_phi);
     } else {
-      turn_direction(henyey_greenstein_cos(setup.g, hn::Load(d, lane.u2)), cos_phi, sin_phi, nx, ny,
-                     nz);
+      const V g = Geometry::layered ? hn::Load(d, lane.g) : hn::Set(d, setup.g);
+      turn_direction(henyey_greenstein_cos(g, hn::Load(d, lane.u2)), cos_phi, sin_phi, nx, ny, nz);
     }
     const auto scatters = hn::MaskFromVec(hn::Load(d, lane.scatters));
     hn::Store(hn::IfThenElse(scatters, nx, hn::Load(d, lane.wx)), d, lane.wx);
@@ -300,11 +350,11 @@ std::uint64_t run_on(const Geometry& geometry, const LaneWalk::Setup& setup, std
                      std::uint64_t last, double* buffer) {
   const bool isotropic = setup.g == 0.0;
   if (setup.scores_collisions) {
-    return isotropic ? run_lanes<Geometry, true, true>(geometry, setup, first, last, buffer)
-                     : run_lanes<Geometry, false, true>(geometry, setup, first, last, buffer);
+    return isotropic ? run_lanes<Geometry, true, true, false>(geometry, setup, first, last, buffer)
+                     : run_lanes<Geometry, false, true, false>(geometry, setup, first, last, buffer);
   }
-  return isotropic ? run_lanes<Geometry, true, false>(geometry, setup, first, last, buffer)
-                   : run_lanes<Geometry, false, false>(geometry, setup, first, last, buffer);
+  return isotropic ? run_lanes<Geometry, true, false, false>(geometry, setup, first, last, buffer)
+                   : run_lanes<Geometry, false, false, false>(geometry, setup, first, last, buffer);
 }
 
 std::uint64_t RunLanes(const LaneWalk::Setup& setup, std::uint64_t first, std::uint64_t last,
@@ -316,6 +366,10 @@ std::uint64_t RunLanes(const LaneWalk::Setup& setup, std::uint64_t first, std::u
       return run_on(HalfSpace<false>(setup.eta), setup, first, last, buffer);
     case LaneWalk::Geometry::fresnel_half_space:
       return run_on(HalfSpace<true>(setup.eta), setup, first, last, buffer);
+    case LaneWalk::Geometry::layered_slab:
+      return setup.weighting == Weighting::implicit_capture
+                 ? run_lanes<Slab, false, false, true>(*setup.slab, setup, first, last, buffer)
+                 : run_lanes<Slab, false, false, false>(*setup.slab, setup, first, last, buffer);
   }
   return 0;
 }
@@ -345,10 +399,30 @@ LaneWalk::LaneWalk(Geometry geometry, double eta, const Scorer& scorer, const So
              g,
              escape_radius * escape_radius,
              estimator == VolumeEstimator::collision,
-             seed} {
+             seed,
+             std::nullopt,
+             Weighting::analog} {
   if (estimator == VolumeEstimator::track_length) {
     throw std::invalid_argument("LaneWalk: the track-length estimator runs on RandomWalk");
   }
+  if (source.kind == Source::Kind::sphere_light) {
+    throw std::invalid_argument("LaneWalk: a sphere light needs the sphere's geometry");
+  }
+}
+
+LaneWalk::LaneWalk(const Slab& slab, Weighting weighting, const Scorer& scorer,
+                   const Source& source, double escape_radius, std::uint64_t seed)
+    : setup_{Geometry::layered_slab,
+             1.0,
+             &scorer,
+             source,
+             0.0,  // each layer's albedo and g are the slab's
+             0.0,
+             escape_radius * escape_radius,
+             false,
+             seed,
+             slab,
+             weighting} {
   if (source.kind == Source::Kind::sphere_light) {
     throw std::invalid_argument("LaneWalk: a sphere light needs the sphere's geometry");
   }

@@ -1,5 +1,5 @@
 // The lane walk (transport/lane_walk.hpp) against the one-photon RandomWalk on the same photons,
-// in the infinite medium and the half-space.
+// in the infinite medium, the half-space and the layered slab.
 // Both draw the same Philox words and make the same absorption choices, so they follow the same
 // paths; only the last bits of a free path's log, of a turned direction and of the order of the
 // adds differ. Every photon scatters the same number of times, and every tally cell agrees to
@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "scatterlab/core/phase_function.hpp"
@@ -18,9 +19,11 @@
 #include "scatterlab/transport/half_space.hpp"
 #include "scatterlab/transport/infinite_medium.hpp"
 #include "scatterlab/transport/lane_walk.hpp"
+#include "scatterlab/transport/layered_slab.hpp"
 #include "scatterlab/transport/random_walk.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/transport/simulate.hpp"
+#include "scatterlab/transport/slab.hpp"
 
 namespace scatterlab {
 namespace {
@@ -39,20 +42,12 @@ Walked walk_photons(const Walk& walk, std::size_t cells, std::uint64_t first, st
   return w;
 }
 
-// `geometry` and `kind` the same geometry, for RandomWalk and LaneWalk.
-template <class Geometry, class Phase>
-void expect_same_paths_here(const TransportProblem& problem, const Geometry& geometry,
-                            LaneWalk::Geometry kind, const Phase& phase, std::uint64_t first,
-                            std::uint64_t last) {
-  const TallyBook book(problem.tallies, problem.split_by_order);
-  const Scorer scorer(problem.axes, book);
-  const RandomWalk<Geometry, Phase, VolumeEstimator::collision> one(
-      geometry, phase, problem.source, scorer, problem.albedo, problem.run.escape_radius,
-      problem.run.seed);
-  const LaneWalk lanes(kind, problem.eta, scorer, problem.source, problem.albedo, problem.g,
-                       VolumeEstimator::collision, problem.run.escape_radius, problem.run.seed);
-  const Walked a = walk_photons(one, book.size(), first, last);
-  const Walked b = walk_photons(lanes, book.size(), first, last);
+// The two walks on photons [first, last) into tallies of `cells` values.
+template <class OneWalk>
+void expect_same_sums(const OneWalk& one, const LaneWalk& lanes, std::size_t cells,
+                      std::uint64_t first, std::uint64_t last) {
+  const Walked a = walk_photons(one, cells, first, last);
+  const Walked b = walk_photons(lanes, cells, first, last);
   EXPECT_EQ(a.scatterings, b.scatterings);
   ASSERT_GT(a.scatterings, 0u);
   double largest = 0.0;
@@ -64,18 +59,33 @@ void expect_same_paths_here(const TransportProblem& problem, const Geometry& geo
   EXPECT_EQ(differing, 0u) << "of " << a.sums.size() << " cells";
 }
 
-// On every instruction set this machine runs, each in turn.
-// By default a range that does not start at 0 and is no multiple of any lane count.
+// Runs `check` on every instruction set this machine runs, each in turn.
+template <class Check>
+void on_every_target(const Check& check) {
+  for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
+    SCOPED_TRACE(hwy::TargetName(target));
+    hwy::SetSupportedTargetsForTest(target);
+    check();
+  }
+  hwy::SetSupportedTargetsForTest(0);  // back to the best the machine has
+}
+
+// `geometry` and `kind` the same geometry, for RandomWalk and LaneWalk, with the collision
+// estimator. By default a range that does not start at 0 and is no multiple of any lane count.
 template <class Geometry, class Phase>
 void expect_same_paths(const TransportProblem& problem, const Geometry& geometry,
                        LaneWalk::Geometry kind, const Phase& phase, std::uint64_t first = 1001,
                        std::uint64_t last = 4004) {
-  for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
-    SCOPED_TRACE(hwy::TargetName(target));
-    hwy::SetSupportedTargetsForTest(target);
-    expect_same_paths_here(problem, geometry, kind, phase, first, last);
-  }
-  hwy::SetSupportedTargetsForTest(0);  // back to the best the machine has
+  const TallyBook book(problem.tallies, problem.split_by_order);
+  const Scorer scorer(problem.axes, book);
+  const RandomWalk<Geometry, Phase, VolumeEstimator::collision> one(
+      geometry, phase, problem.source, scorer, problem.albedo, problem.run.escape_radius,
+      problem.run.seed);
+  on_every_target([&] {
+    const LaneWalk lanes(kind, problem.eta, scorer, problem.source, problem.albedo, problem.g,
+                         VolumeEstimator::collision, problem.run.escape_radius, problem.run.seed);
+    expect_same_sums(one, lanes, book.size(), first, last);
+  });
 }
 
 template <class Phase>
@@ -140,6 +150,47 @@ TEST(LaneWalk, FollowsTheOnePhotonWalkInTheHalfSpace) {
   expect_same_paths_in_half_space(0.9, 0.75, 1.0, 30.0, HenyeyGreenstein{0.75});
   expect_same_paths_in_half_space(0.99, 0.0, 1.4, 0.0, IsotropicPhase{});
   expect_same_paths_in_half_space(0.95, 0.5, 0.8, 45.0, HenyeyGreenstein{0.5});
+}
+
+// MCML's layered slab with every kind of interface and layer: a clear first layer, mismatched
+// inner interfaces (total internal reflection included), g > 0, g = 0 and g < 0, a semi-infinite
+// last layer, and an index below different from the one above; every MCML tally on, split by
+// order. Analog, and with implicit capture (its weights and roulette ride in the lanes).
+template <Weighting weighting>
+void expect_same_paths_in_the_slab() {
+  const auto layer = [](double mu_a, double mu_s, double g, double n, double thickness) {
+    SlabLayerSpec l;
+    l.mu_a = mu_a, l.mu_s = mu_s, l.g = g, l.n = n, l.thickness = thickness;
+    return l;
+  };
+  LayeredSlabSpec spec;
+  spec.layers = {layer(0.0, 0.0, 0.0, 1.5, 0.05), layer(1.0, 100.0, 0.9, 1.37, 0.1),
+                 layer(1.0, 10.0, -0.5, 1.45, 0.1),
+                 layer(2.0, 10.0, 0.0, 1.33, std::numeric_limits<double>::infinity())};
+  spec.n_above = 1.0;
+  spec.n_below = 1.2;
+  spec.weighting = weighting;
+  spec.validate();
+  const TransportProblem problem = transport_problem(spec);
+  const TallyBook book(problem.tallies, problem.split_by_order);
+  const Scorer scorer(problem.axes, book);
+  const Slab slab(problem.layers, problem.n_above, problem.n_below);
+  const RandomWalk<Slab, IsotropicPhase, VolumeEstimator::none, weighting> one(
+      slab, IsotropicPhase{}, problem.source, scorer, problem.albedo, problem.run.escape_radius,
+      problem.run.seed);
+  on_every_target([&] {
+    const LaneWalk lanes(slab, weighting, scorer, problem.source, problem.run.escape_radius,
+                         problem.run.seed);
+    expect_same_sums(one, lanes, book.size(), 1001, 4004);
+  });
+}
+
+TEST(LaneWalk, FollowsTheOnePhotonWalkInTheLayeredSlab) {
+  expect_same_paths_in_the_slab<Weighting::analog>();
+}
+
+TEST(LaneWalk, FollowsTheOnePhotonWalkInTheLayeredSlabWithImplicitCapture) {
+  expect_same_paths_in_the_slab<Weighting::implicit_capture>();
 }
 
 TEST(LaneWalk, HasOneToEightLanes) {

@@ -21,6 +21,7 @@
 #include "scatterlab/transport/infinite_medium.hpp"
 #include "scatterlab/transport/lane_walk.hpp"
 #include "scatterlab/transport/random_walk.hpp"
+#include "scatterlab/transport/slab.hpp"
 
 namespace scatterlab {
 namespace detail {
@@ -36,9 +37,14 @@ struct Kernel {
   template <class Geometry, class Phase, VolumeEstimator estimator,
             Weighting weighting = Weighting::analog, class Light = Source>
   BatchOutcome run(const Geometry& geometry, const Phase& phase, const Light& light) const {
-    // The infinite medium's and the half-space's photons share vector lanes (lane_walk.hpp).
-    if constexpr (std::is_same_v<Light, Source> && weighting == Weighting::analog &&
-                  estimator != VolumeEstimator::track_length) {
+    // The infinite medium's, the half-space's and the slab's photons share vector lanes
+    // (lane_walk.hpp).
+    if constexpr (std::is_same_v<Light, Source> && std::is_same_v<Geometry, Slab>) {
+      const LaneWalk walk(geometry, weighting, scorer, light, problem.run.escape_radius,
+                          problem.run.seed);
+      return run_batches(problem.run, book.size(), walk, progress, control);
+    } else if constexpr (std::is_same_v<Light, Source> && weighting == Weighting::analog &&
+                         estimator != VolumeEstimator::track_length) {
       if constexpr (std::is_same_v<Geometry, InfiniteMedium>) {
         return run_lanes(LaneWalk::Geometry::infinite_medium, phase, light, estimator);
       } else if constexpr (std::is_same_v<Geometry, HalfSpace<false>>) {

@@ -1,5 +1,5 @@
 #pragma once
-// The random walk of random_walk.hpp in the infinite medium, several photons at once in the lanes
+// The random walk of random_walk.hpp, several photons at once in the lanes
 // of the CPU's vector registers (2 with SSE4, 4 with AVX2, 8 with AVX-512; Google Highway picks
 // the widest the machine has when the program runs, so one binary serves every x86-64).
 //
@@ -20,16 +20,22 @@
 // is still bitwise the same for any thread and rank count.
 //
 // For the infinite medium and the half-space with a beam or a point source, analog absorption
-// and the collision estimator (or none): the engine's choice there (kernel.hpp). The surface is
-// the geometry's own code (half_space.hpp), one lane at a time, on the lane's photon stream. The
-// track-length estimator, the sphere, the slab and meshes keep RandomWalk.
+// and the collision estimator (or none), and for MCML's layered slab, analog or with implicit
+// capture: the engine's choice there (kernel.hpp). The surface is the geometry's own code
+// (half_space.hpp, slab.hpp), one lane at a time, on the lane's photon stream. In the slab each
+// lane also carries its layer (whose Henyey-Greenstein g the vector turn reads per lane) and,
+// under implicit capture, its weight. The track-length estimator, the sphere and meshes keep
+// RandomWalk.
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "scatterlab/tally/scorer.hpp"
 #include "scatterlab/transport/random_walk.hpp"
+#include "scatterlab/transport/slab.hpp"
 #include "scatterlab/transport/source.hpp"
+#include "scatterlab/transport/weighting.hpp"
 
 namespace scatterlab {
 
@@ -37,12 +43,18 @@ class LaneWalk {
  public:
   // The geometries it runs: the infinite medium, and the half-space under index-matched (eta = 1,
   // no Fresnel arithmetic) or mismatched boundaries, HalfSpace<false> and HalfSpace<true>(eta).
-  enum class Geometry { infinite_medium, half_space, fresnel_half_space };
+  // And the layered slab (slab.hpp), whose layers hold their own media.
+  enum class Geometry { infinite_medium, half_space, fresnel_half_space, layered_slab };
 
   // g = 0 samples isotropically (random_walk.hpp's IsotropicPhase), else Henyey-Greenstein g.
   // `estimator` none or collision, `source` a beam or a point (std::invalid_argument otherwise).
   LaneWalk(Geometry geometry, double eta, const Scorer& scorer, const Source& source, double albedo,
            double g, VolumeEstimator estimator, double escape_radius, std::uint64_t seed);
+
+  // The layered slab, scored at absorption and exit (no volume estimator), analog or with
+  // implicit capture.
+  LaneWalk(const Slab& slab, Weighting weighting, const Scorer& scorer, const Source& source,
+           double escape_radius, std::uint64_t seed);
 
   std::vector<double> make_scratch() const { return {}; }
 
@@ -62,6 +74,8 @@ class LaneWalk {
     double albedo, g, escape_radius2;
     bool scores_collisions;
     std::uint64_t seed;
+    std::optional<Slab> slab;  // the layered slab's stack
+    Weighting weighting = Weighting::analog;
   };
 
  private:

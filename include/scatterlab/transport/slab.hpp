@@ -74,6 +74,7 @@ class Slab {
   }
 
   double albedo(int layer) const { return at(layer).albedo; }
+  double g(int layer) const { return at(layer).phase.g; }
   double sample_cos_theta(int layer, double xi) const {
     return at(layer).phase.sample_cos_theta(xi);
   }
