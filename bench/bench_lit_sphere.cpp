@@ -3,12 +3,14 @@
 // order), for the same media as the HalfSpace rows of bench_half_space.cpp, so that the two
 // rows of a medium compare the boundary test's cost per event. A pole beam into a sphere of
 // 10 mfp stands beside the half-space's beam; a directional light on a sphere of 1 mfp shows the
-// cost per photon of the entry (a Fresnel choice and a refraction) over short walks. The Mesh
+// cost per photon of the entry (a Fresnel choice and a refraction) over short walks. SphereLanes
+// runs the same on the lane walk (transport/lane_walk.hpp), which the engine runs, beside the
+// half-space's HalfSpaceLanes rows. The Mesh
 // rows run the same media in a sphere of 10 mfp tessellated into 9 216 flat triangles
 // (render/mesh_boundary.hpp: a ray query per flight that leaves the inner ball), under a beam
 // near its pole, to set the cost of Embree's boundary test against the analytic sphere's.
 //
-//   ./build/bench/scatterlab_bench --benchmark_filter='Sphere|Mesh|HalfSpace/'
+//   ./build/bench/scatterlab_bench --benchmark_filter='Sphere|Mesh|HalfSpace'
 //       --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
@@ -20,6 +22,7 @@
 #include "scatterlab/render/mesh_light.hpp"
 #include "scatterlab/tally/scorer.hpp"
 #include "scatterlab/tally/tally_book.hpp"
+#include "scatterlab/transport/lane_walk.hpp"
 #include "scatterlab/transport/lit_sphere.hpp"
 #include "scatterlab/transport/random_walk.hpp"
 #include "scatterlab/transport/sphere.hpp"
@@ -53,6 +56,18 @@ template <class Phase>
 void Sphere(benchmark::State& state, Phase phase, LitSphereSpec spec) {
   if (spec.eta != 1.0) return run_walk<Phase, true>(state, phase, spec);
   run_walk<Phase, false>(state, phase, spec);
+}
+
+void SphereLanes(benchmark::State& state, LitSphereSpec spec) {
+  const TransportProblem problem = transport_problem(spec);
+  const TallyBook book(problem.tallies, problem.split_by_order);
+  const Scorer scorer(problem.axes, book);
+  const LaneWalk walk(
+      spec.eta == 1.0 ? LaneWalk::Geometry::sphere : LaneWalk::Geometry::fresnel_sphere,
+      problem.eta, scorer, problem.source, problem.albedo, problem.g, VolumeEstimator::none,
+      problem.run.escape_radius, problem.run.seed, problem.radius);
+  bench::time_walk(state, walk, book.size());
+  state.counters["lanes"] = LaneWalk::lanes();
 }
 
 template <class Phase, bool fresnel>
@@ -95,6 +110,11 @@ BENCHMARK_CAPTURE(Sphere, pole_R10_iso_albedo0.99_eta1.33, iso, lit_sphere(0.99,
 BENCHMARK_CAPTURE(Sphere, pole_R10_hg_g0.75_albedo0.9_eta1.33, hg075, lit_sphere(0.9, 0.75, 1.33, 10.0, SphereLight::pole_beam));
 BENCHMARK_CAPTURE(Sphere, directional_R1_iso_albedo0.99_eta1.33, iso, lit_sphere(0.99, 0.0, 1.33, 1.0, SphereLight::directional));
 BENCHMARK_CAPTURE(Sphere, directional_R10_iso_albedo0.99_eta1.33, iso, lit_sphere(0.99, 0.0, 1.33, 10.0, SphereLight::directional));
+BENCHMARK_CAPTURE(SphereLanes, pole_R10_iso_albedo0.99_eta1, lit_sphere(0.99, 0.0, 1.0, 10.0, SphereLight::pole_beam));
+BENCHMARK_CAPTURE(SphereLanes, pole_R10_iso_albedo0.99_eta1.33, lit_sphere(0.99, 0.0, 1.33, 10.0, SphereLight::pole_beam));
+BENCHMARK_CAPTURE(SphereLanes, pole_R10_hg_g0.75_albedo0.9_eta1.33, lit_sphere(0.9, 0.75, 1.33, 10.0, SphereLight::pole_beam));
+BENCHMARK_CAPTURE(SphereLanes, directional_R1_iso_albedo0.99_eta1.33, lit_sphere(0.99, 0.0, 1.33, 1.0, SphereLight::directional));
+BENCHMARK_CAPTURE(SphereLanes, directional_R10_iso_albedo0.99_eta1.33, lit_sphere(0.99, 0.0, 1.33, 10.0, SphereLight::directional));
 BENCHMARK_CAPTURE(Mesh, beam_R10_iso_albedo0.99_eta1, iso, 0.99, 0.0, 1.0, SphereLight::beam);
 BENCHMARK_CAPTURE(Mesh, beam_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::beam);
 BENCHMARK_CAPTURE(Mesh, beam_R10_hg_g0.75_albedo0.9_eta1.33, hg075, 0.9, 0.75, 1.33, SphereLight::beam);

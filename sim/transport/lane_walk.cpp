@@ -13,6 +13,7 @@
 #include "scatterlab/transport/half_space.hpp"
 #include "scatterlab/transport/infinite_medium.hpp"
 #include "scatterlab/transport/slab.hpp"
+#include "scatterlab/transport/sphere.hpp"
 
 // Highway's order: foreach_target, then highway.h, then its -inl.h headers.
 // clang-format off
@@ -366,6 +367,10 @@ std::uint64_t RunLanes(const LaneWalk::Setup& setup, std::uint64_t first, std::u
       return run_on(HalfSpace<false>(setup.eta), setup, first, last, buffer);
     case LaneWalk::Geometry::fresnel_half_space:
       return run_on(HalfSpace<true>(setup.eta), setup, first, last, buffer);
+    case LaneWalk::Geometry::sphere:
+      return run_on(Sphere<false>(setup.radius, 1.0), setup, first, last, buffer);
+    case LaneWalk::Geometry::fresnel_sphere:
+      return run_on(Sphere<true>(setup.radius, setup.eta), setup, first, last, buffer);
     case LaneWalk::Geometry::layered_slab:
       return setup.weighting == Weighting::implicit_capture
                  ? run_lanes<Slab, false, false, true>(*setup.slab, setup, first, last, buffer)
@@ -390,7 +395,7 @@ HWY_EXPORT(LaneCount);
 
 LaneWalk::LaneWalk(Geometry geometry, double eta, const Scorer& scorer, const Source& source,
                    double albedo, double g, VolumeEstimator estimator, double escape_radius,
-                   std::uint64_t seed)
+                   std::uint64_t seed, double radius)
     : setup_{geometry,
              eta,
              &scorer,
@@ -398,6 +403,7 @@ LaneWalk::LaneWalk(Geometry geometry, double eta, const Scorer& scorer, const So
              albedo,
              g,
              escape_radius * escape_radius,
+             radius,
              estimator == VolumeEstimator::collision,
              seed,
              std::nullopt,
@@ -405,7 +411,8 @@ LaneWalk::LaneWalk(Geometry geometry, double eta, const Scorer& scorer, const So
   if (estimator == VolumeEstimator::track_length) {
     throw std::invalid_argument("LaneWalk: the track-length estimator runs on RandomWalk");
   }
-  if (source.kind == Source::Kind::sphere_light) {
+  if (source.kind == Source::Kind::sphere_light && geometry != Geometry::sphere &&
+      geometry != Geometry::fresnel_sphere) {
     throw std::invalid_argument("LaneWalk: a sphere light needs the sphere's geometry");
   }
 }
@@ -419,6 +426,7 @@ LaneWalk::LaneWalk(const Slab& slab, Weighting weighting, const Scorer& scorer,
              0.0,  // each layer's albedo and g are the slab's
              0.0,
              escape_radius * escape_radius,
+             0.0,
              false,
              seed,
              slab,

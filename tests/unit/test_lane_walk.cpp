@@ -1,5 +1,5 @@
 // The lane walk (transport/lane_walk.hpp) against the one-photon RandomWalk on the same photons,
-// in the infinite medium, the half-space and the layered slab.
+// in the infinite medium, the half-space, the sphere and the layered slab.
 // Both draw the same Philox words and make the same absorption choices, so they follow the same
 // paths; only the last bits of a free path's log, of a turned direction and of the order of the
 // adds differ. Every photon scatters the same number of times, and every tally cell agrees to
@@ -20,10 +20,12 @@
 #include "scatterlab/transport/infinite_medium.hpp"
 #include "scatterlab/transport/lane_walk.hpp"
 #include "scatterlab/transport/layered_slab.hpp"
+#include "scatterlab/transport/lit_sphere.hpp"
 #include "scatterlab/transport/random_walk.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/transport/simulate.hpp"
 #include "scatterlab/transport/slab.hpp"
+#include "scatterlab/transport/sphere.hpp"
 
 namespace scatterlab {
 namespace {
@@ -75,7 +77,7 @@ void on_every_target(const Check& check) {
 template <class Geometry, class Phase>
 void expect_same_paths(const TransportProblem& problem, const Geometry& geometry,
                        LaneWalk::Geometry kind, const Phase& phase, std::uint64_t first = 1001,
-                       std::uint64_t last = 4004) {
+                       std::uint64_t last = 4004, double radius = 0.0) {
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
   const RandomWalk<Geometry, Phase, VolumeEstimator::collision> one(
@@ -83,7 +85,8 @@ void expect_same_paths(const TransportProblem& problem, const Geometry& geometry
       problem.run.seed);
   on_every_target([&] {
     const LaneWalk lanes(kind, problem.eta, scorer, problem.source, problem.albedo, problem.g,
-                         VolumeEstimator::collision, problem.run.escape_radius, problem.run.seed);
+                         VolumeEstimator::collision, problem.run.escape_radius, problem.run.seed,
+                         radius);
     expect_same_sums(one, lanes, book.size(), first, last);
   });
 }
@@ -109,6 +112,29 @@ void expect_same_paths_in_half_space(double albedo, double g, double eta, double
     expect_same_paths(problem, HalfSpace<false>(eta), LaneWalk::Geometry::half_space, phase);
   } else {
     expect_same_paths(problem, HalfSpace<true>(eta), LaneWalk::Geometry::fresnel_half_space, phase);
+  }
+}
+
+// The lit sphere: its exitance by angle from the lit pole, split by order, under the directional
+// light (whose photons the surface may reflect before they enter) or a beam at the pole; matched,
+// or behind a Fresnel boundary whose choices draw from the photon's stream (eta 1.4 with total
+// internal reflection, and 0.8).
+template <class Phase>
+void expect_same_paths_in_the_sphere(double albedo, double g, double eta, double radius,
+                                     SphereLight light, const Phase& phase) {
+  LitSphereSpec spec;
+  spec.medium.albedo = albedo;
+  spec.medium.g = g;
+  spec.eta = eta;
+  spec.radius = radius;
+  spec.light = light;
+  const TransportProblem problem = transport_problem(spec);
+  if (eta == 1.0) {
+    expect_same_paths(problem, Sphere<false>(radius, 1.0), LaneWalk::Geometry::sphere, phase, 1001,
+                      4004, radius);
+  } else {
+    expect_same_paths(problem, Sphere<true>(radius, eta), LaneWalk::Geometry::fresnel_sphere, phase,
+                      1001, 4004, radius);
   }
 }
 
@@ -150,6 +176,16 @@ TEST(LaneWalk, FollowsTheOnePhotonWalkInTheHalfSpace) {
   expect_same_paths_in_half_space(0.9, 0.75, 1.0, 30.0, HenyeyGreenstein{0.75});
   expect_same_paths_in_half_space(0.99, 0.0, 1.4, 0.0, IsotropicPhase{});
   expect_same_paths_in_half_space(0.95, 0.5, 0.8, 45.0, HenyeyGreenstein{0.5});
+}
+
+TEST(LaneWalk, FollowsTheOnePhotonWalkInTheSphere) {
+  expect_same_paths_in_the_sphere(0.99, 0.0, 1.0, 3.0, SphereLight::directional, IsotropicPhase{});
+  expect_same_paths_in_the_sphere(0.9, 0.75, 1.4, 5.0, SphereLight::directional,
+                                  HenyeyGreenstein{0.75});
+  expect_same_paths_in_the_sphere(0.95, -0.3, 1.4, 2.0, SphereLight::pole_beam,
+                                  HenyeyGreenstein{-0.3});
+  expect_same_paths_in_the_sphere(0.99, 0.5, 0.8, 1.0, SphereLight::directional,
+                                  HenyeyGreenstein{0.5});
 }
 
 // MCML's layered slab with every kind of interface and layer: a clear first layer, mismatched

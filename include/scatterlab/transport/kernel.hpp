@@ -22,6 +22,7 @@
 #include "scatterlab/transport/lane_walk.hpp"
 #include "scatterlab/transport/random_walk.hpp"
 #include "scatterlab/transport/slab.hpp"
+#include "scatterlab/transport/sphere.hpp"
 
 namespace scatterlab {
 namespace detail {
@@ -37,8 +38,8 @@ struct Kernel {
   template <class Geometry, class Phase, VolumeEstimator estimator,
             Weighting weighting = Weighting::analog, class Light = Source>
   BatchOutcome run(const Geometry& geometry, const Phase& phase, const Light& light) const {
-    // The infinite medium's, the half-space's and the slab's photons share vector lanes
-    // (lane_walk.hpp).
+    // The infinite medium's, the half-space's, the sphere's and the slab's photons share vector
+    // lanes (lane_walk.hpp).
     if constexpr (std::is_same_v<Light, Source> && std::is_same_v<Geometry, Slab>) {
       const LaneWalk walk(geometry, weighting, scorer, light, problem.run.escape_radius,
                           problem.run.seed);
@@ -51,6 +52,10 @@ struct Kernel {
         return run_lanes(LaneWalk::Geometry::half_space, phase, light, estimator);
       } else if constexpr (std::is_same_v<Geometry, HalfSpace<true>>) {
         return run_lanes(LaneWalk::Geometry::fresnel_half_space, phase, light, estimator);
+      } else if constexpr (std::is_same_v<Geometry, Sphere<false>>) {
+        return run_lanes(LaneWalk::Geometry::sphere, phase, light, estimator);
+      } else if constexpr (std::is_same_v<Geometry, Sphere<true>>) {
+        return run_lanes(LaneWalk::Geometry::fresnel_sphere, phase, light, estimator);
       }
     }
     const RandomWalk<Geometry, Phase, estimator, weighting, Light> walk(
@@ -63,7 +68,7 @@ struct Kernel {
   BatchOutcome run_lanes(LaneWalk::Geometry geometry, const Phase& phase, const Source& light,
                          VolumeEstimator estimator) const {
     const LaneWalk walk(geometry, problem.eta, scorer, light, problem.albedo, phase.mean_cosine(),
-                        estimator, problem.run.escape_radius, problem.run.seed);
+                        estimator, problem.run.escape_radius, problem.run.seed, problem.radius);
     return run_batches(problem.run, book.size(), walk, progress, control);
   }
 

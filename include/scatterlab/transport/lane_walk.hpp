@@ -19,13 +19,13 @@
 // walks to each other on the same photons. A range's scores depend on the range alone, so a run
 // is still bitwise the same for any thread and rank count.
 //
-// For the infinite medium and the half-space with a beam or a point source, analog absorption
-// and the collision estimator (or none), and for MCML's layered slab, analog or with implicit
-// capture: the engine's choice there (kernel.hpp). The surface is the geometry's own code
-// (half_space.hpp, slab.hpp), one lane at a time, on the lane's photon stream. In the slab each
+// For the infinite medium, the half-space and the sphere (with a beam, a point source or, on the
+// sphere, its directional light) under analog absorption and the collision estimator (or none),
+// and for MCML's layered slab, analog or with implicit capture: the engine's choice there
+// (kernel.hpp). The surface is the geometry's own code (half_space.hpp, sphere.hpp, slab.hpp),
+// one lane at a time, on the lane's photon stream. In the slab each
 // lane also carries its layer (whose Henyey-Greenstein g the vector turn reads per lane) and,
-// under implicit capture, its weight. The track-length estimator, the sphere and meshes keep
-// RandomWalk.
+// under implicit capture, its weight. The track-length estimator and meshes keep RandomWalk.
 
 #include <cstdint>
 #include <optional>
@@ -41,15 +41,25 @@ namespace scatterlab {
 
 class LaneWalk {
  public:
-  // The geometries it runs: the infinite medium, and the half-space under index-matched (eta = 1,
-  // no Fresnel arithmetic) or mismatched boundaries, HalfSpace<false> and HalfSpace<true>(eta).
-  // And the layered slab (slab.hpp), whose layers hold their own media.
-  enum class Geometry { infinite_medium, half_space, fresnel_half_space, layered_slab };
+  // The geometries it runs: the infinite medium, the half-space and the sphere of `radius` under
+  // index-matched (eta = 1, no Fresnel arithmetic) or mismatched boundaries (HalfSpace<false>,
+  // HalfSpace<true>(eta), Sphere<false>, Sphere<true>), and the layered slab (slab.hpp), whose
+  // layers hold their own media.
+  enum class Geometry {
+    infinite_medium,
+    half_space,
+    fresnel_half_space,
+    sphere,
+    fresnel_sphere,
+    layered_slab
+  };
 
   // g = 0 samples isotropically (random_walk.hpp's IsotropicPhase), else Henyey-Greenstein g.
-  // `estimator` none or collision, `source` a beam or a point (std::invalid_argument otherwise).
+  // `estimator` none or collision, `source` a beam, a point or, on a sphere, the sphere light
+  // (std::invalid_argument otherwise).
   LaneWalk(Geometry geometry, double eta, const Scorer& scorer, const Source& source, double albedo,
-           double g, VolumeEstimator estimator, double escape_radius, std::uint64_t seed);
+           double g, VolumeEstimator estimator, double escape_radius, std::uint64_t seed,
+           double radius = 0.0);
 
   // The layered slab, scored at absorption and exit (no volume estimator), analog or with
   // implicit capture.
@@ -72,6 +82,7 @@ class LaneWalk {
     const Scorer* scorer;
     Source source;
     double albedo, g, escape_radius2;
+    double radius;  // the sphere's
     bool scores_collisions;
     std::uint64_t seed;
     std::optional<Slab> slab;  // the layered slab's stack
