@@ -411,6 +411,9 @@ LaneWalk::LaneWalk(Geometry geometry, double eta, const Scorer& scorer, const So
   if (estimator == VolumeEstimator::track_length) {
     throw std::invalid_argument("LaneWalk: the track-length estimator runs on RandomWalk");
   }
+  if (geometry == Geometry::layered_slab) {
+    throw std::invalid_argument("LaneWalk: a layered slab is given by its stack (Slab)");
+  }
   if (source.kind == Source::Kind::sphere_light && geometry != Geometry::sphere &&
       geometry != Geometry::fresnel_sphere) {
     throw std::invalid_argument("LaneWalk: a sphere light needs the sphere's geometry");

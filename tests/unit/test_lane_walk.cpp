@@ -241,6 +241,17 @@ TEST(LaneWalk, RefusesWhatItDoesNotRun) {
   EXPECT_THROW(LaneWalk(LaneWalk::Geometry::infinite_medium, 1.0, scorer, problem.source, 0.9, 0.0,
                         VolumeEstimator::track_length, problem.run.escape_radius, 1),
                std::invalid_argument);
+  // A slab without its stack, and the sphere's light on another geometry.
+  EXPECT_THROW(LaneWalk(LaneWalk::Geometry::layered_slab, 1.0, scorer, problem.source, 0.9, 0.0,
+                        VolumeEstimator::none, problem.run.escape_radius, 1),
+               std::invalid_argument);
+  Source sphere_light = problem.source;
+  sphere_light.kind = Source::Kind::sphere_light;
+  EXPECT_THROW(LaneWalk(LaneWalk::Geometry::half_space, 1.0, scorer, sphere_light, 0.9, 0.0,
+                        VolumeEstimator::none, problem.run.escape_radius, 1),
+               std::invalid_argument);
+  EXPECT_NO_THROW(LaneWalk(LaneWalk::Geometry::sphere, 1.0, scorer, sphere_light, 0.9, 0.0,
+                           VolumeEstimator::none, problem.run.escape_radius, 1, 2.0));
 }
 
 }  // namespace
