@@ -143,10 +143,9 @@ HWY_INLINE V henyey_greenstein_cos(V g, V xi) {
   const V s = hn::Sub(hn::Add(x, x), one);
   const V one_minus_a = hn::Sub(one, a), two_a = hn::Mul(two, a);
   const V den = hn::MulAdd(two_a, x, one_minus_a);
-  const V num =
-      hn::Mul(hn::Mul(hn::Mul(two_a, x), hn::Sub(one, x)),
-              hn::MulAdd(hn::Mul(hn::Set(d, 4.0), a), x,
-                         hn::Mul(one_minus_a, hn::Add(hn::Set(d, 3.0), a))));
+  const V num = hn::Mul(hn::Mul(hn::Mul(two_a, x), hn::Sub(one, x)),
+                        hn::MulAdd(hn::Mul(hn::Set(d, 4.0), a), x,
+                                   hn::Mul(one_minus_a, hn::Add(hn::Set(d, 3.0), a))));
   const V mu = hn::Min(hn::Max(hn::Add(s, hn::Div(num, hn::Mul(den, den))), hn::Neg(one)), one);
   return hn::IfThenElse(negative, hn::Neg(mu), mu);
 }
@@ -351,8 +350,9 @@ std::uint64_t run_on(const Geometry& geometry, const LaneWalk::Setup& setup, std
                      std::uint64_t last, double* buffer) {
   const bool isotropic = setup.g == 0.0;
   if (setup.scores_collisions) {
-    return isotropic ? run_lanes<Geometry, true, true, false>(geometry, setup, first, last, buffer)
-                     : run_lanes<Geometry, false, true, false>(geometry, setup, first, last, buffer);
+    return isotropic
+               ? run_lanes<Geometry, true, true, false>(geometry, setup, first, last, buffer)
+               : run_lanes<Geometry, false, true, false>(geometry, setup, first, last, buffer);
   }
   return isotropic ? run_lanes<Geometry, true, false, false>(geometry, setup, first, last, buffer)
                    : run_lanes<Geometry, false, false, false>(geometry, setup, first, last, buffer);
