@@ -9,6 +9,7 @@
 // enters.
 
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <type_traits>
 
@@ -35,41 +36,46 @@ struct Kernel {
   const ProgressCallback& progress;
   const RunControl& control;
 
+  // The infinite medium's, the half-space's, the sphere's and the slab's photons share vector
+  // lanes (lane_walk.hpp); the track-length estimator and other lights (meshes') keep RandomWalk.
   template <class Geometry, class Phase, VolumeEstimator estimator,
             Weighting weighting = Weighting::analog, class Light = Source>
   BatchOutcome run(const Geometry& geometry, const Phase& phase, const Light& light) const {
-    // The infinite medium's, the half-space's, the sphere's and the slab's photons share vector
-    // lanes (lane_walk.hpp).
+    constexpr std::optional<LaneWalk::Geometry> lanes = homogeneous_lanes<Geometry>();
     if constexpr (std::is_same_v<Light, Source> && std::is_same_v<Geometry, Slab>) {
       const LaneWalk walk(geometry, weighting, scorer, light, problem.run.escape_radius,
                           problem.run.seed);
       return run_batches(problem.run, book.size(), walk, progress, control);
-    } else if constexpr (std::is_same_v<Light, Source> && weighting == Weighting::analog &&
+    } else if constexpr (std::is_same_v<Light, Source> && lanes.has_value() &&
+                         weighting == Weighting::analog &&
                          estimator != VolumeEstimator::track_length) {
-      if constexpr (std::is_same_v<Geometry, InfiniteMedium>) {
-        return run_lanes(LaneWalk::Geometry::infinite_medium, phase, light, estimator);
-      } else if constexpr (std::is_same_v<Geometry, HalfSpace<false>>) {
-        return run_lanes(LaneWalk::Geometry::half_space, phase, light, estimator);
-      } else if constexpr (std::is_same_v<Geometry, HalfSpace<true>>) {
-        return run_lanes(LaneWalk::Geometry::fresnel_half_space, phase, light, estimator);
-      } else if constexpr (std::is_same_v<Geometry, Sphere<false>>) {
-        return run_lanes(LaneWalk::Geometry::sphere, phase, light, estimator);
-      } else if constexpr (std::is_same_v<Geometry, Sphere<true>>) {
-        return run_lanes(LaneWalk::Geometry::fresnel_sphere, phase, light, estimator);
-      }
+      const LaneWalk walk(*lanes, problem.eta, scorer, light, problem.albedo, phase.mean_cosine(),
+                          estimator, problem.run.escape_radius, problem.run.seed, problem.radius);
+      return run_batches(problem.run, book.size(), walk, progress, control);
+    } else {
+      const RandomWalk<Geometry, Phase, estimator, weighting, Light> walk(
+          geometry, phase, light, scorer, problem.albedo, problem.run.escape_radius,
+          problem.run.seed);
+      return run_batches(problem.run, book.size(), walk, progress, control);
     }
-    const RandomWalk<Geometry, Phase, estimator, weighting, Light> walk(
-        geometry, phase, light, scorer, problem.albedo, problem.run.escape_radius,
-        problem.run.seed);
-    return run_batches(problem.run, book.size(), walk, progress, control);
   }
 
-  template <class Phase>
-  BatchOutcome run_lanes(LaneWalk::Geometry geometry, const Phase& phase, const Source& light,
-                         VolumeEstimator estimator) const {
-    const LaneWalk walk(geometry, problem.eta, scorer, light, problem.albedo, phase.mean_cosine(),
-                        estimator, problem.run.escape_radius, problem.run.seed, problem.radius);
-    return run_batches(problem.run, book.size(), walk, progress, control);
+  // The lane walk's name for a homogeneous geometry it runs; none for the others.
+  template <class Geometry>
+  static constexpr std::optional<LaneWalk::Geometry> homogeneous_lanes() {
+    if constexpr (std::is_same_v<Geometry, InfiniteMedium>) {
+      return LaneWalk::Geometry::infinite_medium;
+    } else if constexpr (std::is_same_v<Geometry, HalfSpace<false>>) {
+      return LaneWalk::Geometry::half_space;
+    } else if constexpr (std::is_same_v<Geometry, HalfSpace<true>>) {
+      return LaneWalk::Geometry::fresnel_half_space;
+    } else if constexpr (std::is_same_v<Geometry, Sphere<false>>) {
+      return LaneWalk::Geometry::sphere;
+    } else if constexpr (std::is_same_v<Geometry, Sphere<true>>) {
+      return LaneWalk::Geometry::fresnel_sphere;
+    } else {
+      return std::nullopt;
+    }
   }
 
   // No volume tally: nothing is scored at collisions or along flights.
