@@ -25,6 +25,7 @@
 
 #include <ceres/cost_function.h>
 
+#include "lobe_bin_average.hpp"
 #include "scatterlab/fit/lobe_fit.hpp"
 #include "scatterlab/fit/lobe_grid.hpp"
 #include "scatterlab/fit/lobe_model.hpp"
@@ -37,7 +38,7 @@ namespace scatterlab::fit {
 class DoubleExponentialCost final : public ceres::CostFunction {
  public:
   // `model`: dexp (or dexp_paper), adexp, adexp_ridge or adexp2_ridge; throws std::invalid_argument
-  // for another model, or a grid of more nodes per bin than quadrature order 8 gives.
+  // for another model.
   DoubleExponentialCost(const LobeGrid& grid, const LobeObservations& observations,
                         LobeModel model);
 
@@ -46,6 +47,7 @@ class DoubleExponentialCost final : public ceres::CostFunction {
 
  private:
   const LobeGrid& grid_;
+  BinNodes nodes_;  // the grid's nodes as the vector loop reads them
   const LobeObservations& observations_;
   int shape_size_;
   bool with_ridge_;

@@ -1,6 +1,7 @@
 // The double-exponential family's hand-written Jacobian (fit/double_exponential_cost.hpp):
 // its residuals against the models' own bin averages (lobe_model.hpp, an independent code
-// path), and its Jacobian against the derivatives of those averages in Ceres Jets.
+// path), and its Jacobian against the derivatives of those averages in Ceres Jets, on every
+// instruction set the bin averages (fit/lobe_bin_average.hpp) are compiled for.
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
 
@@ -9,6 +10,7 @@
 
 #include "../../fit/double_exponential_cost.hpp"
 #include "../physics/lobe_fixtures.hpp"
+#include "every_target.hpp"
 
 namespace scatterlab {
 namespace {
@@ -16,6 +18,7 @@ namespace {
 using fit::LobeModel;
 using testing::angular_grid;
 using testing::direction;
+using testing::on_every_target;
 using testing::parameters;
 
 struct Case {
@@ -55,14 +58,16 @@ TEST(DoubleExponentialCost, ResidualsAreTheModelsBinAveragesAgainstTheTally) {
       fit::LobeParameters p = c.parameters;
       const double* blocks[5] = {p.axis.data(), p.shape.data(), p.ridge.data(),
                                  p.second_axis.data(), p.second_shape.data()};
-      std::vector<double> residuals(grid.size());
-      ASSERT_TRUE(cost.Evaluate(blocks, residuals.data(), nullptr));
-      for (std::size_t i = 0; i < grid.size(); ++i) {
-        const double model = std::exp(fit::log_bin_average(c.model, grid, i, p));
-        const double expected = (model - o.radiance[i]) / o.sigma[i];
-        EXPECT_NEAR(residuals[i], expected, 1e-10 * (1.0 + std::abs(expected)))
-            << fit::to_string(c.model) << " bin " << i;
-      }
+      on_every_target([&] {
+        std::vector<double> residuals(grid.size());
+        ASSERT_TRUE(cost.Evaluate(blocks, residuals.data(), nullptr));
+        for (std::size_t i = 0; i < grid.size(); ++i) {
+          const double model = std::exp(fit::log_bin_average(c.model, grid, i, p));
+          const double expected = (model - o.radiance[i]) / o.sigma[i];
+          EXPECT_NEAR(residuals[i], expected, 1e-10 * (1.0 + std::abs(expected)))
+              << fit::to_string(c.model) << " bin " << i;
+        }
+      });
     }
   }
 }
@@ -120,38 +125,40 @@ TEST(DoubleExponentialCost, JacobianIsTheModelsDerivative) {
         jacobian[b].resize(grid.size() * static_cast<std::size_t>(sizes[b]));
         rows.push_back(jacobian[b].data());
       }
-      ASSERT_TRUE(cost.Evaluate(blocks, residuals.data(), rows.data()));
       const std::vector<Jet> reference = autodiff_residuals(c, grid, o);
-      // The axis moves on the sphere (a Ceres SphereManifold): only the derivative across p
-      // counts, and the written forms of the models differ along p (dexp uses |w - p|^2 where
-      // the cost uses u^2 + v^2 + rho^2, equal for unit p only).
-      const Eigen::Matrix3d tangent = Eigen::Matrix3d::Identity() - p.axis * p.axis.transpose();
-      const int offsets[5] = {0, 3, 7, 14, 17};
-      const Eigen::Matrix3d second_tangent =
-          Eigen::Matrix3d::Identity() - p.second_axis * p.second_axis.transpose();
-      for (std::size_t i = 0; i < grid.size(); ++i) {
-        Eigen::VectorXd expected = reference[i].v;
-        expected.head<3>() = tangent * expected.head<3>();
-        expected.segment<3>(14) = second_tangent * expected.segment<3>(14);
-        Eigen::Vector3d axis_row(jacobian[0].data() + 3 * i);
-        axis_row = tangent * axis_row;
-        Eigen::Vector3d second_axis_row = Eigen::Vector3d::Zero();
-        if (sizes.size() > 3) {
-          second_axis_row = second_tangent * Eigen::Vector3d(jacobian[3].data() + 3 * i);
-        }
-        const double scale = expected.cwiseAbs().maxCoeff();
-        for (std::size_t b = 0; b < sizes.size(); ++b) {
-          for (int k = 0; k < sizes[b]; ++k) {
-            const double value = b == 0   ? axis_row[k]
-                                 : b == 3 ? second_axis_row[k]
-                                          : jacobian[b][i * static_cast<std::size_t>(sizes[b]) +
-                                                        static_cast<std::size_t>(k)];
-            EXPECT_NEAR(value, expected[offsets[b] + k], 1e-9 * scale + 1e-12)
-                << fit::to_string(c.model) << (folded ? " folded" : "") << " bin " << i << " block "
-                << b << " column " << k;
+      on_every_target([&] {
+        ASSERT_TRUE(cost.Evaluate(blocks, residuals.data(), rows.data()));
+        // The axis moves on the sphere (a Ceres SphereManifold): only the derivative across p
+        // counts, and the written forms of the models differ along p (dexp uses |w - p|^2 where
+        // the cost uses u^2 + v^2 + rho^2, equal for unit p only).
+        const Eigen::Matrix3d tangent = Eigen::Matrix3d::Identity() - p.axis * p.axis.transpose();
+        const int offsets[5] = {0, 3, 7, 14, 17};
+        const Eigen::Matrix3d second_tangent =
+            Eigen::Matrix3d::Identity() - p.second_axis * p.second_axis.transpose();
+        for (std::size_t i = 0; i < grid.size(); ++i) {
+          Eigen::VectorXd expected = reference[i].v;
+          expected.head<3>() = tangent * expected.head<3>();
+          expected.segment<3>(14) = second_tangent * expected.segment<3>(14);
+          Eigen::Vector3d axis_row(jacobian[0].data() + 3 * i);
+          axis_row = tangent * axis_row;
+          Eigen::Vector3d second_axis_row = Eigen::Vector3d::Zero();
+          if (sizes.size() > 3) {
+            second_axis_row = second_tangent * Eigen::Vector3d(jacobian[3].data() + 3 * i);
+          }
+          const double scale = expected.cwiseAbs().maxCoeff();
+          for (std::size_t b = 0; b < sizes.size(); ++b) {
+            for (int k = 0; k < sizes[b]; ++k) {
+              const double value = b == 0   ? axis_row[k]
+                                   : b == 3 ? second_axis_row[k]
+                                            : jacobian[b][i * static_cast<std::size_t>(sizes[b]) +
+                                                          static_cast<std::size_t>(k)];
+              EXPECT_NEAR(value, expected[offsets[b] + k], 1e-9 * scale + 1e-12)
+                  << fit::to_string(c.model) << (folded ? " folded" : "") << " bin " << i
+                  << " block " << b << " column " << k;
+            }
           }
         }
-      }
+      });
     }
   }
 }

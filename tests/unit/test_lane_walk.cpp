@@ -6,13 +6,13 @@
 // 1e-9 of the largest (a cell that a collision left by rounding would differ by one event: about
 // 1e-4 of these tallies' largest cells).
 #include <gtest/gtest.h>
-#include <hwy/targets.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
 
+#include "every_target.hpp"
 #include "scatterlab/core/phase_function.hpp"
 #include "scatterlab/tally/scorer.hpp"
 #include "scatterlab/tally/tally_book.hpp"
@@ -29,6 +29,8 @@
 
 namespace scatterlab {
 namespace {
+
+using testing::on_every_target;
 
 struct Walked {
   std::vector<double> sums;
@@ -59,17 +61,6 @@ void expect_same_sums(const OneWalk& one, const LaneWalk& lanes, std::size_t cel
     differing += std::abs(a.sums[i] - b.sums[i]) > 1e-9 * largest;
   }
   EXPECT_EQ(differing, 0u) << "of " << a.sums.size() << " cells";
-}
-
-// Runs `check` on every instruction set this machine runs, each in turn.
-template <class Check>
-void on_every_target(const Check& check) {
-  for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
-    SCOPED_TRACE(hwy::TargetName(target));
-    hwy::SetSupportedTargetsForTest(target);
-    check();
-  }
-  hwy::SetSupportedTargetsForTest(0);  // back to the best the machine has
 }
 
 // `geometry` and `kind` the same geometry, for RandomWalk and LaneWalk, with the collision
