@@ -47,7 +47,10 @@ bool all_finite(const double* values, int count) {
 }
 
 // The rows of a lobe's axis and shape blocks for residual i, `factor` = scale / sigma
-// (the a-derivative is `sum` times it; `extra_a` adds the ridge's). false where not finite.
+// (the a-derivative is `sum` times it; `extra_a` adds the ridge's). A lobe whose scale
+// underflowed to 0 (its largest l below about -745) adds nothing to the bin, and nothing to the
+// derivatives either: e^{largest} times sums that may have overflowed tends to 0. false where
+// not finite.
 bool write_rows(const Lobe& lobe, const BinAverages& m, std::size_t i, double factor,
                 double extra_a, int shape_size, double* axis_row, double* shape_row) {
   if (axis_row) {
@@ -56,18 +59,22 @@ bool write_rows(const Lobe& lobe, const BinAverages& m, std::size_t i, double fa
       for (int k = 0; k < 3; ++k) {
         value += m.d_t1[k][i] * lobe.t1_jet[k].v[c] + m.d_t2[k][i] * lobe.t2_jet[k].v[c];
       }
-      axis_row[c] = factor * value;
+      axis_row[c] = factor == 0.0 ? 0.0 : factor * value;
     }
     if (!all_finite(axis_row, 3)) return false;
   }
   if (shape_row) {
-    shape_row[0] = factor * m.sum[i] + extra_a;
-    shape_row[1] = factor * m.ramp[i];
-    shape_row[2] = factor * m.ramp_gamma[i];
-    if (shape_size == AnisotropicDoubleExponential::kShape) {
-      // dA/deta = A, dB/deta = -B
-      shape_row[3] =
-          factor * (m.along[i] * lobe.terms.along_scale - m.across[i] * lobe.terms.across_scale);
+    for (int k = 0; k < shape_size; ++k) shape_row[k] = 0.0;
+    shape_row[0] = extra_a;
+    if (factor != 0.0) {
+      shape_row[0] += factor * m.sum[i];
+      shape_row[1] = factor * m.ramp[i];
+      shape_row[2] = factor * m.ramp_gamma[i];
+      if (shape_size == AnisotropicDoubleExponential::kShape) {
+        // dA/deta = A, dB/deta = -B
+        shape_row[3] =
+            factor * (m.along[i] * lobe.terms.along_scale - m.across[i] * lobe.terms.across_scale);
+      }
     }
     if (!all_finite(shape_row, shape_size)) return false;
   }

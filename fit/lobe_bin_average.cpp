@@ -129,12 +129,19 @@ void average_over_bins(const LobeTerms& lobe, const BinNodes& nodes, BinAverages
       if constexpr (kJacobian) {
         const V u = hn::LoadU(d, term(q, kU)), v = hn::LoadU(d, term(q, kV));
         const V rho = hn::LoadU(d, term(q, kRho)), s = hn::LoadU(d, term(q, kS));
+        // A node whose weight underflowed to 0 adds nothing, though its R or e^{gamma s} may be
+        // infinite (0 inf would be NaN): there l = a + b R falls to -infinity faster than the
+        // factors grow, so each product's limit is 0.
+        const auto live = hn::Gt(weight, zero);
         // g = w' b e^{gamma s} / (2 s), 0 at s = 0 (the subgradient of lobe_model.hpp)
         const V g = hn::IfThenElseZero(
-            hn::Gt(s, zero),
+            hn::And(live, hn::Gt(s, zero)),
             hn::Div(hn::Mul(hn::Mul(weight, b), hn::LoadU(d, term(q, kGrowth))), hn::Add(s, s)));
-        sum_ramp = hn::MulAdd(weight, hn::LoadU(d, term(q, kRamp)), sum_ramp);
-        sum_ramp_gamma = hn::MulAdd(weight, hn::LoadU(d, term(q, kRampGamma)), sum_ramp_gamma);
+        sum_ramp = hn::Add(sum_ramp,
+                           hn::IfThenElseZero(live, hn::Mul(weight, hn::LoadU(d, term(q, kRamp)))));
+        sum_ramp_gamma =
+            hn::Add(sum_ramp_gamma,
+                    hn::IfThenElseZero(live, hn::Mul(weight, hn::LoadU(d, term(q, kRampGamma)))));
         const V gu = hn::Mul(g, u), gv = hn::Mul(g, v), grho = hn::Mul(g, rho);
         sum_along = hn::MulAdd(gu, u, sum_along);
         sum_across = hn::MulAdd(gv, v, sum_across);

@@ -163,6 +163,39 @@ TEST(DoubleExponentialCost, JacobianIsTheModelsDerivative) {
   }
 }
 
+// Where a trial step takes the lobe so steep that its bins' scale e^{largest} underflows to 0
+// while the sums of its gradient overflow (gamma near its bound, b near 0: a point a fit of the
+// 1e8-photon beam reached), the bins add nothing and neither do their derivatives: the
+// Jacobian is 0 there, not NaN (0 inf), which would end the solve at a point it had accepted.
+TEST(DoubleExponentialCost, AVanishedLobeHasAZeroJacobianNotNaN) {
+  const fit::LobeGrid grid = angular_grid(18, 36, 3);
+  const Case steep{LobeModel::adexp,
+                   parameters(direction(0.3, 0.2), {-1.7, -4.4e-11, 48.97, -6.55})};
+  const fit::LobeObservations o = observations({LobeModel::adexp, cases()[2].parameters}, grid);
+  const fit::DoubleExponentialCost cost(grid, o, LobeModel::adexp);
+  fit::LobeParameters p = steep.parameters;
+  const double* blocks[2] = {p.axis.data(), p.shape.data()};
+  std::vector<double> residuals(grid.size()), axis_rows(3 * grid.size()),
+      shape_rows(4 * grid.size());
+  double* rows[2] = {axis_rows.data(), shape_rows.data()};
+  on_every_target([&] {
+    ASSERT_TRUE(cost.Evaluate(blocks, residuals.data(), rows));
+    std::size_t vanished = 0;
+    for (std::size_t i = 0; i < grid.size(); ++i) {
+      for (int k = 0; k < 4; ++k) EXPECT_TRUE(std::isfinite(shape_rows[4 * i + k])) << i;
+      for (int k = 0; k < 3; ++k) EXPECT_TRUE(std::isfinite(axis_rows[3 * i + k])) << i;
+      // The models' own average (lobe_model.hpp) is NaN where every node's l is -infinity
+      // (-inf - -inf); where it is finite, the residual is its.
+      const double model = std::exp(fit::log_bin_average(LobeModel::adexp, grid, i, p));
+      if (std::isfinite(model)) {
+        EXPECT_NEAR(residuals[i], (model - o.radiance[i]) / o.sigma[i], 1e-10) << "bin " << i;
+      }
+      vanished += !(model > 0.0);
+    }
+    EXPECT_GT(vanished, 0u);
+  });
+}
+
 TEST(DoubleExponentialCost, OtherModelsAreRefused) {
   const fit::LobeGrid grid = angular_grid(18, 36, 1);
   const fit::LobeObservations o;
