@@ -2,10 +2,7 @@
 
 #include <ceres/jet.h>
 
-#include <algorithm>
-#include <array>
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
