@@ -313,7 +313,7 @@ LobeFit solve(LobeModel model, const LobeGrid& grid, const LobeObservations& o,
   // With bounds, Ceres follows every step with a projected Armijo line search, whose default
   // cubic interpolation evaluates the gradient, a whole Jacobian, at each trial point. For the
   // double exponentials, whose Jacobian is most of a fit's time, bisection on the cost alone:
-  // on the 1e8-photon beam of the README it takes adexp2_ridge from 95 % to 100 % of bins within
+  // on the 1e8-photon beam of the README it takes adexp2_ridge from 95 % to 99.7 % of bins within
   // 2x the noise and all the fits from 26.5 to 20 s; the SG family (Jets, cheap) keeps the cubic
   // steps, which reached a lower chi-square in 24 of 595 asg bins.
   if (uses_double_exponential_cost(model)) {
