@@ -90,8 +90,7 @@ DoubleExponentialCost::DoubleExponentialCost(const LobeGrid& grid,
                       : AnisotropicDoubleExponential::kShape),
       with_ridge_(model == LobeModel::adexp_ridge || model == LobeModel::adexp2_ridge),
       two_lobes_(model == LobeModel::adexp2_ridge) {
-  if (model != LobeModel::dexp && model != LobeModel::dexp_paper && model != LobeModel::adexp &&
-      !with_ridge_) {
+  if (!serves(model)) {
     throw std::invalid_argument("DoubleExponentialCost: not a double-exponential model");
   }
   set_num_residuals(static_cast<int>(observations.radiance.size()));

@@ -37,8 +37,14 @@ namespace scatterlab::fit {
 // second lobe's axis (3) and shape (4).
 class DoubleExponentialCost final : public ceres::CostFunction {
  public:
-  // `model`: dexp (or dexp_paper), adexp, adexp_ridge or adexp2_ridge; throws std::invalid_argument
-  // for another model.
+  // The models it serves: dexp (and dexp_paper), adexp, adexp_ridge and adexp2_ridge.
+  static bool serves(LobeModel model) {
+    return model == LobeModel::dexp_paper || model == LobeModel::dexp ||
+           model == LobeModel::adexp || model == LobeModel::adexp_ridge ||
+           model == LobeModel::adexp2_ridge;
+  }
+
+  // Throws std::invalid_argument for a model it does not serve.
   DoubleExponentialCost(const LobeGrid& grid, const LobeObservations& observations,
                         LobeModel model);
 

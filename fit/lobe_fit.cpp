@@ -135,12 +135,6 @@ auto with_evaluator(LobeModel model, const LobeGrid& grid, const LobeParameters&
                                            p.second_shape.data()));
 }
 
-// The models of DoubleExponentialCost (double_exponential_cost.hpp); the others run in Jets.
-bool uses_double_exponential_cost(LobeModel model) {
-  return model == LobeModel::dexp_paper || model == LobeModel::dexp || model == LobeModel::adexp ||
-         model == LobeModel::adexp_ridge || model == LobeModel::adexp2_ridge;
-}
-
 // A bound on one parameter: block 0 = shape, 1 = ridge, 2 = the second lobe's shape. `artificial`:
 // a fit that ends on it is at_bound (lambda >= 0, c >= 0, k >= 0 and theta_on in [0, pi] are the
 // models' own domains; a ridge onset narrower than 1e-3 rad, or wider than 1 rad, cannot be told
@@ -316,7 +310,7 @@ LobeFit solve(LobeModel model, const LobeGrid& grid, const LobeObservations& o,
   // on the 1e8-photon beam of the README it takes adexp2_ridge from 95 % to 99.7 % of bins within
   // 2x the noise and all the fits from 26.5 to 20 s; the SG family (Jets, cheap) keeps the cubic
   // steps, which reached a lower chi-square in 24 of 595 asg bins.
-  if (uses_double_exponential_cost(model)) {
+  if (DoubleExponentialCost::serves(model)) {
     solver.line_search_interpolation_type = ceres::BISECTION;
   }
   solver.logging_type = ceres::SILENT;

@@ -393,6 +393,17 @@ namespace scatterlab {
 HWY_EXPORT(RunLanes);
 HWY_EXPORT(LaneCount);
 
+namespace {
+
+void refuse_sphere_light_off_the_sphere(LaneWalk::Geometry geometry, const Source& source) {
+  if (source.kind == Source::Kind::sphere_light && geometry != LaneWalk::Geometry::sphere &&
+      geometry != LaneWalk::Geometry::fresnel_sphere) {
+    throw std::invalid_argument("LaneWalk: a sphere light needs the sphere's geometry");
+  }
+}
+
+}  // namespace
+
 LaneWalk::LaneWalk(Geometry geometry, double eta, const Scorer& scorer, const Source& source,
                    double albedo, double g, VolumeEstimator estimator, double escape_radius,
                    std::uint64_t seed, double radius)
@@ -414,10 +425,7 @@ LaneWalk::LaneWalk(Geometry geometry, double eta, const Scorer& scorer, const So
   if (geometry == Geometry::layered_slab) {
     throw std::invalid_argument("LaneWalk: a layered slab is given by its stack (Slab)");
   }
-  if (source.kind == Source::Kind::sphere_light && geometry != Geometry::sphere &&
-      geometry != Geometry::fresnel_sphere) {
-    throw std::invalid_argument("LaneWalk: a sphere light needs the sphere's geometry");
-  }
+  refuse_sphere_light_off_the_sphere(geometry, source);
 }
 
 LaneWalk::LaneWalk(const Slab& slab, Weighting weighting, const Scorer& scorer,
@@ -434,9 +442,7 @@ LaneWalk::LaneWalk(const Slab& slab, Weighting weighting, const Scorer& scorer,
              seed,
              slab,
              weighting} {
-  if (source.kind == Source::Kind::sphere_light) {
-    throw std::invalid_argument("LaneWalk: a sphere light needs the sphere's geometry");
-  }
+  refuse_sphere_light_off_the_sphere(Geometry::layered_slab, source);
 }
 
 std::uint64_t LaneWalk::run(std::uint64_t first, std::uint64_t last, double* buffer,
