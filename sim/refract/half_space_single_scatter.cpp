@@ -58,10 +58,7 @@ SingleScatterReflectance half_space_single_scatter_reflectance(const Medium& med
                        "finite, non-negative, increasing values");
     }
   }
-  const double z_max = depth_cutoff_mfp / s.sigma_t;
-  const QuadratureOptions inner{0.0, 0.1 * rel_tol, 200};
-  const QuadratureOptions outer{0.0, rel_tol, 400};
-  const double tan_critical = std::tan(s.critical_angle);
+  const QuadratureOptions options{0.0, rel_tol, 400};
 
   // The annuli are independent: one thread each, so the figures do not depend on the thread count.
   const std::size_t bins = r_edges.size() - 1;
@@ -71,33 +68,22 @@ SingleScatterReflectance half_space_single_scatter_reflectance(const Medium& med
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::size_t bin = 0; bin < bins; ++bin) {
     const double r0 = r_edges[bin], r1 = r_edges[bin + 1];
-    double inner_error = 0.0;
-    // Power leaving through the annulus from depth z, per unit depth.
-    const auto per_depth = [&](double z) {
-      const double theta_lo = std::atan2(r0, z);
-      const double theta_hi = std::min(std::atan2(r1, z), s.critical_angle);
-      if (!(theta_hi > theta_lo)) return 0.0;
-      const QuadratureResult q = integrate_adaptive(
-          [&](double theta) { return 2.0 * pi * std::sin(theta) * s.exit_kernel(z, theta); },
-          theta_lo, theta_hi, inner);
-      const double weight = s.source(z);
-      inner_error += weight * q.error;
-      return weight * q.value;
+    // Power leaving through the annulus, per unit exit angle (header: the depth integral done in
+    // closed form). With k = sigma_t (1 + 1/c) and z_i = r_i / tan theta,
+    //   int_z0^z1 exp(-k z) dz = exp(-k z0) (1 - exp(-k (z1 - z0))) / k,
+    // and k z_i = sigma_t r_i (1 + c) / sin theta; the expm1 keeps thin annuli's digits.
+    const auto per_angle = [&](double theta) {
+      const double sin_t = std::sin(theta), c = std::cos(theta);
+      if (!(sin_t > 0.0) || !(c > 0.0)) return 0.0;
+      const double steepness = s.sigma_t * (1.0 + c) / sin_t;  // k / tan theta
+      const double depth_share = std::exp(-steepness * r0) * -std::expm1(-steepness * (r1 - r0)) *
+                                 c / (s.sigma_t * (1.0 + c));
+      return 2.0 * pi * sin_t * s.exit_kernel(0.0, theta) * s.source(0.0) * depth_share;
     };
-    // Kinks where a bin edge crosses the critical angle; the profile's scale r0, r1 and 1/sigma_t.
-    std::vector<double> breaks{0.0, z_max};
-    for (const double candidate : {r0 / tan_critical, r1 / tan_critical, r0, r1, 1.0 / s.sigma_t}) {
-      if (candidate > 0.0 && candidate < z_max && std::isfinite(candidate)) breaks.push_back(candidate);
-    }
-    std::sort(breaks.begin(), breaks.end());
-    breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
-    const QuadratureResult q = integrate_adaptive(per_depth, breaks, outer);
+    const QuadratureResult q = integrate_adaptive(per_angle, 0.0, s.critical_angle, options);
     const double area = pi * (r1 * r1 - r0 * r0);
-    // The outer estimate plus the inner errors integrated over depth, estimated with the mean
-    // quadrature weight z_max / evaluations.
-    const double inner_share = inner_error * z_max / std::max(q.evaluations, 1);
     result.mean[bin] = q.value / area;
-    result.error[bin] = (q.error + inner_share) / area;
+    result.error[bin] = q.error / area;
   }
   // Over all r the depth integral is exact: int sigma_s T_in exp(-sigma_t z (1 + 1/c)) dz =
   // albedo T_in c / (1 + c), leaving one integral over the exit angle.

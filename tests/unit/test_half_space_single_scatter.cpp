@@ -84,20 +84,32 @@ TEST(HalfSpaceSingleScatter, UnitIndexIsotropicTotal) {
   EXPECT_NEAR(r.total, 0.7 * (1.0 - std::log(2.0)) / 2.0, 1e-12);
 }
 
+// The bin averages integrate over the exit angle with the depth in closed form; the pointwise
+// R1(r) integrates over depth. Integrating R1(r) 2 pi r over each annulus is the second,
+// independent path: inner and outer annuli, a thin one, forward and backward scattering, a
+// critical angle and none.
 TEST(HalfSpaceSingleScatter, BinAverageMatchesPointwiseExitance) {
-  const Medium medium = Medium::from_albedo(0.9, 1.0, 0.5);
-  const double eta = 1.33;
-  const std::vector<double> edges{0.4, 0.5};
-  const SingleScatterReflectance binned = half_space_single_scatter_reflectance(medium, eta, edges);
-  // Gauss-Legendre over the annulus of the pointwise R1(r) 2 pi r.
-  const double nodes[5] = {-0.906179845938664, -0.538469310105683, 0.0, 0.538469310105683, 0.906179845938664};
-  const double weights[5] = {0.236926885056189, 0.478628670499366, 0.568888888888889, 0.478628670499366, 0.236926885056189};
-  double power = 0.0;
-  for (int i = 0; i < 5; ++i) {
-    const double r = 0.45 + 0.05 * nodes[i];
-    power += 0.05 * weights[i] * 2 * pi * r * half_space_single_scatter_exitance(medium, eta, r).value;
+  const std::vector<double> edges{0.0, 0.05, 0.4, 0.5, 3.0, 3.001, 9.5, 10.0};
+  for (const double g : {0.0, 0.5, -0.3, 0.95}) {
+    for (const double eta : {1.0, 1.33, 0.8, 1.5}) {
+      const Medium medium = Medium::from_albedo(0.9, 2.0, g);
+      const SingleScatterReflectance binned =
+          half_space_single_scatter_reflectance(medium, eta, edges);
+      for (std::size_t b = 0; b + 1 < edges.size(); ++b) {
+        if (b == 2 || b == 4) continue;  // the gaps between the annuli checked
+        const double r0 = edges[b], r1 = edges[b + 1];
+        const QuadratureResult power = integrate_adaptive(
+            [&](double r) {
+              return 2.0 * pi * r * half_space_single_scatter_exitance(medium, eta, r).value;
+            },
+            r0, r1, QuadratureOptions{0.0, 1e-10, 200});
+        const double pointwise = power.value / (pi * (r1 * r1 - r0 * r0));
+        EXPECT_NEAR(binned.mean[b] / pointwise, 1.0, 1e-7)
+            << "g " << g << ", eta " << eta << ", [" << r0 << ", " << r1 << ")";
+        EXPECT_LE(binned.error[b], 1e-8 * binned.mean[b]);
+      }
+    }
   }
-  EXPECT_NEAR(binned.mean[0] / (power / (pi * (0.25 - 0.16))), 1.0, 1e-6);
 }
 
 TEST(HalfSpaceSingleScatter, RefusesBadInput) {

@@ -17,9 +17,11 @@
 //   R1(r) = int_0^inf dz sigma_s T_in exp(-sigma_t z) p(-cos theta_i) T(theta_i)
 //                        exp(-sigma_t z / cos theta_i) cos^3(theta_i) / z^2,
 // in 1 / length_unit^2 of the Medium. Bin averages are (1 / (pi (r1^2 - r0^2))) times the
-// power leaving through the annulus [r0, r1), computed as an outer adaptive Gauss-Kronrod
-// integral over z of an inner one over theta_i (r = z tan theta_i turns 2 pi r dr cos^3 / z^2
-// into 2 pi sin theta_i d theta_i).
+// power leaving through the annulus [r0, r1). At fixed z, r = z tan theta_i turns
+// 2 pi r dr cos^3 / z^2 into 2 pi sin theta_i d theta_i; exchanging the order, at fixed theta_i
+// the annulus is the depth range [r0, r1) / tan theta_i, over which the two exponentials
+// integrate in closed form, leaving one adaptive Gauss-Kronrod integral over theta_i per annulus
+// (the pointwise R1(r) below is integrated over z instead: the tests hold the two together).
 
 #include <span>
 #include <vector>
