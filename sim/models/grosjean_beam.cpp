@@ -101,23 +101,20 @@ GrosjeanBeam grosjean_beam(const HalfSpaceMedium& medium) {
   // e^{-x / mu} turns over at mu ~ x, between the first nodes).
   const GaussLegendre rule = gauss_legendre(escape_points);
   const double mu_c = critical_cosine(m);
+  std::vector<double> weights, rates;
   for (int k = 0; k < escape_points; ++k) {
     const double u = 0.5 * (1.0 + rule.nodes[static_cast<std::size_t>(k)]);
     const double mu = mu_c + (1.0 - mu_c) * u * u;
     const double jacobian = 0.5 * rule.weights[static_cast<std::size_t>(k)] * 2.0 * (1.0 - mu_c) * u;
-    m.escape_cosines.push_back(mu);
-    m.escape_weights.push_back(0.5 * jacobian * transmittance(m, mu));
+    weights.push_back(0.5 * jacobian * transmittance(m, mu));
+    rates.push_back(1.0 / mu);
   }
+  m.escape = ExponentialSum(weights, rates);
   return m;
 }
 
 double grosjean_beam_escape(const GrosjeanBeam& m, double depth) {
-  const double x = m.sigma_t * depth;
-  double p = 0.0;
-  for (std::size_t k = 0; k < m.escape_cosines.size(); ++k) {
-    p += m.escape_weights[k] * std::exp(-x / m.escape_cosines[k]);
-  }
-  return p;
+  return m.escape(m.sigma_t * depth);
 }
 
 double grosjean_beam_reflectance(const GrosjeanBeam& m, double r, ModelPart part) {

@@ -46,6 +46,7 @@
 #include <span>
 #include <vector>
 
+#include "scatterlab/core/exponential_sum.hpp"
 #include "scatterlab/models/half_space_medium.hpp"
 
 namespace scatterlab {
@@ -62,8 +63,9 @@ struct GrosjeanBeam {
   double fluence_weight = 0.25;  // C_phi
   double flux_weight = 0.5;      // C_E
   double eta = 1.0;              // n_medium / n_outside
-  // P(z') = sum_k escape_weights[k] exp(-sigma_t' z' / escape_cosines[k]) (Gauss-Legendre).
-  std::vector<double> escape_cosines, escape_weights;
+  // P(z') = sum_k w_k exp(-sigma_t' z' / mu_k), Gauss-Legendre over the exit cosines mu_k:
+  // escape(sigma_t' z').
+  ExponentialSum escape;
 };
 
 GrosjeanBeam grosjean_beam(const HalfSpaceMedium& medium);
