@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstddef>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
 #include "scatterlab/transport/half_space.hpp"
@@ -174,6 +175,26 @@ HWY_INLINE void turn_direction(V cos_theta, V cos_phi, V sin_phi, V& wx, V& wy, 
   wz = hn::Mul(nz, pull);
 }
 
+// Where the flight ending at (x, y, z) certainly stays inside the geometry: the lanes whose
+// surface test (the geometry's leaves(), one lane at a time) would find no crossing. The
+// half-space's test is the same comparison on the same z; the sphere's keeps a margin of 1e-12
+// of R^2, so that a sum rounded otherwise than Eigen's squaredNorm never passes a photon that
+// crosses (those near the surface take the lane-by-lane path, which decides exactly).
+HWY_INLINE auto stays_inside(const InfiniteMedium&, const LaneWalk::Setup&, V, V, V) {
+  const D d;
+  return hn::Eq(hn::Zero(d), hn::Zero(d));
+}
+template <bool fresnel>
+HWY_INLINE auto stays_inside(const HalfSpace<fresnel>&, const LaneWalk::Setup&, V, V, V z) {
+  return hn::Not(hn::Lt(z, hn::Zero(D())));
+}
+template <bool fresnel>
+HWY_INLINE auto stays_inside(const Sphere<fresnel>&, const LaneWalk::Setup& setup, V x, V y, V z) {
+  const D d;
+  const V r2 = hn::MulAdd(x, x, hn::MulAdd(y, y, hn::Mul(z, z)));
+  return hn::Lt(r2, hn::Set(d, setup.radius * setup.radius * (1.0 - 1e-12)));
+}
+
 // One photon per lane; the arrays are the lanes' state between vector steps.
 struct Lanes {
   alignas(64) double x[kMaxLanes], y[kMaxLanes], z[kMaxLanes];     // position
@@ -184,7 +205,9 @@ struct Lanes {
   alignas(64) double next_x[kMaxLanes], next_y[kMaxLanes], next_z[kMaxLanes];
   alignas(64) double flight[kMaxLanes];  // mfp, or optical depth in the slab
   alignas(64) double g[kMaxLanes];       // the slab: the Henyey-Greenstein g of the lane's layer
-  double weight[kMaxLanes];              // implicit capture
+  alignas(64) std::int64_t cell[kMaxLanes];     // the fluence cell of the flight's end, or -1
+  std::uint8_t plain[(kMaxLanes + 7) / 8 + 8];  // bit k: lane k's flight stays inside, scatters
+  double weight[kMaxLanes];                     // implicit capture
   int order[kMaxLanes];
   int layer[kMaxLanes];  // the slab
   bool busy[kMaxLanes];
@@ -230,6 +253,11 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
   };
   std::size_t busy = 0;
   for (std::size_t k = 0; k < n; ++k) busy += (lane.busy[k] = launch(k));
+  // Within the escape radius for certain, by the same margin as the sphere's surface.
+  const bool escape_limited = std::isfinite(setup.escape_radius2);
+  const std::optional<Scorer::FluenceCells> cells = scorer.fluence_cells();
+  const DI di;
+  const double plain_escape_radius2 = setup.escape_radius2 * (1.0 - 1e-12);
 
   while (busy > 0) {
     // The event's four uniforms and the free path for every lane at once, and outside the slab
@@ -245,9 +273,38 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
     hn::Store(flight, d, lane.flight);
     if constexpr (!Geometry::layered) {
       const V wx = hn::Load(d, lane.wx), wy = hn::Load(d, lane.wy), wz = hn::Load(d, lane.wz);
-      hn::Store(hn::MulAdd(flight, wx, hn::Load(d, lane.x)), d, lane.next_x);
-      hn::Store(hn::MulAdd(flight, wy, hn::Load(d, lane.y)), d, lane.next_y);
-      hn::Store(hn::MulAdd(flight, wz, hn::Load(d, lane.z)), d, lane.next_z);
+      const V next_x = hn::MulAdd(flight, wx, hn::Load(d, lane.x));
+      const V next_y = hn::MulAdd(flight, wy, hn::Load(d, lane.y));
+      const V next_z = hn::MulAdd(flight, wz, hn::Load(d, lane.z));
+      hn::Store(next_x, d, lane.next_x);
+      hn::Store(next_y, d, lane.next_y);
+      hn::Store(next_z, d, lane.next_z);
+      // The plain event, most of them: the flight stays inside, within the escape radius, and
+      // the photon scatters. Such a lane needs only its move and its collision scored.
+      auto plain = hn::And(hn::Lt(u1, hn::Set(d, setup.albedo)),
+                           stays_inside(geometry, setup, next_x, next_y, next_z));
+      if (escape_limited) {
+        const V r2 =
+            hn::MulAdd(next_x, next_x, hn::MulAdd(next_y, next_y, hn::Mul(next_z, next_z)));
+        plain = hn::And(plain, hn::Lt(r2, hn::Set(d, plain_escape_radius2)));
+      }
+      hn::StoreMaskBits(d, plain, lane.plain);
+      if (collisions && cells) {
+        // Scorer::collision's cell, for all lanes: (r, z) on the grid, or -1 off it.
+        const V r = hn::Sqrt(hn::MulAdd(next_x, next_x, hn::Mul(next_y, next_y)));
+        const V ur =
+            hn::Mul(hn::Sub(r, hn::Set(d, cells->r.min)), hn::Set(d, cells->r.inverse_width));
+        const V uz =
+            hn::Mul(hn::Sub(next_z, hn::Set(d, cells->z.min)), hn::Set(d, cells->z.inverse_width));
+        const V zero = hn::Zero(d);
+        const auto on_grid =
+            hn::And(hn::And(hn::Ge(ur, zero), hn::Lt(ur, hn::Set(d, cells->r.end))),
+                    hn::And(hn::Ge(uz, zero), hn::Lt(uz, hn::Set(d, cells->z.end))));
+        const V cell = hn::MulAdd(hn::Trunc(ur), hn::Set(d, static_cast<double>(cells->z_bins)),
+                                  hn::Trunc(uz));
+        hn::Store(hn::ConvertTo(di, hn::IfThenElse(on_grid, cell, hn::Set(d, -1.0))), di,
+                  lane.cell);
+      }
     }
 
     // Each lane's surface, escape, collision and absorption, in lane order (the buffer's order of
@@ -255,6 +312,27 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
     for (std::size_t k = 0; k < n; ++k) {
       lane.scatters[k] = 0.0;
       if (!lane.busy[k]) continue;
+      if constexpr (!Geometry::layered) {
+        if ((lane.plain[k / 8] >> (k % 8)) & 1U) {
+          // What the general path below does with such a lane, without its tests.
+          lane.x[k] = lane.next_x[k], lane.y[k] = lane.next_y[k], lane.z[k] = lane.next_z[k];
+          if constexpr (collisions) {
+            if (cells) {
+              if (lane.cell[k] >= 0) {
+                scorer.collision_in_cell(buffer, static_cast<std::size_t>(lane.cell[k]),
+                                         lane.order[k]);
+              }
+            } else {
+              scorer.collision(buffer, Vec3(lane.x[k], lane.y[k], lane.z[k]),
+                               Vec3(lane.wx[k], lane.wy[k], lane.wz[k]), lane.order[k]);
+            }
+          }
+          lane.scatters[k] = std::bit_cast<double>(~std::uint64_t{0});
+          ++lane.order[k];
+          ++scatterings;
+          continue;
+        }
+      }
       // Constant 1 under analog absorption, where the compiler folds it away.
       double weight = 1.0;
       if constexpr (implicit) weight = lane.weight[k];

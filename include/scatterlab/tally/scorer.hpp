@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 #include "scatterlab/core/frame.hpp"
@@ -31,6 +32,21 @@ class Scorer {
   // one predictable test (a call per collision costs more than the scoring).
   [[gnu::always_inline]] void collision(double* buffer, const Vec3& position, const Vec3& direction,
                                         int order) const;
+
+  // Where the one volume score is the fluence phi(r, z), a walk may find the cells itself (the
+  // lane walk, several at once): the grid of collision() above, and the add it makes there.
+  struct FluenceCells {
+    AxisLookup r, z;
+    std::size_t z_bins;
+  };
+  std::optional<FluenceCells> fluence_cells() const {
+    if (!fluence_only_) return std::nullopt;
+    return FluenceCells{r_cells_, z_cells_, z_bins_};
+  }
+  // A collision in cell ir * z_bins + iz of fluence_cells(), after `order` scatterings.
+  void collision_in_cell(double* buffer, std::size_t cell, int order) const {
+    add(buffer, fluence_ + cell, split_ ? book_.order_block(order) : 0, 1.0);
+  }
 
   // Track-length estimator: the flight from `start` along `direction` for `length` mfp.
   void flight(double* buffer, std::vector<double>& crossings, const Vec3& start,

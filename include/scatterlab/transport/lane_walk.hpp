@@ -7,14 +7,18 @@
 // the collision scored, analog absorption, a new direction. What is done once for all lanes: the
 // Philox4x32-10 call (the same words, to the bit, as PhotonRandom's: each photon's stream is still
 // a pure function of (seed, photon index)), the log of the free path, the move, the phase
-// function's cos theta and azimuth and the turn of the direction. What stays one lane at a time:
-// launching a photon, the surface, scoring (Scorer, scattered into the tally buffer) and ending it.
+// function's cos theta and azimuth and the turn of the direction; which lanes make a plain event
+// (the flight stays inside the surface and the escape radius, and the photon scatters), and,
+// where the fluence phi(r, z) is the one volume score, each lane's cell. What stays one lane at a
+// time: the plain event's adds into the tally buffer; and for the rest, launching a photon, the
+// surface, scoring (Scorer, scattered into the tally buffer) and ending it.
 // A lane whose photon ends takes the next photon of the range at once, so the lanes stay full until
 // the range runs out.
 //
 // Same law, other bits than RandomWalk: the vector log is Highway's (within a few units in the
-// last place of the library's), the turn may fuse a multiply and an add, and the lanes' scores
-// reach the buffer in another order. The paths are the same photon by photon until a rounding
+// last place of the library's), the turn may fuse a multiply and an add, the fluence cell's
+// radius is rounded once (a fused x^2 + y^2), and the lanes' scores reach the buffer in another
+// order. The paths are the same photon by photon until a rounding
 // difference moves a collision across a bin edge; tests/unit/test_lane_walk.cpp holds the two
 // walks to each other on the same photons. A range's scores depend on the range alone, so a run
 // is still bitwise the same for any thread and rank count.
