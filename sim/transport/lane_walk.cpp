@@ -182,7 +182,7 @@ HWY_INLINE void turn_direction(V cos_theta, V cos_phi, V sin_phi, V& wx, V& wy, 
 // crosses (those near the surface take the lane-by-lane path, which decides exactly).
 HWY_INLINE auto stays_inside(const InfiniteMedium&, const LaneWalk::Setup&, V, V, V) {
   const D d;
-  return hn::Eq(hn::Zero(d), hn::Zero(d));
+  return hn::Eq(hn::Zero(d), hn::Zero(d));  // every lane: there is no surface
 }
 template <bool fresnel>
 HWY_INLINE auto stays_inside(const HalfSpace<fresnel>&, const LaneWalk::Setup&, V, V, V z) {
@@ -253,10 +253,10 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
   };
   std::size_t busy = 0;
   for (std::size_t k = 0; k < n; ++k) busy += (lane.busy[k] = launch(k));
-  // Within the escape radius for certain, by the same margin as the sphere's surface.
-  const bool escape_limited = std::isfinite(setup.escape_radius2);
   const std::optional<Scorer::FluenceCells> cells = scorer.fluence_cells();
   const DI di;
+  // Within the escape radius for certain: by the same margin as the sphere's surface.
+  const bool escape_limited = std::isfinite(setup.escape_radius2);
   const double plain_escape_radius2 = setup.escape_radius2 * (1.0 - 1e-12);
 
   while (busy > 0) {

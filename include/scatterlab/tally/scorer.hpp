@@ -244,8 +244,8 @@ class Scorer {
     const int ir = r_cells_.index(std::sqrt(r2));
     const int iz = z_cells_.index(position.z());
     if (ir < 0 || iz < 0) return;
-    add(buffer, fluence_ + static_cast<std::size_t>(ir) * z_bins_ + static_cast<std::size_t>(iz),
-        block, 1.0);
+    collision_in_cell(buffer, static_cast<std::size_t>(ir) * z_bins_ + static_cast<std::size_t>(iz),
+                      order);
     return;
   }
   if (fluence_spherical_ != absent) {
