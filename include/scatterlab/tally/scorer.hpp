@@ -44,7 +44,7 @@ class Scorer {
     return FluenceCells{r_cells_, z_cells_, z_bins_};
   }
   // A collision in cell ir * z_bins + iz of fluence_cells(), after `order` scatterings.
-  void collision_in_cell(double* buffer, std::size_t cell, int order) const {
+  [[gnu::always_inline]] void collision_in_cell(double* buffer, std::size_t cell, int order) const {
     add(buffer, fluence_ + cell, split_ ? book_.order_block(order) : 0, 1.0);
   }
 
@@ -179,7 +179,8 @@ class Scorer {
   }
 
   // Adds v at `index` of the all-orders block and, when split, of the order's block.
-  void add(double* buffer, std::size_t index, std::size_t order_block, double v) const {
+  [[gnu::always_inline]] void add(double* buffer, std::size_t index, std::size_t order_block,
+                                  double v) const {
     buffer[index] += v;
     if (split_) buffer[index + order_block] += v;
   }
@@ -188,8 +189,8 @@ class Scorer {
   // in mirrored bins; a direction exactly in the half-plane through the axis (omega . e_phi = 0,
   // as for light scattered once from a pencil beam, a delta in phi on a bin edge) is shared
   // equally between the two bins that meet there.
-  void add_radiance(double* buffer, std::size_t base, std::size_t block, double cos_phi,
-                    double sin_phi_sign, double v) const {
+  [[gnu::always_inline]] void add_radiance(double* buffer, std::size_t base, std::size_t block,
+                                           double cos_phi, double sin_phi_sign, double v) const {
     const int folded = phi_binning_.bin(cos_phi);
     if (axes_.fold_phi) {
       add(buffer, base + static_cast<std::size_t>(folded), block, v);
