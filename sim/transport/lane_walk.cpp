@@ -205,12 +205,12 @@ struct Lanes {
   alignas(64) double next_x[kMaxLanes], next_y[kMaxLanes], next_z[kMaxLanes];
   alignas(64) double flight[kMaxLanes];  // mfp, or optical depth in the slab
   alignas(64) double g[kMaxLanes];       // the slab: the Henyey-Greenstein g of the lane's layer
-  alignas(64) std::int64_t cell[kMaxLanes];     // the fluence cell of the flight's end, or -1
-  std::uint8_t plain[(kMaxLanes + 7) / 8 + 8];  // bit k: lane k's flight stays inside, scatters
-  double weight[kMaxLanes];                     // implicit capture
+  double weight[kMaxLanes];              // implicit capture
   int order[kMaxLanes];
   int layer[kMaxLanes];  // the slab
   bool busy[kMaxLanes];
+  alignas(64) std::int64_t cell[kMaxLanes];     // the fluence cell of the flight's end, or -1
+  std::uint8_t plain[(kMaxLanes + 7) / 8 + 8];  // bit k: lane k's flight stays inside, scatters
 };
 
 // `isotropic`: g = 0 everywhere (never in the slab, whose g is per layer); `collisions`: the
