@@ -42,7 +42,7 @@ class CosineBinning {
   }
 
   // The bin of the angle whose cosine is `cosine`; cosines below cos(A) give the last bin.
-  int bin(double cosine) const {
+  [[gnu::always_inline]] int bin(double cosine) const {
     const double u = std::clamp((1.0 - cosine) * cell_scale_, 0.0, static_cast<double>(cells_));
     int k = first_bin_[static_cast<std::size_t>(u)];
     while (k + 1 < bins_ && cosine < edge_cosines_[static_cast<std::size_t>(k) + 1]) ++k;
