@@ -55,7 +55,8 @@ class Scorer {
   // A photon of weight `weight` leaves through the surface at `where` after `order`
   // scatterings (surface_exit.hpp): through a slab's far side, the transmitted scores; else the
   // exit scores of the side it entered.
-  void exit(double* buffer, const SurfaceExit& where, int order, double weight = 1.0) const {
+  [[gnu::always_inline]] void exit(double* buffer, const SurfaceExit& where, int order,
+                                   double weight = 1.0) const {
     const std::size_t block = split_ ? book_.order_block(order) : 0;
     const SideScores& side = where.transmitted ? transmitted_ : exited_;
     if (side.total != absent) add(buffer, side.total, block, weight);
