@@ -253,7 +253,9 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
   };
   std::size_t busy = 0;
   for (std::size_t k = 0; k < n; ++k) busy += (lane.busy[k] = launch(k));
-  const std::optional<Scorer::FluenceCells> cells = scorer.fluence_cells();
+  // Where the one volume score is phi(r, z), its cells (only with the collision estimator).
+  const std::optional<Scorer::FluenceCells> cells =
+      collisions ? scorer.fluence_cells() : std::nullopt;
   const DI di;
   // Within the escape radius for certain: by the same margin as the sphere's surface.
   const bool escape_limited = std::isfinite(setup.escape_radius2);
@@ -289,7 +291,7 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
         plain = hn::And(plain, hn::Lt(r2, hn::Set(d, plain_escape_radius2)));
       }
       hn::StoreMaskBits(d, plain, lane.plain);
-      if (collisions && cells) {
+      if (cells) {
         // Scorer::collision's cell, for all lanes: (r, z) on the grid, or -1 off it.
         const V r = hn::Sqrt(hn::MulAdd(next_x, next_x, hn::Mul(next_y, next_y)));
         const V ur =
@@ -307,6 +309,19 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
       }
     }
 
+    // Lane k collides at its position after its flight, and scatters: what both paths below do.
+    const auto collide = [&](std::size_t k) {
+      if constexpr (collisions) {
+        scorer.collision(buffer, Vec3(lane.x[k], lane.y[k], lane.z[k]),
+                         Vec3(lane.wx[k], lane.wy[k], lane.wz[k]), lane.order[k]);
+      }
+    };
+    const auto scatter = [&](std::size_t k) {
+      lane.scatters[k] = std::bit_cast<double>(~std::uint64_t{0});
+      ++lane.order[k];
+      ++scatterings;
+    };
+
     // Each lane's surface, escape, collision and absorption, in lane order (the buffer's order of
     // adds), as RandomWalk::run has them.
     for (std::size_t k = 0; k < n; ++k) {
@@ -316,20 +331,12 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
         if ((lane.plain[k / 8] >> (k % 8)) & 1U) {
           // What the general path below does with such a lane, without its tests.
           lane.x[k] = lane.next_x[k], lane.y[k] = lane.next_y[k], lane.z[k] = lane.next_z[k];
-          if constexpr (collisions) {
-            if (cells) {
-              if (lane.cell[k] >= 0) {
-                scorer.collision_in_cell(buffer, static_cast<std::size_t>(lane.cell[k]),
-                                         lane.order[k]);
-              }
-            } else {
-              scorer.collision(buffer, Vec3(lane.x[k], lane.y[k], lane.z[k]),
-                               Vec3(lane.wx[k], lane.wy[k], lane.wz[k]), lane.order[k]);
-            }
+          if (!cells) {
+            collide(k);
+          } else if (lane.cell[k] >= 0) {
+            scorer.collision_in_cell(buffer, static_cast<std::size_t>(lane.cell[k]), lane.order[k]);
           }
-          lane.scatters[k] = std::bit_cast<double>(~std::uint64_t{0});
-          ++lane.order[k];
-          ++scatterings;
+          scatter(k);
           continue;
         }
       }
@@ -364,9 +371,7 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
         scorer.escape(buffer, weight);
       } else if (!left) {
         lane.x[k] = next.x(), lane.y[k] = next.y(), lane.z[k] = next.z();
-        if constexpr (collisions) {
-          scorer.collision(buffer, next, Vec3(lane.wx[k], lane.wy[k], lane.wz[k]), lane.order[k]);
-        }
+        collide(k);
         double albedo = setup.albedo;
         int layer = 0;
         if constexpr (Geometry::layered) {
@@ -390,9 +395,7 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
           scorer.absorption(buffer, next, lane.order[k], layer);
         }
         if (scatters) {
-          lane.scatters[k] = std::bit_cast<double>(~std::uint64_t{0});
-          ++lane.order[k];
-          ++scatterings;
+          scatter(k);
           continue;
         }
       }
