@@ -1,5 +1,6 @@
-// The cost of folding batches into statistics and of clearing a batch's buffer once it is sent to
-// the other ranks (batch_runner.hpp), per batch, for the default grid and a fine radiance grid.
+// The cost of folding batches into statistics (every cell scored, or a few) and of clearing a
+// batch's buffer once it is sent to the other ranks (batch_runner.hpp), per batch, for the default
+// grid and a fine radiance grid.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -42,6 +43,22 @@ void BM_FoldBatch(benchmark::State& state) {
                                                          benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_FoldBatch)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// A batch of a short run: 200 scored cells (100 photons of the default scene score about that
+// many), the same ones in every batch; the blocks no batch has scored are only read.
+void BM_FoldSparseBatch(benchmark::State& state) {
+  const std::size_t cells = cells_of(static_cast<int>(state.range(0)));
+  scatterlab::BatchStatistics statistics(cells);
+  std::vector<double> sums(cells, 0.0);
+  std::size_t batch = 0;
+  for (auto _ : state) {
+    for (std::size_t k = 0; k < 200; ++k) sums[k * (cells / 200)] = 1.0;
+    statistics.add_batch(batch++, sums.data(), 2.0, 0, cells);
+    benchmark::DoNotOptimize(statistics.mean().data());
+  }
+  state.counters["cells"] = static_cast<double>(cells);
+}
+BENCHMARK(BM_FoldSparseBatch)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // Clearing a batch's buffer after the exchange sent it (under MPI; on one rank folding clears it).
 void BM_ClearBatch(benchmark::State& state) {

@@ -4,9 +4,17 @@
 //   stderr = sqrt( sum_b (x_b - mean)^2 / (B (B - 1)) ).
 // Batches are added with Welford's update, in batch order, so that the result is the same
 // whatever order the batches finished in.
+//
+// A block of cells that no batch has scored yet holds mean 0 and sum of squares 0, which a batch
+// of zeros leaves exactly as they are (delta = 0 - 0, mean += 0, squares += 0 * 0): such a block
+// is skipped while the batch's sums there are zero, so that a short batch on a large grid costs a
+// read of its buffer rather than a Welford update of every cell. Same bits as folding every cell.
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -15,10 +23,16 @@ namespace scatterlab {
 
 class BatchStatistics {
  public:
-  explicit BatchStatistics(std::size_t cells) : mean_(cells, 0.0), squares_(cells, 0.0) {}
-  // Continues from a saved state (a checkpoint): the Welford mean and sum of squares per cell.
+  // Cells per block of the untouched test. Calls on disjoint ranges whose bounds are multiples
+  // of it may run on different threads at once.
+  static constexpr std::size_t kBlock = 64;
+
+  explicit BatchStatistics(std::size_t cells)
+      : mean_(cells, 0.0), squares_(cells, 0.0), untouched_(blocks(cells), 1) {}
+  // Continues from a saved state (a checkpoint): the Welford mean and sum of squares per cell,
+  // every block counted as scored.
   BatchStatistics(std::vector<double> mean, std::vector<double> squares)
-      : mean_(std::move(mean)), squares_(std::move(squares)) {}
+      : mean_(std::move(mean)), squares_(std::move(squares)), untouched_(blocks(mean_.size()), 0) {}
 
   // Adds x_b = batch_sums / photons_in_batch for cells [begin, end) and clears batch_sums
   // there. Call once per batch for every cell range, with batch_index counting from 0 in order.
@@ -26,12 +40,22 @@ class BatchStatistics {
                  std::size_t begin, std::size_t end) {
     const double per_photon = 1.0 / photons_in_batch;
     const double weight = 1.0 / static_cast<double>(batch_index + 1);
-    for (std::size_t i = begin; i < end; ++i) {
-      const double x = batch_sums[i] * per_photon;
-      batch_sums[i] = 0.0;
-      const double delta = x - mean_[i];
-      mean_[i] += delta * weight;
-      squares_[i] += delta * (x - mean_[i]);
+    for (std::size_t first = begin; first < end;) {
+      const std::size_t block = first / kBlock;
+      const std::size_t last = std::min(end, (block + 1) * kBlock);
+      if (untouched_[block] != 0 && all_zero(batch_sums + first, batch_sums + last)) {
+        first = last;
+        continue;
+      }
+      untouched_[block] = 0;
+      for (std::size_t i = first; i < last; ++i) {
+        const double x = batch_sums[i] * per_photon;
+        batch_sums[i] = 0.0;
+        const double delta = x - mean_[i];
+        mean_[i] += delta * weight;
+        squares_[i] += delta * (x - mean_[i]);
+      }
+      first = last;
     }
   }
 
@@ -54,8 +78,17 @@ class BatchStatistics {
   }
 
  private:
+  static std::size_t blocks(std::size_t cells) { return (cells + kBlock - 1) / kBlock; }
+  // Whether every value is +0 or -0: the bits but the sign, ORed, which vectorises.
+  static bool all_zero(const double* first, const double* last) {
+    std::uint64_t bits = 0;
+    for (const double* x = first; x != last; ++x) bits |= std::bit_cast<std::uint64_t>(*x);
+    return (bits << 1) == 0;
+  }
+
   std::vector<double> mean_;
-  std::vector<double> squares_;  // Welford's running sum of squared deviations
+  std::vector<double> squares_;          // Welford's running sum of squared deviations
+  std::vector<std::uint8_t> untouched_;  // per block: no batch has scored any of its cells yet
 };
 
 }  // namespace scatterlab

@@ -178,6 +178,7 @@ struct RingSlot {
 // A batch being folded in parts of kFoldPart cells (about 30 us each), so that threads waiting
 // for a buffer, or done with their batches, fold parts of it beside the folding thread.
 constexpr std::size_t kFoldPart = std::size_t{1} << 15;
+static_assert(kFoldPart % BatchStatistics::kBlock == 0, "parts folded at once share no block");
 struct FoldJob {
   double* sums = nullptr;
   std::uint64_t batch = 0;
