@@ -27,6 +27,19 @@ Action add_invert_command(CLI::App& app);
 Action add_mcml_command(CLI::App& app, const std::string& command_line, World& world);
 Action add_explore_command(CLI::App& app);
 
+// What --help says of the commands of components that are programs of their own
+// (component_program.hpp), both in the core program's list and in their own.
+inline constexpr const char* kFitDescription =
+    "Fit lobe models to every spatial bin of a simulation file (Vavassori 2013, §4.2)";
+inline constexpr const char* kReportDescription =
+    "Run the accuracy suite: every method against its exact reference, error against run time, "
+    "stiff and extreme cases; write a Markdown report with CSVs. Exits 1 if any check fails";
+inline constexpr const char* kExploreDescription =
+    "The explorer in a browser (Bitterli §3.6): R_d(r) of every model for a material you change, "
+    "in linear, log, sqrt and r R_d plots; presets, (R_dr, l_d) inversion, models from text "
+    "files, searchlight files and the lit sphere. Serves this machine only unless --host says "
+    "otherwise; runs until interrupted (Ctrl-C).";
+
 // Stands in for a command whose optional component was not built: it takes any arguments and,
 // run, stops with bad-input status 2 and one line saying what the build needs, e.g. "Ceres
 // (Debian: libceres-dev)".

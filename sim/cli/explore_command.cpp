@@ -84,12 +84,7 @@ int run_explore(const ExploreCommandOptions& o) {
 
 Action add_explore_command(CLI::App& app) {
   auto o = std::make_shared<ExploreCommandOptions>();
-  auto* command = app.add_subcommand(
-      "explore",
-      "The explorer in a browser (Bitterli §3.6): R_d(r) of every model for a material you "
-      "change, in linear, log, sqrt and r R_d plots; presets, (R_dr, l_d) inversion, models from "
-      "text files, searchlight files and the lit sphere. Serves this machine only unless --host "
-      "says otherwise; runs until interrupted (Ctrl-C).");
+  auto* command = app.add_subcommand("explore", kExploreDescription);
   command->add_option("--host", o->host,
                       "Address to listen on (127.0.0.1: this machine only; 0.0.0.0: every "
                       "network the machine is on)");

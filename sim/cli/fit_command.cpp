@@ -30,8 +30,7 @@ struct FitCommandOptions {
 }  // namespace
 
 Action add_fit_command(CLI::App& app) {
-  auto* command = app.add_subcommand(
-      "fit", "Fit lobe models to every spatial bin of a simulation file (Vavassori 2013, §4.2)");
+  auto* command = app.add_subcommand("fit", kFitDescription);
   auto options = std::make_shared<FitCommandOptions>();
   command
       ->add_option("FILE", options->path,

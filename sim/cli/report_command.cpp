@@ -32,11 +32,7 @@ struct ReportOptions {
 }  // namespace
 
 Action add_report_command(CLI::App& app, const std::string& command_line) {
-  auto* command = app.add_subcommand(
-      "report",
-      "Run the accuracy suite: every method against its exact reference, error against run "
-      "time, stiff and extreme cases; write a Markdown report with CSVs. Exits 1 if any check "
-      "fails");
+  auto* command = app.add_subcommand("report", kReportDescription);
   auto options = std::make_shared<ReportOptions>();
   command->add_flag("--quick", options->quick, "Small budgets, for the test suite (minutes)");
   command->add_option("--out", options->out,

@@ -7,7 +7,8 @@
 #   and names the nearest accepted spelling;
 #   a scene is --scene FILE or a positional FILE in every command that reads one;
 #   searchlight chooses its tallies with --tallies, as simulate does;
-#   --out names a directory where a command writes many files, made when missing.
+#   --out names a directory where a command writes many files, made when missing;
+#   fit, report and explore run in their components' programs.
 set -u
 exe=$(realpath "$1")
 source_dir=$(realpath "$2")
@@ -149,6 +150,28 @@ else
     [ -f deep/c/d/report.md ]; then pass; else
     fail "report --out deep/c/d: $(ls -R deep 2>&1)"
   fi
+fi
+
+# --- 6. the components' programs -----------------------------------------------------------------
+# fit, report and explore run in programs of their own beside scatterlab, so that a run of photons
+# loads none of Ceres's, the HTTP server's or their TLS libraries; without its program beside it,
+# the command is one line and exit status 1, and writes nothing.
+if ldd "$exe" | grep -E "libglog|libcholmod|libcpp-httplib|libmuparser|libssl|libcurl" \
+  >"$scratch/loaded"; then
+  fail "scatterlab loads a component's libraries: $(cat "$scratch/loaded")"
+else
+  pass
+fi
+mkdir -p alone && cp "$exe" alone/scatterlab
+status=0
+alone/scatterlab fit defaults.h5 --out alone/fits.h5 >"$scratch/stdout" 2>"$scratch/stderr" ||
+  status=$?
+if [ "$status" -eq 1 ] && [ "$(grep -c . "$scratch/stderr")" -eq 1 ] &&
+  grep -q "fit: its program scatterlab-fit is not beside" "$scratch/stderr" &&
+  [ ! -e alone/fits.h5 ]; then
+  pass
+else
+  fail "fit without scatterlab-fit beside: status $status, $(cat "$scratch/stderr")"
 fi
 
 report command_line
