@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include <array>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -14,47 +13,41 @@
 namespace scatterlab::cli {
 namespace {
 
-struct ComponentCommand {
-  std::string_view command;
-  std::string_view program;
-};
-
-constexpr auto kComponentCommands = std::to_array<ComponentCommand>({
+// The program of a component's command; empty for a command of the core program.
+std::string_view program_of(std::string_view command) {
 #ifdef SCATTERLAB_WITH_FIT
-    {"fit", "scatterlab-fit"},
-    {"report", "scatterlab-fit"},
+  if (command == "fit" || command == "report") return "scatterlab-fit";
 #endif
 #ifdef SCATTERLAB_WITH_EXPLORE
-    {"explore", "scatterlab-explore"},
+  if (command == "explore") return "scatterlab-explore";
 #endif
-    {"", ""},  // none: keeps the array non-empty in a build with neither component
-});
+  (void)command;
+  return {};
+}
 
 }  // namespace
 
 void run_component_program(char** argv) {
   const std::string_view given = argv[1];
-  for (const ComponentCommand& entry : kComponentCommands) {
-    if (entry.command.empty() || entry.command != given) continue;
-    // Beside this program, in the build tree as where it is installed.
-    std::error_code error;
-    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
-    const std::filesystem::path program = self.parent_path() / entry.program;
-    if (error || !std::filesystem::exists(program, error)) {
-      throw std::runtime_error(
-          fmt::format("{}: its program {} is not beside {}", given, entry.program, self.string()));
-    }
-    std::fflush(stdout);
-    ::execv(program.c_str(), argv);
+  const std::string_view name = program_of(given);
+  if (name.empty()) return;
+  // Beside this program, in the build tree as where it is installed.
+  std::error_code error;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
+  const std::filesystem::path program = self.parent_path() / name;
+  if (error || !std::filesystem::exists(program, error)) {
     throw std::runtime_error(
-        fmt::format("{}: cannot run {}: {}", given, program.string(), std::strerror(errno)));
+        fmt::format("{}: its program {} is not beside {}", given, name, self.string()));
   }
+  std::fflush(stdout);
+  ::execv(program.c_str(), argv);
+  throw std::runtime_error(
+      fmt::format("{}: cannot run {}: {}", given, program.string(), std::strerror(errno)));
 }
 
-Action add_component_command(CLI::App& app, const std::string& name,
-                             const std::string& description) {
+void list_component_command(CLI::App& app, const std::string& name,
+                            const std::string& description) {
   app.add_subcommand(name, description)->allow_extras();
-  return [name]() -> int { throw std::logic_error(name + ": not given to its own program"); };
 }
 
 }  // namespace scatterlab::cli

@@ -5,8 +5,7 @@
 // component's own.
 
 #include <CLI/CLI.hpp>
-
-#include "commands.hpp"
+#include <string>
 
 namespace scatterlab::cli {
 
@@ -15,9 +14,8 @@ namespace scatterlab::cli {
 // or cannot be run.
 void run_component_program(char** argv);
 
-// Lists the component's command under --help; its action never runs, since main gives the
-// command to the component's program before parsing.
-Action add_component_command(CLI::App& app, const std::string& name,
-                             const std::string& description);
+// Lists the component's command under --help, and nothing more: main gives the command to the
+// component's program before parsing.
+void list_component_command(CLI::App& app, const std::string& name, const std::string& description);
 
 }  // namespace scatterlab::cli

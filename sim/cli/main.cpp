@@ -23,8 +23,8 @@ std::vector<Command> core_commands(CLI::App& app, const std::string& command_lin
   commands.push_back({"validate", add_validate_command(app)});
   commands.push_back({"merge", add_merge_command(app, command_line)});
 #ifdef SCATTERLAB_WITH_FIT
-  commands.push_back({"fit", add_component_command(app, "fit", kFitDescription)});
-  commands.push_back({"report", add_component_command(app, "report", kReportDescription)});
+  list_component_command(app, "fit", kFitDescription);
+  list_component_command(app, "report", kReportDescription);
 #else
   const char* ceres = "Ceres (Debian: libceres-dev)";
   commands.push_back({"fit", add_unavailable_command(app, "fit", "Lobe fits", ceres)});
@@ -42,7 +42,7 @@ std::vector<Command> core_commands(CLI::App& app, const std::string& command_lin
 #endif
   commands.push_back({"invert", add_invert_command(app)});
 #ifdef SCATTERLAB_WITH_EXPLORE
-  commands.push_back({"explore", add_component_command(app, "explore", kExploreDescription)});
+  list_component_command(app, "explore", kExploreDescription);
 #else
   commands.push_back({"explore", add_unavailable_command(
                                      app, "explore", "The explorer in a browser",

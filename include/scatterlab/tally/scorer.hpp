@@ -240,7 +240,6 @@ class Scorer {
 
 [[gnu::always_inline]] inline void Scorer::collision(double* buffer, const Vec3& position,
                                                      const Vec3& direction, int order) const {
-  const std::size_t block = split_ ? book_.order_block(order) : 0;
   const double r2 = position.x() * position.x() + position.y() * position.y();
   if (fluence_only_) {  // the half-space's one volume tally: a cell index and an add
     const int ir = r_cells_.index(std::sqrt(r2));
@@ -250,6 +249,7 @@ class Scorer {
                       order);
     return;
   }
+  const std::size_t block = split_ ? book_.order_block(order) : 0;
   if (fluence_spherical_ != absent) {
     const int shell = rho_cells_.index(std::sqrt(r2 + position.z() * position.z()));
     if (shell >= 0) add(buffer, fluence_spherical_ + static_cast<std::size_t>(shell), block, 1.0);
