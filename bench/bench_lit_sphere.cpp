@@ -7,8 +7,10 @@
 // runs the same on the lane walk (transport/lane_walk.hpp), which the engine runs, beside the
 // half-space's HalfSpaceLanes rows. The Mesh
 // rows run the same media in a sphere of 10 mfp tessellated into 9 216 flat triangles
-// (render/mesh_boundary.hpp: a ray query per flight that leaves the inner ball), under a beam
-// near its pole, to set the cost of Embree's boundary test against the analytic sphere's.
+// (render/mesh_boundary.hpp: a ray query per flight that may reach the surface), under a beam
+// near its pole, to set the cost of Embree's boundary test against the analytic sphere's; the
+// MeshLanes rows run them on the lane walk, as the engine does (transport/object_boundary.hpp:
+// the grid of clearances decides the plain events of all lanes at once).
 //
 //   ./build/bench/scatterlab_bench --benchmark_filter='Sphere|Mesh|HalfSpace'
 //       --benchmark_counters_tabular=true
@@ -72,7 +74,7 @@ void SphereLanes(benchmark::State& state, LitSphereSpec spec) {
 
 template <class Phase, bool fresnel>
 void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitSphereSpec& spec,
-                   SphereLight kind) {
+                   SphereLight kind, bool lanes) {
   const TransportProblem problem = transport_problem(spec);
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
@@ -84,6 +86,14 @@ void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitSphereS
   const MeshLight<fresnel> light(boundary,
                                  kind == SphereLight::directional ? Kind::directional : Kind::beam,
                                  Vec3(1e-3, 2e-3, -20.0), Vec3::UnitZ(), Vec3::Zero(), 10.0);
+  if (lanes) {
+    const LaneWalk walk(object_boundary(boundary, light), scorer, problem.albedo,
+                        phase.mean_cosine(), VolumeEstimator::none, problem.run.escape_radius,
+                        problem.run.seed);
+    bench::time_walk(state, walk, book.size());
+    state.counters["lanes"] = LaneWalk::lanes();
+    return;
+  }
   const RandomWalk<MeshBoundary<fresnel>, Phase, VolumeEstimator::none, Weighting::analog,
                    MeshLight<fresnel>>
       walk(boundary, phase, light, scorer, problem.albedo, problem.run.escape_radius,
@@ -92,12 +102,24 @@ void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitSphereS
 }
 
 template <class Phase>
-void Mesh(benchmark::State& state, Phase phase, double albedo, double g, double eta,
-          SphereLight kind) {
+void mesh_walk(benchmark::State& state, const Phase& phase, double albedo, double g, double eta,
+               SphereLight kind, bool lanes) {
   LitSphereSpec spec = lit_sphere(albedo, g, eta, 10.0, kind);
   spec.mesh = std::make_shared<const TriangleMesh>(make_sphere(10.0, 48, 96, false));
-  if (eta != 1.0) return run_mesh_walk<Phase, true>(state, phase, spec, kind);
-  run_mesh_walk<Phase, false>(state, phase, spec, kind);
+  if (eta != 1.0) return run_mesh_walk<Phase, true>(state, phase, spec, kind, lanes);
+  run_mesh_walk<Phase, false>(state, phase, spec, kind, lanes);
+}
+
+template <class Phase>
+void Mesh(benchmark::State& state, Phase phase, double albedo, double g, double eta,
+          SphereLight kind) {
+  mesh_walk(state, phase, albedo, g, eta, kind, false);
+}
+
+template <class Phase>
+void MeshLanes(benchmark::State& state, Phase phase, double albedo, double g, double eta,
+               SphereLight kind) {
+  mesh_walk(state, phase, albedo, g, eta, kind, true);
 }
 
 const IsotropicPhase iso{};
@@ -119,6 +141,10 @@ BENCHMARK_CAPTURE(Mesh, beam_R10_iso_albedo0.99_eta1, iso, 0.99, 0.0, 1.0, Spher
 BENCHMARK_CAPTURE(Mesh, beam_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::beam);
 BENCHMARK_CAPTURE(Mesh, beam_R10_hg_g0.75_albedo0.9_eta1.33, hg075, 0.9, 0.75, 1.33, SphereLight::beam);
 BENCHMARK_CAPTURE(Mesh, directional_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional);
+BENCHMARK_CAPTURE(MeshLanes, beam_R10_iso_albedo0.99_eta1, iso, 0.99, 0.0, 1.0, SphereLight::beam);
+BENCHMARK_CAPTURE(MeshLanes, beam_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::beam);
+BENCHMARK_CAPTURE(MeshLanes, beam_R10_hg_g0.75_albedo0.9_eta1.33, hg075, 0.9, 0.75, 1.33, SphereLight::beam);
+BENCHMARK_CAPTURE(MeshLanes, directional_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional);
 // clang-format on
 
 }  // namespace

@@ -8,23 +8,28 @@
 
 namespace scatterlab {
 
-SurfaceClearance::SurfaceClearance(const TriangleMesh& mesh, int cells) {
+SurfaceClearance::SurfaceClearance(const TriangleMesh& mesh, const MeshRayTracer& tracer,
+                                   int cells) {
   const BoundingBox box = mesh.bounds();
   const Vec3 extent = box.hi - box.lo;
   const double side = std::max(extent.maxCoeff(), 1e-300) / cells;
+  int* n = grid_.cells;
   // One cell of margin each way, so that the surface never lies on the grid's rim.
-  lo_ = box.lo - Vec3::Constant(side);
-  inverse_side_ = 1.0 / side;
-  for (int a = 0; a < 3; ++a) n_[a] = static_cast<int>(std::ceil(extent[a] / side)) + 2;
-  const auto index = [this](int x, int y, int z) {
-    return static_cast<std::size_t>((z * n_[1] + y) * n_[0] + x);
+  grid_.lo = box.lo - Vec3::Constant(side);
+  grid_.inverse_side = 1.0 / side;
+  for (int a = 0; a < 3; ++a) n[a] = static_cast<int>(std::ceil(extent[a] / side)) + 2;
+  const auto index = [n](int x, int y, int z) {
+    return static_cast<std::size_t>((z * n[1] + y) * n[0] + x);
   };
-  const auto cell_of = [this](double v, int axis) {
-    return std::clamp(static_cast<int>(std::floor((v - lo_[axis]) * inverse_side_)), 0,
-                      n_[axis] - 1);
+  const auto cell_of = [&](double v, int axis) {
+    return std::clamp(static_cast<int>(std::floor((v - grid_.lo[axis]) * grid_.inverse_side)), 0,
+                      n[axis] - 1);
+  };
+  const auto in_grid = [n](int u, int v, int w) {
+    return u >= 0 && v >= 0 && w >= 0 && u < n[0] && v < n[1] && w < n[2];
   };
   constexpr int unset = std::numeric_limits<int>::max();
-  std::vector<int> steps(static_cast<std::size_t>(n_[0]) * n_[1] * n_[2], unset);
+  std::vector<int> steps(static_cast<std::size_t>(n[0]) * n[1] * n[2], unset);
   std::deque<std::array<int, 3>> front;
   // Points on each triangle no farther than h / 2 from any of its points (a grid of spacing h / 2
   // in its barycentric parameters along its longest edges); each marks its cell.
@@ -54,7 +59,7 @@ SurfaceClearance::SurfaceClearance(const TriangleMesh& mesh, int cells) {
       for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) {
           const int u = x + dx, v = y + dy, w = z + dz;
-          if (u < 0 || v < 0 || w < 0 || u >= n_[0] || v >= n_[1] || w >= n_[2]) continue;
+          if (!in_grid(u, v, w)) continue;
           int& s = steps[index(u, v, w)];
           if (s == unset) {
             s = next;
@@ -64,11 +69,39 @@ SurfaceClearance::SurfaceClearance(const TriangleMesh& mesh, int cells) {
       }
     }
   }
-  steps_.resize(steps.size());
-  for (std::size_t k = 0; k < steps.size(); ++k) {
-    steps_[k] = static_cast<std::uint8_t>(std::min(steps[k], 255));
+  // The regions of cells free of the surface (k >= 2), joined face to face: each is inside or
+  // outside as a whole, as the parity of a ray from its first cell's centre says (a direction of
+  // no special alignment, so that the ray does not run along an edge).
+  const Vec3 probe = Vec3(0.5773, 0.6123, 0.5407).normalized();
+  clearance_.assign(steps.size(), 0.0);
+  std::vector<bool> seen(steps.size(), false);
+  std::vector<std::array<int, 3>> region;
+  for (int z = 0; z < n[2]; ++z) {
+    for (int y = 0; y < n[1]; ++y) {
+      for (int x = 0; x < n[0]; ++x) {
+        if (steps[index(x, y, z)] < 2 || seen[index(x, y, z)]) continue;
+        region.assign(1, {x, y, z});
+        seen[index(x, y, z)] = true;
+        for (std::size_t r = 0; r < region.size(); ++r) {
+          const auto [u, v, w] = region[r];
+          for (const auto& [du, dv, dw] : {std::array<int, 3>{1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
+                                           {0, -1, 0}, {0, 0, 1}, {0, 0, -1}}) {
+            const int a = u + du, b = v + dv, c = w + dw;
+            if (!in_grid(a, b, c) || steps[index(a, b, c)] < 2 || seen[index(a, b, c)]) continue;
+            seen[index(a, b, c)] = true;
+            region.push_back({a, b, c});
+          }
+        }
+        const Vec3 centre = grid_.lo + (Vec3(x, y, z) + Vec3::Constant(0.5)) * side;
+        if (tracer.count_crossings(centre, probe) % 2 == 0) continue;
+        for (const auto& [u, v, w] : region) {
+          const int k = std::min(steps[index(u, v, w)], 255);
+          clearance_[index(u, v, w)] = (k - 1.5) * side * (1.0 - 1e-6);
+        }
+      }
+    }
   }
-  for (int k = 2; k < 256; ++k) clearance_of_[k] = (k - 1.5) * side * (1.0 - 1e-6);
+  grid_.clearance = clearance_.data();
 }
 
 }  // namespace scatterlab

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <optional>
 #include <stdexcept>
+#include <type_traits>
 
 #include "scatterlab/transport/half_space.hpp"
 #include "scatterlab/transport/infinite_medium.hpp"
@@ -175,24 +176,50 @@ HWY_INLINE void turn_direction(V cos_theta, V cos_phi, V sin_phi, V& wx, V& wy, 
   wz = hn::Mul(nz, pull);
 }
 
-// Where the flight ending at (x, y, z) certainly stays inside the geometry: the lanes whose
-// surface test (the geometry's leaves(), one lane at a time) would find no crossing. The
-// half-space's test is the same comparison on the same z; the sphere's keeps a margin of 1e-12
-// of R^2, so that a sum rounded otherwise than Eigen's squaredNorm never passes a photon that
-// crosses (those near the surface take the lane-by-lane path, which decides exactly).
-HWY_INLINE auto stays_inside(const InfiniteMedium&, const LaneWalk::Setup&, V, V, V) {
+// Where the flight of length `flight` ending at (x, y, z) certainly stays inside the geometry:
+// the lanes whose surface test (the geometry's leaves(), one lane at a time) would find no
+// crossing. The half-space's test is the same comparison on the same z; the sphere's keeps a
+// margin of 1e-12 of R^2, so that a sum rounded otherwise than Eigen's squaredNorm never passes
+// a photon that crosses (those near the surface take the lane-by-lane path, which decides
+// exactly).
+HWY_INLINE auto stays_inside(const InfiniteMedium&, const LaneWalk::Setup&, V, V, V, V) {
   const D d;
   return hn::Eq(hn::Zero(d), hn::Zero(d));  // every lane: there is no surface
 }
 template <bool fresnel>
-HWY_INLINE auto stays_inside(const HalfSpace<fresnel>&, const LaneWalk::Setup&, V, V, V z) {
+HWY_INLINE auto stays_inside(const HalfSpace<fresnel>&, const LaneWalk::Setup&, V, V, V z, V) {
   return hn::Not(hn::Lt(z, hn::Zero(D())));
 }
 template <bool fresnel>
-HWY_INLINE auto stays_inside(const Sphere<fresnel>&, const LaneWalk::Setup& setup, V x, V y, V z) {
+HWY_INLINE auto stays_inside(const Sphere<fresnel>&, const LaneWalk::Setup& setup, V x, V y, V z,
+                             V) {
   const D d;
   const V r2 = hn::MulAdd(x, x, hn::MulAdd(y, y, hn::Mul(z, z)));
   return hn::Lt(r2, hn::Set(d, setup.radius * setup.radius * (1.0 - 1e-12)));
+}
+// An object's: the clearance c of the end's cell, read as InteriorClearance::at reads it (0 off
+// the grid), is positive, and the flight is shorter than c or the object convex
+// (object_boundary.hpp).
+HWY_INLINE auto stays_inside(const ObjectBoundary& object, const LaneWalk::Setup&, V x, V y, V z,
+                             V flight) {
+  const D d;
+  const DI di;
+  const InteriorClearance& grid = object.interior();
+  const V zero = hn::Zero(d), inverse_side = hn::Set(d, grid.inverse_side);
+  const V cx = hn::Mul(hn::Sub(x, hn::Set(d, grid.lo.x())), inverse_side);
+  const V cy = hn::Mul(hn::Sub(y, hn::Set(d, grid.lo.y())), inverse_side);
+  const V cz = hn::Mul(hn::Sub(z, hn::Set(d, grid.lo.z())), inverse_side);
+  const auto on_grid = hn::And(
+      hn::And(hn::And(hn::Ge(cx, zero), hn::Ge(cy, zero)), hn::Ge(cz, zero)),
+      hn::And(hn::And(hn::Lt(cx, hn::Set(d, grid.cells[0])), hn::Lt(cy, hn::Set(d, grid.cells[1]))),
+              hn::Lt(cz, hn::Set(d, grid.cells[2]))));
+  // Exact in double: the grid has far fewer than 2^53 cells. Lanes off it read cell 0.
+  const V cell = hn::MulAdd(hn::MulAdd(hn::Trunc(cz), hn::Set(d, grid.cells[1]), hn::Trunc(cy)),
+                            hn::Set(d, grid.cells[0]), hn::Trunc(cx));
+  const V clearance = hn::IfThenElseZero(
+      on_grid, hn::GatherIndex(d, grid.clearance, hn::ConvertTo(di, hn::IfThenElseZero(on_grid, cell))));
+  const auto reach = object.convex() ? hn::Eq(zero, zero) : hn::Lt(flight, clearance);
+  return hn::And(hn::Gt(clearance, zero), reach);
 }
 
 // One photon per lane; the arrays are the lanes' state between vector steps.
@@ -234,7 +261,13 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
       const std::uint64_t photon = next_photon++;
       PhotonRandom random(setup.seed, photon);
       Vec3 start = Vec3::Zero(), heading = Vec3::UnitZ();
-      if (!setup.source.launch(random, start, heading)) {
+      bool enters = false;
+      if constexpr (std::is_same_v<Geometry, ObjectBoundary>) {
+        enters = geometry.launch(random, start, heading);
+      } else {
+        enters = setup.source.launch(random, start, heading);
+      }
+      if (!enters) {
         scorer.reflection_at_entry(buffer);
         continue;
       }
@@ -284,7 +317,7 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
       // The plain event, most of them: the flight stays inside, within the escape radius, and
       // the photon scatters. Such a lane needs only its move and its collision scored.
       auto plain = hn::And(hn::Lt(u1, hn::Set(d, setup.albedo)),
-                           stays_inside(geometry, setup, next_x, next_y, next_z));
+                           stays_inside(geometry, setup, next_x, next_y, next_z, flight));
       if (escape_limited) {
         const V r2 =
             hn::MulAdd(next_x, next_x, hn::MulAdd(next_y, next_y, hn::Mul(next_z, next_z)));
@@ -456,6 +489,8 @@ std::uint64_t RunLanes(const LaneWalk::Setup& setup, std::uint64_t first, std::u
       return setup.weighting == Weighting::implicit_capture
                  ? run_lanes<Slab, false, false, true>(*setup.slab, setup, first, last, buffer)
                  : run_lanes<Slab, false, false, false>(*setup.slab, setup, first, last, buffer);
+    case LaneWalk::Geometry::object:
+      return run_on(*setup.object, setup, first, last, buffer);
   }
   return 0;
 }
@@ -499,12 +534,16 @@ LaneWalk::LaneWalk(Geometry geometry, double eta, const Scorer& scorer, const So
              estimator == VolumeEstimator::collision,
              seed,
              std::nullopt,
-             Weighting::analog} {
+             Weighting::analog,
+             std::nullopt} {
   if (estimator == VolumeEstimator::track_length) {
     throw std::invalid_argument("LaneWalk: the track-length estimator runs on RandomWalk");
   }
   if (geometry == Geometry::layered_slab) {
     throw std::invalid_argument("LaneWalk: a layered slab is given by its stack (Slab)");
+  }
+  if (geometry == Geometry::object) {
+    throw std::invalid_argument("LaneWalk: an object is given by its boundary (ObjectBoundary)");
   }
   refuse_sphere_light_off_the_sphere(geometry, source);
 }
@@ -522,8 +561,29 @@ LaneWalk::LaneWalk(const Slab& slab, Weighting weighting, const Scorer& scorer,
              false,
              seed,
              slab,
-             weighting} {
+             weighting,
+             std::nullopt} {
   refuse_sphere_light_off_the_sphere(Geometry::layered_slab, source);
+}
+
+LaneWalk::LaneWalk(const ObjectBoundary& object, const Scorer& scorer, double albedo, double g,
+                   VolumeEstimator estimator, double escape_radius, std::uint64_t seed)
+    : setup_{Geometry::object,
+             1.0,  // the object's own surface holds its index
+             &scorer,
+             Source{},  // unused: the object's light launches
+             albedo,
+             g,
+             escape_radius * escape_radius,
+             0.0,
+             estimator == VolumeEstimator::collision,
+             seed,
+             std::nullopt,
+             Weighting::analog,
+             object} {
+  if (estimator == VolumeEstimator::track_length) {
+    throw std::invalid_argument("LaneWalk: the track-length estimator runs on RandomWalk");
+  }
 }
 
 std::uint64_t LaneWalk::run(std::uint64_t first, std::uint64_t last, double* buffer,

@@ -1,6 +1,6 @@
 // The clearance grid (render/surface_clearance.hpp) is a lower bound: from points inside a
-// shape that is not convex, no ray meets the surface within the clearance; and it is of use:
-// deep inside it is the Chebyshev bound it promises.
+// shape that is not convex, no ray meets the surface within the clearance, and points outside
+// it read 0; and it is of use: deep inside it is the Chebyshev bound it promises.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,13 +16,19 @@ namespace {
 TEST(SurfaceClearance, NoRayMeetsTheSurfaceWithinIt) {
   const TriangleMesh mesh = make_bumpy_sphere(5.0, 0.2, 4, 41, 48);
   const MeshRayTracer tracer(mesh);
-  const SurfaceClearance clearance(mesh, 48);
+  const SurfaceClearance clearance(mesh, tracer, 48);
   std::mt19937_64 generator(3);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  int checked = 0, positive = 0;
+  int checked = 0, positive = 0, outside = 0;
   while (checked < 2000) {
     const Vec3 p = 5.0 * Vec3(uniform(generator), uniform(generator), uniform(generator));
-    if (tracer.count_crossings(p, Vec3(0.5773, 0.6123, 0.5407).normalized()) % 2 == 0) continue;
+    if (tracer.count_crossings(p, Vec3(0.5773, 0.6123, 0.5407).normalized()) % 2 == 0) {
+      // Outside, within the grid's box: 0, so that the lane walk never takes a flight that ends
+      // there for one that stays inside (transport/object_boundary.hpp).
+      ASSERT_EQ(clearance.at(p), 0.0) << "outside at " << p.transpose();
+      ++outside;
+      continue;
+    }
     ++checked;
     const double reach = clearance.at(p);
     if (reach > 0.0) ++positive;
@@ -41,6 +47,7 @@ TEST(SurfaceClearance, NoRayMeetsTheSurfaceWithinIt) {
   const double cell = mesh.bounds().diagonal() / std::sqrt(3.0) / 48.0 * 1.05;
   EXPECT_GT(clearance.at(Vec3::Zero()), 4.0 / std::sqrt(3.0) - 2.5 * cell);
   EXPECT_EQ(clearance.at(Vec3(100.0, 0.0, 0.0)), 0.0);
+  EXPECT_GT(outside, 500);  // the corners of the box about the shape
 }
 
 }  // namespace

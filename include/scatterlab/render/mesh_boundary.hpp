@@ -78,11 +78,15 @@ class MeshBoundary {
         mesh_(&mesh),
         eta_(eta),
         epsilon_(tracer.epsilon()),
-        clearance_(std::make_shared<const SurfaceClearance>(mesh)),
+        clearance_(std::make_shared<const SurfaceClearance>(mesh, tracer)),
         convex_(bounds_convex_solid(mesh)) {}
 
   const MeshRayTracer& tracer() const { return *tracer_; }
   const TriangleMesh& mesh() const { return *mesh_; }
+  // The grid of clearances inside the object, and whether it is convex: what the lane walk reads
+  // (transport/object_boundary.hpp).
+  const InteriorClearance& interior() const { return clearance_->interior(); }
+  bool convex() const { return convex_; }
 
   // The light outside at `position`, travelling along `direction`, meets the mesh (or not):
   // reflected off it with probability F and followed on, or refracted in. True when it enters

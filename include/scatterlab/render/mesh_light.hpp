@@ -25,6 +25,7 @@
 #include "scatterlab/core/frame.hpp"
 #include "scatterlab/core/random.hpp"
 #include "scatterlab/render/mesh_boundary.hpp"
+#include "scatterlab/transport/object_boundary.hpp"
 
 namespace scatterlab {
 
@@ -89,5 +90,24 @@ class MeshLight {
   Vec3 center_;
   double radius_;
 };
+
+// The object and its light as the lane walk runs them (transport/object_boundary.hpp); both
+// outlive what it returns.
+template <bool fresnel>
+ObjectBoundary object_boundary(const MeshBoundary<fresnel>& boundary,
+                               const MeshLight<fresnel>& light) {
+  return ObjectBoundary(
+      &boundary,
+      [](const void* object, Vec3& position, Vec3& direction, Vec3& next, double flight,
+         PhotonRandom& random, SurfaceExit& exit) {
+        return static_cast<const MeshBoundary<fresnel>*>(object)->leaves(position, direction, next,
+                                                                         flight, random, exit);
+      },
+      &light,
+      [](const void* object_light, PhotonRandom& random, Vec3& start, Vec3& heading) {
+        return static_cast<const MeshLight<fresnel>*>(object_light)->launch(random, start, heading);
+      },
+      boundary.interior(), boundary.convex());
+}
 
 }  // namespace scatterlab

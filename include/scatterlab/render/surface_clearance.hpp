@@ -1,46 +1,47 @@
 #pragma once
 // How far a point inside a mesh is at least from its surface: a lower bound read from a grid
 // over the mesh's box, so that the random walk (mesh_boundary.hpp) skips the ray query of a
-// flight too short to reach the surface, as most flights deep inside a large object are.
+// flight too short to reach the surface, as most flights deep inside a large object are, and
+// the lane walk decides such plain events for all its lanes at once
+// (transport/object_boundary.hpp).
 //
 // Points spread over every triangle, none farther than h / 2 from any point of it (h the cell's
 // side), mark their cells; every other cell holds its Chebyshev distance k (in cells) to the
 // nearest marked one, by a breadth-first sweep. Points of two cells k apart along some axis are
 // at least (k - 1) h apart, and every surface point is within h / 2 of a point in a marked cell,
-// so no surface point is within (k - 3/2) h of any point of the cell. Held in single precision,
-// rounded down.
+// so no surface point is within (k - 3/2) h of any point of the cell.
+//
+// A cell with k >= 2 therefore holds no surface point, and lies wholly inside the mesh or wholly
+// outside it, as do the cells joined to it face to face through such cells: each such region
+// is inside or outside as the parity of a ray from one of its points says. Cells outside, and
+// those the surface may cross, hold 0.
 
-#include <cstdint>
 #include <vector>
 
-#include "scatterlab/core/frame.hpp"
 #include "scatterlab/core/triangle_mesh.hpp"
+#include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/transport/object_boundary.hpp"
 
 namespace scatterlab {
 
 class SurfaceClearance {
  public:
-  // `cells`: along the box's longest side.
-  explicit SurfaceClearance(const TriangleMesh& mesh, int cells = 64);
+  // `tracer` is over `mesh`, closed; `cells` along the box's longest side.
+  SurfaceClearance(const TriangleMesh& mesh, const MeshRayTracer& tracer, int cells = 64);
+  // The grid points into the object's own cells.
+  SurfaceClearance(const SurfaceClearance&) = delete;
+  SurfaceClearance& operator=(const SurfaceClearance&) = delete;
 
-  // A distance within which no point of the surface lies; 0 near it, and outside the box.
-  double at(const Vec3& point) const {
-    const Vec3 cell = (point - lo_) * inverse_side_;
-    if (!(cell.minCoeff() >= 0.0) || !(cell.x() < n_[0] && cell.y() < n_[1] && cell.z() < n_[2])) {
-      return 0.0;
-    }
-    const auto index = static_cast<std::size_t>(
-        (static_cast<int>(cell.z()) * n_[1] + static_cast<int>(cell.y())) * n_[0] +
-        static_cast<int>(cell.x()));
-    return clearance_of_[steps_[index]];
-  }
+  // A distance within which no point of the surface lies, for a point inside the mesh; 0 near
+  // the surface and outside the mesh.
+  double at(const Vec3& point) const { return grid_.at(point); }
+
+  // The grid, for the lane walk; it reads this object's cells.
+  const InteriorClearance& interior() const { return grid_; }
 
  private:
-  Vec3 lo_;
-  double inverse_side_ = 0.0;
-  int n_[3] = {1, 1, 1};
-  std::vector<std::uint8_t> steps_;  // k per cell
-  double clearance_of_[256] = {};    // (k - 3/2) h, at least 0, a millionth under
+  std::vector<double> clearance_;  // (k - 3/2) h a millionth under, inside; 0 elsewhere
+  InteriorClearance grid_;
 };
 
 }  // namespace scatterlab

@@ -23,19 +23,22 @@
 // walks to each other on the same photons. A range's scores depend on the range alone, so a run
 // is still bitwise the same for any thread and rank count.
 //
-// For the infinite medium, the half-space and the sphere (with a beam, a point source or, on the
-// sphere, its directional light) under analog absorption and the collision estimator (or none),
-// and for MCML's layered slab, analog or with implicit capture: the engine's choice there
-// (kernel.hpp). The surface is the geometry's own code (half_space.hpp, sphere.hpp, slab.hpp),
-// one lane at a time, on the lane's photon stream. In the slab each
+// For the infinite medium, the half-space, the sphere (with a beam, a point source or, on the
+// sphere, its directional light) and an object another module traces (a triangle mesh with its
+// own lights: object_boundary.hpp) under analog absorption and the collision estimator (or
+// none), and for MCML's layered slab, analog or with implicit capture: the engine's choice there
+// (kernel.hpp). The surface is the geometry's own code (half_space.hpp, sphere.hpp, slab.hpp,
+// render/mesh_boundary.hpp), one lane at a time, on the lane's photon stream; an object's plain
+// events are read off its grid of clearances for all lanes at once. In the slab each
 // lane also carries its layer (whose Henyey-Greenstein g the vector turn reads per lane) and,
-// under implicit capture, its weight. The track-length estimator and meshes keep RandomWalk.
+// under implicit capture, its weight. The track-length estimator keeps RandomWalk.
 
 #include <cstdint>
 #include <optional>
 #include <vector>
 
 #include "scatterlab/tally/scorer.hpp"
+#include "scatterlab/transport/object_boundary.hpp"
 #include "scatterlab/transport/random_walk.hpp"
 #include "scatterlab/transport/slab.hpp"
 #include "scatterlab/transport/source.hpp"
@@ -47,15 +50,16 @@ class LaneWalk {
  public:
   // The geometries it runs: the infinite medium, the half-space and the sphere of `radius` under
   // index-matched (eta = 1, no Fresnel arithmetic) or mismatched boundaries (HalfSpace<false>,
-  // HalfSpace<true>(eta), Sphere<false>, Sphere<true>), and the layered slab (slab.hpp), whose
-  // layers hold their own media.
+  // HalfSpace<true>(eta), Sphere<false>, Sphere<true>), the layered slab (slab.hpp), whose
+  // layers hold their own media, and an object with its light (object_boundary.hpp).
   enum class Geometry {
     infinite_medium,
     half_space,
     fresnel_half_space,
     sphere,
     fresnel_sphere,
-    layered_slab
+    layered_slab,
+    object
   };
 
   // g = 0 samples isotropically (random_walk.hpp's IsotropicPhase), else Henyey-Greenstein g.
@@ -69,6 +73,10 @@ class LaneWalk {
   // implicit capture.
   LaneWalk(const Slab& slab, Weighting weighting, const Scorer& scorer, const Source& source,
            double escape_radius, std::uint64_t seed);
+
+  // An object, lit by its own light (`object.launch`); `estimator` none or collision.
+  LaneWalk(const ObjectBoundary& object, const Scorer& scorer, double albedo, double g,
+           VolumeEstimator estimator, double escape_radius, std::uint64_t seed);
 
   std::vector<double> make_scratch() const { return {}; }
 
@@ -91,6 +99,7 @@ class LaneWalk {
     std::uint64_t seed;
     std::optional<Slab> slab;  // the layered slab's stack
     Weighting weighting = Weighting::analog;
+    std::optional<ObjectBoundary> object;  // the object's surface and light
   };
 
  private:

@@ -1,0 +1,87 @@
+#pragma once
+// An object whose surface another module traces (a closed triangle mesh, with Embree:
+// render/mesh_boundary.hpp), as the lane walk (lane_walk.hpp) runs it, and as a geometry of
+// random_walk.hpp.
+//
+// The lanes decide the plain event (the flight stays inside) from a grid of clearances over the
+// object (InteriorClearance), for all lanes at once. A flight that may meet the surface, and the
+// launch of each photon by the object's light, go to the object's own code through a function
+// pointer: the one indirect call is on that rare path, beside a ray query that costs a hundred
+// times more, and the plain event has none.
+
+#include <cstddef>
+
+#include "scatterlab/core/frame.hpp"
+#include "scatterlab/core/random.hpp"
+#include "scatterlab/tally/surface_exit.hpp"
+
+namespace scatterlab {
+
+// A grid over the object's box. Each cell holds a clearance c: 0 where the surface may pass
+// through the cell, or where the cell lies outside the object; otherwise the cell is wholly
+// inside, and no point of the surface lies within c of any point of it. So a flight from p to
+// q, with c(q) > 0, stays inside when it is shorter than c(q) (the ball of radius c(q) about q is
+// inside and holds p), and in a convex object always (p and q are inside).
+struct InteriorClearance {
+  Vec3 lo = Vec3::Zero();     // the grid's corner
+  double inverse_side = 0.0;  // 1 / the cells' side
+  int cells[3] = {0, 0, 0};   // along x, y and z
+  const double* clearance = nullptr;  // per cell, x fastest, then y
+
+  // c of the cell that holds `point`; 0 outside the grid.
+  double at(const Vec3& point) const {
+    const Vec3 cell = (point - lo) * inverse_side;
+    if (!(cell.minCoeff() >= 0.0) ||
+        !(cell.x() < cells[0] && cell.y() < cells[1] && cell.z() < cells[2])) {
+      return 0.0;
+    }
+    const auto index = static_cast<std::size_t>(
+        (static_cast<int>(cell.z()) * cells[1] + static_cast<int>(cell.y())) * cells[0] +
+        static_cast<int>(cell.x()));
+    return clearance[index];
+  }
+};
+
+class ObjectBoundary {
+ public:
+  static constexpr bool has_surface = true;
+  static constexpr bool layered = false;
+
+  // The object's surface and its light, as random_walk.hpp and kernel.hpp have them.
+  using Leaves = bool (*)(const void* object, Vec3& position, Vec3& direction, Vec3& next,
+                          double flight, PhotonRandom& random, SurfaceExit& exit);
+  using Launch = bool (*)(const void* light, PhotonRandom& random, Vec3& start, Vec3& heading);
+
+  // `object`, `light` and the grid `interior` reads outlive the boundary.
+  ObjectBoundary(const void* object, Leaves object_leaves, const void* light, Launch light_launch,
+                 const InteriorClearance& interior, bool convex)
+      : object_(object),
+        leaves_(object_leaves),
+        light_(light),
+        launch_(light_launch),
+        interior_(interior),
+        convex_(convex) {}
+
+  bool leaves(Vec3& position, Vec3& direction, Vec3& next, double flight, PhotonRandom& random,
+              SurfaceExit& exit) const {
+    return leaves_(object_, position, direction, next, flight, random, exit);
+  }
+  bool launch(PhotonRandom& random, Vec3& start, Vec3& heading) const {
+    return launch_(light_, random, start, heading);
+  }
+
+  const InteriorClearance& interior() const { return interior_; }
+  // Light that leaves a convex object never meets it again, and a flight between two points
+  // inside it stays inside.
+  bool convex() const { return convex_; }
+
+ private:
+  const void* object_;
+  Leaves leaves_;
+  const void* light_;
+  Launch launch_;
+  InteriorClearance interior_;
+  bool convex_;
+};
+
+}  // namespace scatterlab
