@@ -31,21 +31,24 @@ SurfaceClearance::SurfaceClearance(const TriangleMesh& mesh, const MeshRayTracer
   constexpr int unset = std::numeric_limits<int>::max();
   std::vector<int> steps(static_cast<std::size_t>(n[0]) * n[1] * n[2], unset);
   std::deque<std::array<int, 3>> front;
-  // Points on each triangle no farther than h / 2 from any of its points (a grid of spacing h / 2
-  // in its barycentric parameters along its longest edges); each marks its cell.
+  // The cells each triangle may meet, marked.
+  const double margin = 1e-6 * side;
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
     const Vec3 &a = mesh.vertex(t, 0), &b = mesh.vertex(t, 1), &c = mesh.vertex(t, 2);
-    const double longest = std::max({(b - a).norm(), (c - a).norm(), (c - b).norm()});
-    const int m = std::max(1, static_cast<int>(std::ceil(2.0 * longest / side)));
-    for (int i = 0; i <= m; ++i) {
-      for (int j = 0; i + j <= m; ++j) {
-        const Vec3 p =
-            a + (static_cast<double>(i) / m) * (b - a) + (static_cast<double>(j) / m) * (c - a);
-        const int x = cell_of(p.x(), 0), y = cell_of(p.y(), 1), z = cell_of(p.z(), 2);
-        int& s = steps[index(x, y, z)];
-        if (s == unset) {
-          s = 0;
-          front.push_back({x, y, z});
+    const Vec3 normal = mesh.geometric_normal(t);
+    const Vec3 lo = a.cwiseMin(b).cwiseMin(c) - Vec3::Constant(margin);
+    const Vec3 hi = a.cwiseMax(b).cwiseMax(c) + Vec3::Constant(margin);
+    const double reach = 0.5 * side * normal.cwiseAbs().sum() + margin;
+    for (int z = cell_of(lo.z(), 2); z <= cell_of(hi.z(), 2); ++z) {
+      for (int y = cell_of(lo.y(), 1); y <= cell_of(hi.y(), 1); ++y) {
+        for (int x = cell_of(lo.x(), 0); x <= cell_of(hi.x(), 0); ++x) {
+          const Vec3 centre = grid_.lo + (Vec3(x, y, z) + Vec3::Constant(0.5)) * side;
+          if (!(std::abs(normal.dot(centre - a)) <= reach)) continue;
+          int& s = steps[index(x, y, z)];
+          if (s == unset) {
+            s = 0;
+            front.push_back({x, y, z});
+          }
         }
       }
     }
@@ -69,9 +72,9 @@ SurfaceClearance::SurfaceClearance(const TriangleMesh& mesh, const MeshRayTracer
       }
     }
   }
-  // The regions of cells free of the surface (k >= 2), joined face to face: each is inside or
-  // outside as a whole, as the parity of a ray from its first cell's centre says (a direction of
-  // no special alignment, so that the ray does not run along an edge).
+  // The regions of unmarked cells (k >= 1), joined face to face: each is inside or outside as a
+  // whole, as the parity of a ray from its first cell's centre says (a direction of no special
+  // alignment, so that the ray does not run along an edge).
   const Vec3 probe = Vec3(0.5773, 0.6123, 0.5407).normalized();
   clearance_.assign(steps.size(), 0.0);
   std::vector<bool> seen(steps.size(), false);
@@ -79,7 +82,7 @@ SurfaceClearance::SurfaceClearance(const TriangleMesh& mesh, const MeshRayTracer
   for (int z = 0; z < n[2]; ++z) {
     for (int y = 0; y < n[1]; ++y) {
       for (int x = 0; x < n[0]; ++x) {
-        if (steps[index(x, y, z)] < 2 || seen[index(x, y, z)]) continue;
+        if (steps[index(x, y, z)] < 1 || seen[index(x, y, z)]) continue;
         region.assign(1, {x, y, z});
         seen[index(x, y, z)] = true;
         for (std::size_t r = 0; r < region.size(); ++r) {
@@ -87,7 +90,7 @@ SurfaceClearance::SurfaceClearance(const TriangleMesh& mesh, const MeshRayTracer
           for (const auto& [du, dv, dw] : {std::array<int, 3>{1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
                                            {0, -1, 0}, {0, 0, 1}, {0, 0, -1}}) {
             const int a = u + du, b = v + dv, c = w + dw;
-            if (!in_grid(a, b, c) || steps[index(a, b, c)] < 2 || seen[index(a, b, c)]) continue;
+            if (!in_grid(a, b, c) || steps[index(a, b, c)] < 1 || seen[index(a, b, c)]) continue;
             seen[index(a, b, c)] = true;
             region.push_back({a, b, c});
           }
@@ -95,8 +98,8 @@ SurfaceClearance::SurfaceClearance(const TriangleMesh& mesh, const MeshRayTracer
         const Vec3 centre = grid_.lo + (Vec3(x, y, z) + Vec3::Constant(0.5)) * side;
         if (tracer.count_crossings(centre, probe) % 2 == 0) continue;
         for (const auto& [u, v, w] : region) {
-          const int k = std::min(steps[index(u, v, w)], 255);
-          clearance_[index(u, v, w)] = (k - 1.5) * side * (1.0 - 1e-6);
+          const double cells_apart = steps[index(u, v, w)] - 1.0;
+          clearance_[index(u, v, w)] = std::max(cells_apart * side, margin) * (1.0 - 1e-6);
         }
       }
     }

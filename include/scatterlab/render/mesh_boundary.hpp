@@ -17,9 +17,10 @@
 // meets the mesh no more. The exit tallies see only that last departure (the triangle it left
 // through for good): light that leaves and comes back is not counted where it left.
 //
-// Most flights of a large object end far from its surface: one whose length is under the
-// clearance of its start (surface_clearance.hpp) cannot reach it and needs no ray query. Nor
-// does a photon leaving a convex object (convex_mesh.hpp) look for its way back in.
+// Most flights of a large object end far from its surface, and need no ray query: one whose
+// length is under the clearance of its start or of its end (surface_clearance.hpp), or, in a
+// convex object (convex_mesh.hpp), one that ends in a cell wholly inside. A photon leaving a
+// convex object does not look for its way back in.
 //
 // `fresnel` = false is the index-matched object (eta = 1): light crosses without reflection or
 // bending, and no random number is drawn at the surface but the fresh flight after a re-entry.
@@ -97,9 +98,23 @@ class MeshBoundary {
              bool* met = nullptr) const {
     MeshCrossing at;
     double cos_outside = 0.0;
-    while (next_facing(true, position, direction, t_near, infinity, at, cos_outside)) {
-      if (met != nullptr) *met = true;
-      t_near = epsilon_;
+    if (!first_entry(position, direction, t_near, at, cos_outside)) return false;
+    if (met != nullptr) *met = true;
+    return enter_at(at, cos_outside, position, direction, random);
+  }
+
+  // The first crossing of the light outside at `position` along `direction` with the mesh,
+  // met from outside, beyond `t_near`, and the cosine of incidence; false when there is none.
+  bool first_entry(const Vec3& position, const Vec3& direction, double t_near, MeshCrossing& at,
+                   double& cos_outside) const {
+    return next_facing(true, position, direction, t_near, infinity, at, cos_outside);
+  }
+
+  // enter() from its first crossing `at` (first_entry): a light whose first crossing is always
+  // the same (a beam) finds it once.
+  bool enter_at(MeshCrossing at, double cos_outside, Vec3& position, Vec3& direction,
+                PhotonRandom& random) const {
+    do {
       const Vec3& normal = at.normal;
       position = at.point;
       if constexpr (fresnel) {
@@ -111,7 +126,7 @@ class MeshBoundary {
         refract(direction, normal, eta_, direction);
       }
       return true;
-    }
+    } while (next_facing(true, position, direction, epsilon_, infinity, at, cos_outside));
     return false;
   }
 
@@ -120,7 +135,7 @@ class MeshBoundary {
   // filled) or the flight goes on inside, after reflections or a re-entry, to end at `next`.
   bool leaves(Vec3& position, Vec3& direction, Vec3& next, double flight, PhotonRandom& random,
               SurfaceExit& exit) const {
-    if (flight < clearance_->at(position)) return false;
+    if (flight < clearance_->at(position) || ends_inside(next, flight)) return false;
     double t_near = 0.0;
     MeshCrossing at;
     double cos_inside = 0.0;
@@ -134,6 +149,7 @@ class MeshBoundary {
           flight -= at.distance;
           direction = (direction - 2.0 * cos_inside * normal).normalized();
           next = position + flight * direction;
+          if (ends_inside(next, flight)) return false;
           continue;
         }
         exit.cos_outside = surface.cos_transmitted;
@@ -153,6 +169,13 @@ class MeshBoundary {
   }
 
  private:
+  // Whether the flight of length `flight` that ends at `next` certainly stays inside: the test
+  // the lane walk makes for all lanes at once (transport/object_boundary.hpp).
+  bool ends_inside(const Vec3& next, double flight) const {
+    const double clearance = clearance_->at(next);
+    return clearance > 0.0 && (convex_ || flight < clearance);
+  }
+
   // The next crossing in (t_near, t_far) met from outside (`from_outside`) or from inside, and
   // the cosine of incidence on that side. A facet met from the other side is the one the ray
   // starts on (round-off: the point of entry or of exit), and is passed.

@@ -44,13 +44,18 @@ class MeshLight {
         direction_(direction.normalized()),
         across_(direction_),
         center_(center),
-        radius_(radius) {}
+        radius_(radius) {
+    // The beam meets the mesh first at the same point for every photon.
+    if (kind_ == Kind::beam) {
+      beam_meets_ = boundary_.first_entry(origin_, direction_, 0.0, beam_entry_, beam_cos_);
+    }
+  }
 
   bool launch(PhotonRandom& random, Vec3& start, Vec3& heading) const {
     if (kind_ == Kind::beam) {
       start = origin_;
       heading = direction_;
-      return boundary_.enter(start, heading, random, 0.0);
+      return beam_meets_ && boundary_.enter_at(beam_entry_, beam_cos_, start, heading, random);
     }
     if (kind_ == Kind::sphere) {
       for (;;) {
@@ -89,6 +94,9 @@ class MeshLight {
   Frame across_;  // tangent and bitangent span the disc
   Vec3 center_;
   double radius_;
+  bool beam_meets_ = false;  // the beam's first crossing, and its cosine of incidence
+  MeshCrossing beam_entry_;
+  double beam_cos_ = 0.0;
 };
 
 // The object and its light as the lane walk runs them (transport/object_boundary.hpp); both

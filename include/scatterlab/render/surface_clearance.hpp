@@ -5,16 +5,18 @@
 // the lane walk decides such plain events for all its lanes at once
 // (transport/object_boundary.hpp).
 //
-// Points spread over every triangle, none farther than h / 2 from any point of it (h the cell's
-// side), mark their cells; every other cell holds its Chebyshev distance k (in cells) to the
-// nearest marked one, by a breadth-first sweep. Points of two cells k apart along some axis are
-// at least (k - 1) h apart, and every surface point is within h / 2 of a point in a marked cell,
-// so no surface point is within (k - 3/2) h of any point of the cell.
+// A triangle may meet the cells of its box whose centre lies within half the cell's extent along
+// its normal, h/2 (|n_x| + |n_y| + |n_z|), of its plane (h the cell's side): those are marked, with
+// a margin of a millionth of a cell, so every point of the surface lies in a marked cell and no
+// triangle comes within the margin of a cell left unmarked. Every other cell holds its
+// Chebyshev distance k (in cells) to the nearest marked one, by a breadth-first sweep; points of
+// two cells k apart along some axis are at least (k - 1) h apart, so no surface point is within
+// max((k - 1) h, margin) of any point of the cell.
 //
-// A cell with k >= 2 therefore holds no surface point, and lies wholly inside the mesh or wholly
-// outside it, as do the cells joined to it face to face through such cells: each such region
-// is inside or outside as the parity of a ray from one of its points says. Cells outside, and
-// those the surface may cross, hold 0.
+// An unmarked cell holds no surface point, and lies wholly inside the mesh or wholly outside
+// it, as do the cells joined to it face to face through unmarked cells: each such region is
+// inside or outside as the parity of a ray from one of its points says. Cells outside, and
+// marked cells, hold 0.
 
 #include <vector>
 
@@ -40,7 +42,7 @@ class SurfaceClearance {
   const InteriorClearance& interior() const { return grid_; }
 
  private:
-  std::vector<double> clearance_;  // (k - 3/2) h a millionth under, inside; 0 elsewhere
+  std::vector<double> clearance_;  // the bound a millionth under, inside; 0 elsewhere
   InteriorClearance grid_;
 };
 
