@@ -10,7 +10,8 @@
 // (render/mesh_boundary.hpp: a ray query per flight that may reach the surface), under a beam
 // near its pole, to set the cost of Embree's boundary test against the analytic sphere's; the
 // MeshLanes rows run them on the lane walk, as the engine does (transport/object_boundary.hpp:
-// the grid of clearances decides the plain events of all lanes at once).
+// the grid of clearances decides the plain events of all lanes at once). BumpyMesh rows run a
+// bumpy sphere of as many triangles, which is not convex.
 //
 //   ./build/bench/scatterlab_bench --benchmark_filter='Sphere|Mesh|HalfSpace'
 //       --benchmark_counters_tabular=true
@@ -101,11 +102,14 @@ void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitSphereS
   bench::time_walk(state, walk, book.size());
 }
 
+// The sphere of radius 10 in 9 216 flat triangles, or a bumpy sphere of as many, which is not
+// convex: radius 9 (1 + 0.1 sin 4 theta cos 4 phi), within the same sphere of radius 10.
 template <class Phase>
 void mesh_walk(benchmark::State& state, const Phase& phase, double albedo, double g, double eta,
-               SphereLight kind, bool lanes) {
+               SphereLight kind, bool lanes, bool bumpy = false) {
   LitSphereSpec spec = lit_sphere(albedo, g, eta, 10.0, kind);
-  spec.mesh = std::make_shared<const TriangleMesh>(make_sphere(10.0, 48, 96, false));
+  spec.mesh = std::make_shared<const TriangleMesh>(
+      bumpy ? make_bumpy_sphere(9.0, 0.1, 4, 48, 96) : make_sphere(10.0, 48, 96, false));
   if (eta != 1.0) return run_mesh_walk<Phase, true>(state, phase, spec, kind, lanes);
   run_mesh_walk<Phase, false>(state, phase, spec, kind, lanes);
 }
@@ -120,6 +124,18 @@ template <class Phase>
 void MeshLanes(benchmark::State& state, Phase phase, double albedo, double g, double eta,
                SphereLight kind) {
   mesh_walk(state, phase, albedo, g, eta, kind, true);
+}
+
+template <class Phase>
+void BumpyMesh(benchmark::State& state, Phase phase, double albedo, double g, double eta,
+               SphereLight kind) {
+  mesh_walk(state, phase, albedo, g, eta, kind, false, true);
+}
+
+template <class Phase>
+void BumpyMeshLanes(benchmark::State& state, Phase phase, double albedo, double g, double eta,
+                    SphereLight kind) {
+  mesh_walk(state, phase, albedo, g, eta, kind, true, true);
 }
 
 const IsotropicPhase iso{};
@@ -145,6 +161,8 @@ BENCHMARK_CAPTURE(MeshLanes, beam_R10_iso_albedo0.99_eta1, iso, 0.99, 0.0, 1.0, 
 BENCHMARK_CAPTURE(MeshLanes, beam_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::beam);
 BENCHMARK_CAPTURE(MeshLanes, beam_R10_hg_g0.75_albedo0.9_eta1.33, hg075, 0.9, 0.75, 1.33, SphereLight::beam);
 BENCHMARK_CAPTURE(MeshLanes, directional_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional);
+BENCHMARK_CAPTURE(BumpyMesh, directional_R9_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional);
+BENCHMARK_CAPTURE(BumpyMeshLanes, directional_R9_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional);
 // clang-format on
 
 }  // namespace

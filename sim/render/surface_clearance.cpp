@@ -76,7 +76,7 @@ SurfaceClearance::SurfaceClearance(const TriangleMesh& mesh, const MeshRayTracer
   // whole, as the parity of a ray from its first cell's centre says (a direction of no special
   // alignment, so that the ray does not run along an edge).
   const Vec3 probe = Vec3(0.5773, 0.6123, 0.5407).normalized();
-  clearance_.assign(steps.size(), 0.0);
+  code_.assign(steps.size() + 3, 0);
   std::vector<bool> seen(steps.size(), false);
   std::vector<std::array<int, 3>> region;
   for (int z = 0; z < n[2]; ++z) {
@@ -98,13 +98,18 @@ SurfaceClearance::SurfaceClearance(const TriangleMesh& mesh, const MeshRayTracer
         const Vec3 centre = grid_.lo + (Vec3(x, y, z) + Vec3::Constant(0.5)) * side;
         if (tracer.count_crossings(centre, probe) % 2 == 0) continue;
         for (const auto& [u, v, w] : region) {
-          const double cells_apart = steps[index(u, v, w)] - 1.0;
-          clearance_[index(u, v, w)] = std::max(cells_apart * side, margin) * (1.0 - 1e-6);
+          code_[index(u, v, w)] = static_cast<std::uint8_t>(std::min(steps[index(u, v, w)], 255));
         }
       }
     }
   }
-  grid_.clearance = clearance_.data();
+  for (int k = 1; k < 256; ++k) {
+    const double bound = std::max((k - 1.0) * side, margin) * (1.0 - 1e-6);
+    clearance_of_[k] = static_cast<float>(bound);
+    if (clearance_of_[k] > bound) clearance_of_[k] = std::nextafter(clearance_of_[k], 0.0f);
+  }
+  grid_.code = code_.data();
+  grid_.clearance_of = clearance_of_;
 }
 
 }  // namespace scatterlab

@@ -203,7 +203,6 @@ HWY_INLINE auto stays_inside(const Sphere<fresnel>&, const LaneWalk::Setup& setu
 HWY_INLINE auto stays_inside(const ObjectBoundary& object, const LaneWalk::Setup&, V x, V y, V z,
                              V flight) {
   const D d;
-  const DI di;
   const InteriorClearance& grid = object.interior();
   const V zero = hn::Zero(d), inverse_side = hn::Set(d, grid.inverse_side);
   const V cx = hn::Mul(hn::Sub(x, hn::Set(d, grid.lo.x())), inverse_side);
@@ -213,11 +212,19 @@ HWY_INLINE auto stays_inside(const ObjectBoundary& object, const LaneWalk::Setup
       hn::And(hn::And(hn::Ge(cx, zero), hn::Ge(cy, zero)), hn::Ge(cz, zero)),
       hn::And(hn::And(hn::Lt(cx, hn::Set(d, grid.cells[0])), hn::Lt(cy, hn::Set(d, grid.cells[1]))),
               hn::Lt(cz, hn::Set(d, grid.cells[2]))));
-  // Exact in double: the grid has far fewer than 2^53 cells. Lanes off it read cell 0.
+  // Exact in double: the grid has far fewer than 2^31 cells. Lanes off it read cell 0.
   const V cell = hn::MulAdd(hn::MulAdd(hn::Trunc(cz), hn::Set(d, grid.cells[1]), hn::Trunc(cy)),
                             hn::Set(d, grid.cells[0]), hn::Trunc(cx));
+  // Each cell's code is the low byte of the 4 from it on (little-endian x86), and its clearance
+  // is read from the table.
+  const hn::Rebind<float, D> df;
+  const hn::Rebind<std::int32_t, D> d32;
+  const auto code = hn::And(
+      hn::GatherOffset(d32, reinterpret_cast<const std::int32_t*>(grid.code),
+                       hn::DemoteTo(d32, hn::IfThenElseZero(on_grid, cell))),
+      hn::Set(d32, 0xFF));
   const V clearance = hn::IfThenElseZero(
-      on_grid, hn::GatherIndex(d, grid.clearance, hn::ConvertTo(di, hn::IfThenElseZero(on_grid, cell))));
+      on_grid, hn::PromoteTo(d, hn::GatherIndex(df, grid.clearance_of, code)));
   const auto reach = object.convex() ? hn::Eq(zero, zero) : hn::Lt(flight, clearance);
   return hn::And(hn::Gt(clearance, zero), reach);
 }

@@ -18,6 +18,7 @@
 // inside or outside as the parity of a ray from one of its points says. Cells outside, and
 // marked cells, hold 0.
 
+#include <cstdint>
 #include <vector>
 
 #include "scatterlab/core/triangle_mesh.hpp"
@@ -42,7 +43,8 @@ class SurfaceClearance {
   const InteriorClearance& interior() const { return grid_; }
 
  private:
-  std::vector<double> clearance_;  // the bound a millionth under, inside; 0 elsewhere
+  std::vector<std::uint8_t> code_;  // min(k, 255) inside; 0 elsewhere
+  float clearance_of_[256] = {};     // the bound of each k, a millionth under, rounded down
   InteriorClearance grid_;
 };
 

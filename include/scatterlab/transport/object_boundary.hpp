@@ -10,6 +10,7 @@
 // times more, and the plain event has none.
 
 #include <cstddef>
+#include <cstdint>
 
 #include "scatterlab/core/frame.hpp"
 #include "scatterlab/core/random.hpp"
@@ -17,28 +18,36 @@
 
 namespace scatterlab {
 
-// A grid over the object's box. Each cell holds a clearance c: 0 where the surface may pass
+// A grid over the object's box, one byte a cell (small enough to stay in cache). Each cell's
+// byte is the index of its clearance c in a table of 256: 0 where the surface may pass
 // through the cell, or where the cell lies outside the object; otherwise the cell is wholly
 // inside, and no point of the surface lies within c of any point of it. So a flight from p to
 // q, with c(q) > 0, stays inside when it is shorter than c(q) (the ball of radius c(q) about q is
-// inside and holds p), and in a convex object always (p and q are inside).
+// inside and holds p), and in a convex object always (p and q are inside). (With p inside, a
+// flight shorter than c(p) + c(q) stays inside too: the two balls overlap, hold no point of the
+// surface, and one holds p.)
 struct InteriorClearance {
   Vec3 lo = Vec3::Zero();     // the grid's corner
   double inverse_side = 0.0;  // 1 / the cells' side
   int cells[3] = {0, 0, 0};   // along x, y and z
-  const double* clearance = nullptr;  // per cell, x fastest, then y
+  // Per cell, x fastest, then y, and 3 bytes more, so that the lanes may read each cell's byte
+  // as the low byte of 4.
+  const std::uint8_t* code = nullptr;
+  const float* clearance_of = nullptr;  // c of each code; clearance_of[0] = 0
 
-  // c of the cell that holds `point`; 0 outside the grid.
+  // c of the cell that holds `point`; 0 outside the grid. The lane walk reads it with the same
+  // arithmetic, for all lanes at once.
   double at(const Vec3& point) const {
-    const Vec3 cell = (point - lo) * inverse_side;
-    if (!(cell.minCoeff() >= 0.0) ||
-        !(cell.x() < cells[0] && cell.y() < cells[1] && cell.z() < cells[2])) {
+    const double x = (point.x() - lo.x()) * inverse_side, y = (point.y() - lo.y()) * inverse_side,
+                 z = (point.z() - lo.z()) * inverse_side;
+    if (!(x >= 0.0 && y >= 0.0 && z >= 0.0 && x < cells[0] && y < cells[1] && z < cells[2])) {
       return 0.0;
     }
-    const auto index = static_cast<std::size_t>(
-        (static_cast<int>(cell.z()) * cells[1] + static_cast<int>(cell.y())) * cells[0] +
-        static_cast<int>(cell.x()));
-    return clearance[index];
+    const auto index = (static_cast<std::size_t>(z) * static_cast<std::size_t>(cells[1]) +
+                        static_cast<std::size_t>(y)) *
+                           static_cast<std::size_t>(cells[0]) +
+                       static_cast<std::size_t>(x);
+    return clearance_of[code[index]];
   }
 };
 
