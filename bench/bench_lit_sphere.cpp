@@ -10,8 +10,9 @@
 // (render/mesh_boundary.hpp: a ray query per flight that may reach the surface), under a beam
 // near its pole, to set the cost of Embree's boundary test against the analytic sphere's; the
 // MeshLanes rows run them on the lane walk, as the engine does (transport/object_boundary.hpp:
-// the grid of clearances decides the plain events of all lanes at once). BumpyMesh rows run a
-// bumpy sphere of as many triangles, which is not convex.
+// the grid of clearances decides the plain events of all lanes at once). The BumpyMesh row runs
+// a bumpy sphere of as many triangles, which is not convex, on the one-photon walk, as the
+// engine does.
 //
 //   ./build/bench/scatterlab_bench --benchmark_filter='Sphere|Mesh|HalfSpace'
 //       --benchmark_counters_tabular=true
@@ -88,7 +89,7 @@ void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitSphereS
                                  kind == SphereLight::directional ? Kind::directional : Kind::beam,
                                  Vec3(1e-3, 2e-3, -20.0), Vec3::UnitZ(), Vec3::Zero(), 10.0);
   if (lanes) {
-    const LaneWalk walk(object_boundary(boundary, light), scorer, problem.albedo,
+    const LaneWalk walk(*object_boundary(boundary, light), scorer, problem.albedo,
                         phase.mean_cosine(), VolumeEstimator::none, problem.run.escape_radius,
                         problem.run.seed);
     bench::time_walk(state, walk, book.size());
@@ -132,11 +133,6 @@ void BumpyMesh(benchmark::State& state, Phase phase, double albedo, double g, do
   mesh_walk(state, phase, albedo, g, eta, kind, false, true);
 }
 
-template <class Phase>
-void BumpyMeshLanes(benchmark::State& state, Phase phase, double albedo, double g, double eta,
-                    SphereLight kind) {
-  mesh_walk(state, phase, albedo, g, eta, kind, true, true);
-}
 
 const IsotropicPhase iso{};
 const HenyeyGreenstein hg075{0.75};
@@ -162,7 +158,6 @@ BENCHMARK_CAPTURE(MeshLanes, beam_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.
 BENCHMARK_CAPTURE(MeshLanes, beam_R10_hg_g0.75_albedo0.9_eta1.33, hg075, 0.9, 0.75, 1.33, SphereLight::beam);
 BENCHMARK_CAPTURE(MeshLanes, directional_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional);
 BENCHMARK_CAPTURE(BumpyMesh, directional_R9_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional);
-BENCHMARK_CAPTURE(BumpyMeshLanes, directional_R9_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional);
 // clang-format on
 
 }  // namespace

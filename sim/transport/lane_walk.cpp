@@ -197,11 +197,10 @@ HWY_INLINE auto stays_inside(const Sphere<fresnel>&, const LaneWalk::Setup& setu
   const V r2 = hn::MulAdd(x, x, hn::MulAdd(y, y, hn::Mul(z, z)));
   return hn::Lt(r2, hn::Set(d, setup.radius * setup.radius * (1.0 - 1e-12)));
 }
-// An object's: the clearance c of the end's cell, read as InteriorClearance::at reads it (0 off
-// the grid), is positive, and the flight is shorter than c or the object convex
-// (object_boundary.hpp).
+// A convex object's: the clearance of the end's cell, read as InteriorClearance::at reads it (0
+// off the grid), is positive: the cell is wholly inside (object_boundary.hpp).
 HWY_INLINE auto stays_inside(const ObjectBoundary& object, const LaneWalk::Setup&, V x, V y, V z,
-                             V flight) {
+                             V) {
   const D d;
   const InteriorClearance& grid = object.interior();
   const V zero = hn::Zero(d), inverse_side = hn::Set(d, grid.inverse_side);
@@ -225,8 +224,7 @@ HWY_INLINE auto stays_inside(const ObjectBoundary& object, const LaneWalk::Setup
       hn::Set(d32, 0xFF));
   const V clearance = hn::IfThenElseZero(
       on_grid, hn::PromoteTo(d, hn::GatherIndex(df, grid.clearance_of, code)));
-  const auto reach = object.convex() ? hn::Eq(zero, zero) : hn::Lt(flight, clearance);
-  return hn::And(hn::Gt(clearance, zero), reach);
+  return hn::Gt(clearance, zero);
 }
 
 // One photon per lane; the arrays are the lanes' state between vector steps.

@@ -18,8 +18,8 @@
 // through for good): light that leaves and comes back is not counted where it left.
 //
 // Most flights of a large object end far from its surface, and need no ray query: one whose
-// length is under the clearances of its start and its end together (surface_clearance.hpp), or,
-// in a convex object (convex_mesh.hpp), one that ends in a cell wholly inside. A photon leaving a
+// length is under the clearance of its start (surface_clearance.hpp), or, in a convex object
+// (convex_mesh.hpp), one that ends in a cell wholly inside. A photon leaving a
 // convex object does not look for its way back in.
 //
 // `fresnel` = false is the index-matched object (eta = 1): light crosses without reflection or
@@ -84,8 +84,8 @@ class MeshBoundary {
 
   const MeshRayTracer& tracer() const { return *tracer_; }
   const TriangleMesh& mesh() const { return *mesh_; }
-  // The grid of clearances inside the object, and whether it is convex: what the lane walk reads
-  // (transport/object_boundary.hpp).
+  // The grid of clearances inside the object, which the lane walk reads, and whether the
+  // object is convex, which the lane walk needs (transport/object_boundary.hpp).
   const InteriorClearance& interior() const { return clearance_->interior(); }
   bool convex() const { return convex_; }
 
@@ -135,7 +135,7 @@ class MeshBoundary {
   // filled) or the flight goes on inside, after reflections or a re-entry, to end at `next`.
   bool leaves(Vec3& position, Vec3& direction, Vec3& next, double flight, PhotonRandom& random,
               SurfaceExit& exit) const {
-    if (ends_inside(position, next, flight)) return false;
+    if (flight < clearance_->at(position) || ends_inside(next)) return false;
     double t_near = 0.0;
     MeshCrossing at;
     double cos_inside = 0.0;
@@ -149,7 +149,7 @@ class MeshBoundary {
           flight -= at.distance;
           direction = (direction - 2.0 * cos_inside * normal).normalized();
           next = position + flight * direction;
-          if (ends_inside(position, next, flight)) return false;
+          if (ends_inside(next)) return false;
           continue;
         }
         exit.cos_outside = surface.cos_transmitted;
@@ -169,13 +169,10 @@ class MeshBoundary {
   }
 
  private:
-  // Whether the flight of length `flight` from `position`, inside, to `next` certainly stays
-  // inside (transport/object_boundary.hpp): the lane walk's test for all lanes at once, or the
-  // flight is shorter than the clearances of its two ends together.
-  bool ends_inside(const Vec3& position, const Vec3& next, double flight) const {
-    const double clearance = clearance_->at(next);
-    return (clearance > 0.0 && convex_) || flight < clearance_->at(position) + clearance;
-  }
+  // Whether a flight from inside that ends at `next` in a convex object certainly stays inside:
+  // its end's cell is wholly inside (transport/object_boundary.hpp). Not looked up in other
+  // objects, where it would cost a cache miss a flight for a query seldom spared.
+  bool ends_inside(const Vec3& next) const { return convex_ && clearance_->at(next) > 0.0; }
 
   // The next crossing in (t_near, t_far) met from outside (`from_outside`) or from inside, and
   // the cosine of incidence on that side. A facet met from the other side is the one the ray

@@ -20,6 +20,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
 #include "scatterlab/core/azimuth.hpp"
 #include "scatterlab/core/frame.hpp"
@@ -99,11 +100,12 @@ class MeshLight {
   double beam_cos_ = 0.0;
 };
 
-// The object and its light as the lane walk runs them (transport/object_boundary.hpp); both
-// outlive what it returns.
+// The object and its light as the lane walk runs them (transport/object_boundary.hpp), when
+// the object is convex; none otherwise. Both outlive what it returns.
 template <bool fresnel>
-ObjectBoundary object_boundary(const MeshBoundary<fresnel>& boundary,
-                               const MeshLight<fresnel>& light) {
+std::optional<ObjectBoundary> object_boundary(const MeshBoundary<fresnel>& boundary,
+                                              const MeshLight<fresnel>& light) {
+  if (!boundary.convex()) return std::nullopt;
   return ObjectBoundary(
       &boundary,
       [](const void* object, Vec3& position, Vec3& direction, Vec3& next, double flight,
@@ -115,7 +117,7 @@ ObjectBoundary object_boundary(const MeshBoundary<fresnel>& boundary,
       [](const void* object_light, PhotonRandom& random, Vec3& start, Vec3& heading) {
         return static_cast<const MeshLight<fresnel>*>(object_light)->launch(random, start, heading);
       },
-      boundary.interior(), boundary.convex());
+      boundary.interior());
 }
 
 }  // namespace scatterlab

@@ -36,21 +36,23 @@ struct Kernel {
   const ProgressCallback& progress;
   const RunControl& control;
 
-  // The infinite medium's, the half-space's, the sphere's, the slab's and an object's photons
-  // share vector lanes (lane_walk.hpp): an object when its module gives it and its light as an
-  // ObjectBoundary (object_boundary(geometry, light), found by argument-dependent lookup). The
-  // track-length estimator keeps RandomWalk.
+  // The infinite medium's, the half-space's, the sphere's, the slab's and a convex object's
+  // photons share vector lanes (lane_walk.hpp): an object when its module gives it and its light
+  // as an ObjectBoundary (object_boundary(geometry, light), found by argument-dependent lookup).
+  // The track-length estimator and other objects keep RandomWalk.
   template <class Geometry, class Phase, VolumeEstimator estimator,
             Weighting weighting = Weighting::analog, class Light = Source>
   BatchOutcome run(const Geometry& geometry, const Phase& phase, const Light& light) const {
     constexpr std::optional<LaneWalk::Geometry> lanes = homogeneous_lanes<Geometry>();
     if constexpr (requires { object_boundary(geometry, light); } &&
                   weighting == Weighting::analog && estimator != VolumeEstimator::track_length) {
-      const LaneWalk walk(object_boundary(geometry, light), scorer, problem.albedo,
-                          phase.mean_cosine(), estimator, problem.run.escape_radius,
-                          problem.run.seed);
-      return run_batches(problem.run, book.size(), walk, progress, control);
-    } else if constexpr (std::is_same_v<Light, Source> && std::is_same_v<Geometry, Slab>) {
+      if (const std::optional<ObjectBoundary> object = object_boundary(geometry, light)) {
+        const LaneWalk walk(*object, scorer, problem.albedo, phase.mean_cosine(), estimator,
+                            problem.run.escape_radius, problem.run.seed);
+        return run_batches(problem.run, book.size(), walk, progress, control);
+      }
+    }
+    if constexpr (std::is_same_v<Light, Source> && std::is_same_v<Geometry, Slab>) {
       const LaneWalk walk(geometry, weighting, scorer, light, problem.run.escape_radius,
                           problem.run.seed);
       return run_batches(problem.run, book.size(), walk, progress, control);

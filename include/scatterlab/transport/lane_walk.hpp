@@ -24,8 +24,8 @@
 // is still bitwise the same for any thread and rank count.
 //
 // For the infinite medium, the half-space, the sphere (with a beam, a point source or, on the
-// sphere, its directional light) and an object another module traces (a triangle mesh with its
-// own lights: object_boundary.hpp) under analog absorption and the collision estimator (or
+// sphere, its directional light) and a convex object another module traces (a triangle mesh with
+// its own lights: object_boundary.hpp) under analog absorption and the collision estimator (or
 // none), and for MCML's layered slab, analog or with implicit capture: the engine's choice there
 // (kernel.hpp). The surface is the geometry's own code (half_space.hpp, sphere.hpp, slab.hpp,
 // render/mesh_boundary.hpp), one lane at a time, on the lane's photon stream; an object's plain
@@ -51,7 +51,7 @@ class LaneWalk {
   // The geometries it runs: the infinite medium, the half-space and the sphere of `radius` under
   // index-matched (eta = 1, no Fresnel arithmetic) or mismatched boundaries (HalfSpace<false>,
   // HalfSpace<true>(eta), Sphere<false>, Sphere<true>), the layered slab (slab.hpp), whose
-  // layers hold their own media, and an object with its light (object_boundary.hpp).
+  // layers hold their own media, and a convex object with its light (object_boundary.hpp).
   enum class Geometry {
     infinite_medium,
     half_space,
@@ -74,7 +74,7 @@ class LaneWalk {
   LaneWalk(const Slab& slab, Weighting weighting, const Scorer& scorer, const Source& source,
            double escape_radius, std::uint64_t seed);
 
-  // An object, lit by its own light (`object.launch`); `estimator` none or collision.
+  // A convex object, lit by its own light (`object.launch`); `estimator` none or collision.
   LaneWalk(const ObjectBoundary& object, const Scorer& scorer, double albedo, double g,
            VolumeEstimator estimator, double escape_radius, std::uint64_t seed);
 

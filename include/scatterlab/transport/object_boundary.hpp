@@ -1,13 +1,16 @@
 #pragma once
-// An object whose surface another module traces (a closed triangle mesh, with Embree:
+// A convex object whose surface another module traces (a closed triangle mesh, with Embree:
 // render/mesh_boundary.hpp), as the lane walk (lane_walk.hpp) runs it, and as a geometry of
 // random_walk.hpp.
 //
-// The lanes decide the plain event (the flight stays inside) from a grid of clearances over the
-// object (InteriorClearance), for all lanes at once. A flight that may meet the surface, and the
-// launch of each photon by the object's light, go to the object's own code through a function
-// pointer: the one indirect call is on that rare path, beside a ray query that costs a hundred
-// times more, and the plain event has none.
+// The lanes decide the plain event for all lanes at once: a flight from a point inside a convex
+// object to a point inside it stays inside, and InteriorClearance says which cells lie wholly
+// inside. A flight that may meet the surface, and the launch of each photon by the object's
+// light, go to the object's own code through a function pointer: the one indirect call is on
+// that rare path, beside a ray query that costs a hundred times more, and the plain event has
+// none. (In an object that is not convex, only a flight shorter than the clearance of its end
+// could pass, the lanes take most events one at a time, and they run no faster than the
+// one-photon walk, which the engine gives such objects.)
 
 #include <cstddef>
 #include <cstdint>
@@ -18,14 +21,12 @@
 
 namespace scatterlab {
 
-// A grid over the object's box, one byte a cell (small enough to stay in cache). Each cell's
+// A grid over an object's box, one byte a cell (small enough to stay in cache). Each cell's
 // byte is the index of its clearance c in a table of 256: 0 where the surface may pass
 // through the cell, or where the cell lies outside the object; otherwise the cell is wholly
 // inside, and no point of the surface lies within c of any point of it. So a flight from p to
 // q, with c(q) > 0, stays inside when it is shorter than c(q) (the ball of radius c(q) about q is
-// inside and holds p), and in a convex object always (p and q are inside). (With p inside, a
-// flight shorter than c(p) + c(q) stays inside too: the two balls overlap, hold no point of the
-// surface, and one holds p.)
+// inside and holds p), and in a convex object always (p and q are inside).
 struct InteriorClearance {
   Vec3 lo = Vec3::Zero();     // the grid's corner
   double inverse_side = 0.0;  // 1 / the cells' side
@@ -61,15 +62,14 @@ class ObjectBoundary {
                           double flight, PhotonRandom& random, SurfaceExit& exit);
   using Launch = bool (*)(const void* light, PhotonRandom& random, Vec3& start, Vec3& heading);
 
-  // `object`, `light` and the grid `interior` reads outlive the boundary.
+  // `object` (convex), `light` and the grid `interior` reads outlive the boundary.
   ObjectBoundary(const void* object, Leaves object_leaves, const void* light, Launch light_launch,
-                 const InteriorClearance& interior, bool convex)
+                 const InteriorClearance& interior)
       : object_(object),
         leaves_(object_leaves),
         light_(light),
         launch_(light_launch),
-        interior_(interior),
-        convex_(convex) {}
+        interior_(interior) {}
 
   bool leaves(Vec3& position, Vec3& direction, Vec3& next, double flight, PhotonRandom& random,
               SurfaceExit& exit) const {
@@ -80,9 +80,6 @@ class ObjectBoundary {
   }
 
   const InteriorClearance& interior() const { return interior_; }
-  // Light that leaves a convex object never meets it again, and a flight between two points
-  // inside it stays inside.
-  bool convex() const { return convex_; }
 
  private:
   const void* object_;
@@ -90,7 +87,6 @@ class ObjectBoundary {
   const void* light_;
   Launch launch_;
   InteriorClearance interior_;
-  bool convex_;
 };
 
 }  // namespace scatterlab
