@@ -133,7 +133,6 @@ void BumpyMesh(benchmark::State& state, Phase phase, double albedo, double g, do
   mesh_walk(state, phase, albedo, g, eta, kind, false, true);
 }
 
-
 const IsotropicPhase iso{};
 const HenyeyGreenstein hg075{0.75};
 

@@ -176,31 +176,28 @@ HWY_INLINE void turn_direction(V cos_theta, V cos_phi, V sin_phi, V& wx, V& wy, 
   wz = hn::Mul(nz, pull);
 }
 
-// Where the flight of length `flight` ending at (x, y, z) certainly stays inside the geometry:
-// the lanes whose surface test (the geometry's leaves(), one lane at a time) would find no
-// crossing. The half-space's test is the same comparison on the same z; the sphere's keeps a
-// margin of 1e-12 of R^2, so that a sum rounded otherwise than Eigen's squaredNorm never passes
-// a photon that crosses (those near the surface take the lane-by-lane path, which decides
-// exactly).
-HWY_INLINE auto stays_inside(const InfiniteMedium&, const LaneWalk::Setup&, V, V, V, V) {
+// Where the flight ending at (x, y, z) certainly stays inside the geometry: the lanes whose
+// surface test (the geometry's leaves(), one lane at a time) would find no crossing. The
+// half-space's test is the same comparison on the same z; the sphere's keeps a margin of 1e-12
+// of R^2, so that a sum rounded otherwise than Eigen's squaredNorm never passes a photon that
+// crosses (those near the surface take the lane-by-lane path, which decides exactly).
+HWY_INLINE auto stays_inside(const InfiniteMedium&, const LaneWalk::Setup&, V, V, V) {
   const D d;
   return hn::Eq(hn::Zero(d), hn::Zero(d));  // every lane: there is no surface
 }
 template <bool fresnel>
-HWY_INLINE auto stays_inside(const HalfSpace<fresnel>&, const LaneWalk::Setup&, V, V, V z, V) {
+HWY_INLINE auto stays_inside(const HalfSpace<fresnel>&, const LaneWalk::Setup&, V, V, V z) {
   return hn::Not(hn::Lt(z, hn::Zero(D())));
 }
 template <bool fresnel>
-HWY_INLINE auto stays_inside(const Sphere<fresnel>&, const LaneWalk::Setup& setup, V x, V y, V z,
-                             V) {
+HWY_INLINE auto stays_inside(const Sphere<fresnel>&, const LaneWalk::Setup& setup, V x, V y, V z) {
   const D d;
   const V r2 = hn::MulAdd(x, x, hn::MulAdd(y, y, hn::Mul(z, z)));
   return hn::Lt(r2, hn::Set(d, setup.radius * setup.radius * (1.0 - 1e-12)));
 }
 // A convex object's: the clearance of the end's cell, read as InteriorClearance::at reads it (0
 // off the grid), is positive: the cell is wholly inside (object_boundary.hpp).
-HWY_INLINE auto stays_inside(const ObjectBoundary& object, const LaneWalk::Setup&, V x, V y, V z,
-                             V) {
+HWY_INLINE auto stays_inside(const ObjectBoundary& object, const LaneWalk::Setup&, V x, V y, V z) {
   const D d;
   const InteriorClearance& grid = object.interior();
   const V zero = hn::Zero(d), inverse_side = hn::Set(d, grid.inverse_side);
@@ -322,7 +319,7 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
       // The plain event, most of them: the flight stays inside, within the escape radius, and
       // the photon scatters. Such a lane needs only its move and its collision scored.
       auto plain = hn::And(hn::Lt(u1, hn::Set(d, setup.albedo)),
-                           stays_inside(geometry, setup, next_x, next_y, next_z, flight));
+                           stays_inside(geometry, setup, next_x, next_y, next_z));
       if (escape_limited) {
         const V r2 =
             hn::MulAdd(next_x, next_x, hn::MulAdd(next_y, next_y, hn::Mul(next_z, next_z)));
@@ -516,6 +513,12 @@ HWY_EXPORT(LaneCount);
 
 namespace {
 
+void refuse_track_length(VolumeEstimator estimator) {
+  if (estimator == VolumeEstimator::track_length) {
+    throw std::invalid_argument("LaneWalk: the track-length estimator runs on RandomWalk");
+  }
+}
+
 void refuse_sphere_light_off_the_sphere(LaneWalk::Geometry geometry, const Source& source) {
   if (source.kind == Source::Kind::sphere_light && geometry != LaneWalk::Geometry::sphere &&
       geometry != LaneWalk::Geometry::fresnel_sphere) {
@@ -541,9 +544,7 @@ LaneWalk::LaneWalk(Geometry geometry, double eta, const Scorer& scorer, const So
              std::nullopt,
              Weighting::analog,
              std::nullopt} {
-  if (estimator == VolumeEstimator::track_length) {
-    throw std::invalid_argument("LaneWalk: the track-length estimator runs on RandomWalk");
-  }
+  refuse_track_length(estimator);
   if (geometry == Geometry::layered_slab) {
     throw std::invalid_argument("LaneWalk: a layered slab is given by its stack (Slab)");
   }
@@ -586,9 +587,7 @@ LaneWalk::LaneWalk(const ObjectBoundary& object, const Scorer& scorer, double al
              std::nullopt,
              Weighting::analog,
              object} {
-  if (estimator == VolumeEstimator::track_length) {
-    throw std::invalid_argument("LaneWalk: the track-length estimator runs on RandomWalk");
-  }
+  refuse_track_length(estimator);
 }
 
 std::uint64_t LaneWalk::run(std::uint64_t first, std::uint64_t last, double* buffer,

@@ -19,8 +19,8 @@
 //
 // Most flights of a large object end far from its surface, and need no ray query: one whose
 // length is under the clearance of its start (surface_clearance.hpp), or, in a convex object
-// (convex_mesh.hpp), one that ends in a cell wholly inside. A photon leaving a
-// convex object does not look for its way back in.
+// (convex_mesh.hpp), one that ends in a cell wholly inside. A photon leaving a convex object
+// does not look for its way back in.
 //
 // `fresnel` = false is the index-matched object (eta = 1): light crosses without reflection or
 // bending, and no random number is drawn at the surface but the fresh flight after a re-entry.

@@ -8,9 +8,9 @@
 // inside. A flight that may meet the surface, and the launch of each photon by the object's
 // light, go to the object's own code through a function pointer: the one indirect call is on
 // that rare path, beside a ray query that costs a hundred times more, and the plain event has
-// none. (In an object that is not convex, only a flight shorter than the clearance of its end
-// could pass, the lanes take most events one at a time, and they run no faster than the
-// one-photon walk, which the engine gives such objects.)
+// none. (In an object that is not convex, only a flight shorter than a clearance could pass,
+// the lanes take most events one at a time, and they run no faster than the one-photon walk,
+// which the engine gives such objects.)
 
 #include <cstddef>
 #include <cstdint>
@@ -24,9 +24,10 @@ namespace scatterlab {
 // A grid over an object's box, one byte a cell (small enough to stay in cache). Each cell's
 // byte is the index of its clearance c in a table of 256: 0 where the surface may pass
 // through the cell, or where the cell lies outside the object; otherwise the cell is wholly
-// inside, and no point of the surface lies within c of any point of it. So a flight from p to
-// q, with c(q) > 0, stays inside when it is shorter than c(q) (the ball of radius c(q) about q is
-// inside and holds p), and in a convex object always (p and q are inside).
+// inside, and no point of the surface lies within c of any point of it. So a flight from a
+// point p inside stays inside when it is shorter than c(p) (the ball of radius c(p) about p holds
+// no point of the surface), and in a convex object when it ends in a cell with c > 0 (both its
+// ends are inside).
 struct InteriorClearance {
   Vec3 lo = Vec3::Zero();     // the grid's corner
   double inverse_side = 0.0;  // 1 / the cells' side
