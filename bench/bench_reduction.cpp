@@ -27,17 +27,25 @@ std::size_t cells_of(int grid) {
   return scatterlab::TallyBook(problem.tallies, problem.split_by_order).size();
 }
 
+// Folds one batch an iteration, `score` filling its sums first (each fold clears them).
+template <class Score>
+void fold_batches(benchmark::State& state, std::vector<double>& sums, double photons,
+                  const Score& score) {
+  scatterlab::BatchStatistics statistics(sums.size());
+  std::size_t batch = 0;
+  for (auto _ : state) {
+    score(sums);
+    statistics.add_batch(batch++, sums.data(), photons, 0, sums.size());
+    benchmark::DoNotOptimize(statistics.mean().data());
+  }
+  state.counters["cells"] = static_cast<double>(sums.size());
+}
+
 // One batch folded into every cell: the work the folding side does per batch.
 void BM_FoldBatch(benchmark::State& state) {
   const std::size_t cells = cells_of(static_cast<int>(state.range(0)));
-  scatterlab::BatchStatistics statistics(cells);
   std::vector<double> sums(cells, 1.0);
-  std::size_t batch = 0;
-  for (auto _ : state) {
-    statistics.add_batch(batch++, sums.data(), 1000.0, 0, cells);
-    benchmark::DoNotOptimize(statistics.mean().data());
-  }
-  state.counters["cells"] = static_cast<double>(cells);
+  fold_batches(state, sums, 1000.0, [](std::vector<double>&) {});
   state.counters["ns_per_cell"] =
       benchmark::Counter(static_cast<double>(cells), benchmark::Counter::kIsIterationInvariantRate |
                                                          benchmark::Counter::kInvert);
@@ -47,16 +55,10 @@ BENCHMARK(BM_FoldBatch)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 // A batch of a short run: 200 scored cells (100 photons of the default scene score about that
 // many), the same ones in every batch; the blocks no batch has scored are only read.
 void BM_FoldSparseBatch(benchmark::State& state) {
-  const std::size_t cells = cells_of(static_cast<int>(state.range(0)));
-  scatterlab::BatchStatistics statistics(cells);
-  std::vector<double> sums(cells, 0.0);
-  std::size_t batch = 0;
-  for (auto _ : state) {
-    for (std::size_t k = 0; k < 200; ++k) sums[k * (cells / 200)] = 1.0;
-    statistics.add_batch(batch++, sums.data(), 2.0, 0, cells);
-    benchmark::DoNotOptimize(statistics.mean().data());
-  }
-  state.counters["cells"] = static_cast<double>(cells);
+  std::vector<double> sums(cells_of(static_cast<int>(state.range(0))), 0.0);
+  fold_batches(state, sums, 2.0, [](std::vector<double>& batch) {
+    for (std::size_t k = 0; k < 200; ++k) batch[k * (batch.size() / 200)] = 1.0;
+  });
 }
 BENCHMARK(BM_FoldSparseBatch)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
