@@ -195,12 +195,19 @@ HWY_INLINE auto stays_inside(const Sphere<fresnel>&, const LaneWalk::Setup& setu
   const V r2 = hn::MulAdd(x, x, hn::MulAdd(y, y, hn::Mul(z, z)));
   return hn::Lt(r2, hn::Set(d, setup.radius * setup.radius * (1.0 - 1e-12)));
 }
-// A convex object's: the clearance of the end's cell, read as InteriorClearance::at reads it (0
-// off the grid), is positive: the cell is wholly inside (object_boundary.hpp).
+// A convex object's: the end lies in the object's core, or the clearance of its cell, read as
+// InteriorClearance::at reads it (0 off the grid), is positive: the cell is wholly inside
+// (object_boundary.hpp). The grid is read only when some lane is out of the core.
 HWY_INLINE auto stays_inside(const ObjectBoundary& object, const LaneWalk::Setup&, V x, V y, V z) {
   const D d;
   const InteriorClearance& grid = object.interior();
   const V zero = hn::Zero(d), inverse_side = hn::Set(d, grid.inverse_side);
+  const V ox = hn::Sub(x, hn::Set(d, grid.core_centre.x()));
+  const V oy = hn::Sub(y, hn::Set(d, grid.core_centre.y()));
+  const V oz = hn::Sub(z, hn::Set(d, grid.core_centre.z()));
+  const auto in_core = hn::Lt(hn::MulAdd(ox, ox, hn::MulAdd(oy, oy, hn::Mul(oz, oz))),
+                              hn::Set(d, grid.core_radius2));
+  if (hn::AllTrue(d, in_core)) return in_core;
   const V cx = hn::Mul(hn::Sub(x, hn::Set(d, grid.lo.x())), inverse_side);
   const V cy = hn::Mul(hn::Sub(y, hn::Set(d, grid.lo.y())), inverse_side);
   const V cz = hn::Mul(hn::Sub(z, hn::Set(d, grid.lo.z())), inverse_side);
@@ -221,7 +228,7 @@ HWY_INLINE auto stays_inside(const ObjectBoundary& object, const LaneWalk::Setup
       hn::Set(d32, 0xFF));
   const V clearance = hn::IfThenElseZero(
       on_grid, hn::PromoteTo(d, hn::GatherIndex(df, grid.clearance_of, code)));
-  return hn::Gt(clearance, zero);
+  return hn::Or(in_core, hn::Gt(clearance, zero));
 }
 
 // One photon per lane; the arrays are the lanes' state between vector steps.

@@ -19,8 +19,10 @@
 //
 // Most flights of a large object end far from its surface, and need no ray query: one whose
 // length is under the clearance of its start (surface_clearance.hpp), or, in a convex object
-// (convex_mesh.hpp), one that ends in a cell wholly inside. A photon leaving a convex object
-// does not look for its way back in.
+// (convex_mesh.hpp), one that ends in its core (a ball inside it) or in a cell wholly inside.
+// A photon leaving a convex object does not look for its way back in, and light finds where it
+// enters or leaves a convex object by a walk over the facets (convex_crossing.hpp) rather than
+// by a query of the whole mesh.
 //
 // `fresnel` = false is the index-matched object (eta = 1): light crosses without reflection or
 // bending, and no random number is drawn at the surface but the fresh flight after a re-entry.
@@ -34,6 +36,7 @@
 #include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/core/random.hpp"
 #include "scatterlab/core/triangle_mesh.hpp"
+#include "scatterlab/render/convex_crossing.hpp"
 #include "scatterlab/render/convex_mesh.hpp"
 #include "scatterlab/render/mesh_ray_tracer.hpp"
 #include "scatterlab/render/surface_clearance.hpp"
@@ -80,13 +83,23 @@ class MeshBoundary {
         eta_(eta),
         epsilon_(tracer.epsilon()),
         clearance_(std::make_shared<const SurfaceClearance>(mesh, tracer)),
-        convex_(bounds_convex_solid(mesh)) {}
+        convex_(bounds_convex_solid(mesh)),
+        crossing_(convex_ ? std::make_shared<const ConvexCrossing>(mesh, tracer) : nullptr),
+        interior_(clearance_->interior()) {
+    // A convex object's core: the largest ball about the walk's centroid that its facets'
+    // planes leave whole, a millionth smaller.
+    const double core = crossing_ ? crossing_->inner_radius() * (1.0 - 1e-6) : 0.0;
+    if (core > 0.0) {
+      interior_.core_centre = crossing_->centroid();
+      interior_.core_radius2 = core * core;
+    }
+  }
 
   const MeshRayTracer& tracer() const { return *tracer_; }
   const TriangleMesh& mesh() const { return *mesh_; }
   // The grid of clearances inside the object, which the lane walk reads, and whether the
   // object is convex, which the lane walk needs (transport/object_boundary.hpp).
-  const InteriorClearance& interior() const { return clearance_->interior(); }
+  const InteriorClearance& interior() const { return interior_; }
   bool convex() const { return convex_; }
 
   // The light outside at `position`, travelling along `direction`, meets the mesh (or not):
@@ -105,8 +118,18 @@ class MeshBoundary {
 
   // The first crossing of the light outside at `position` along `direction` with the mesh,
   // met from outside, beyond `t_near`, and the cosine of incidence; false when there is none.
+  // In a convex object, by the walk over the facets facing the light (convex_crossing.hpp).
   bool first_entry(const Vec3& position, const Vec3& direction, double t_near, MeshCrossing& at,
                    double& cos_outside) const {
+    ConvexCrossing::Crossing walked;
+    const ConvexCrossing::Walk walk =
+        crossing_ ? crossing_->enter(position, direction, walked) : ConvexCrossing::Walk::gave_up;
+    if (walk == ConvexCrossing::Walk::misses) return false;
+    if (walk == ConvexCrossing::Walk::crosses && walked.distance > t_near) {
+      at = crossing_at(position, direction, walked);
+      cos_outside = walked.cos_incidence;
+      return true;
+    }
     return next_facing(true, position, direction, t_near, infinity, at, cos_outside);
   }
 
@@ -126,7 +149,9 @@ class MeshBoundary {
         refract(direction, normal, eta_, direction);
       }
       return true;
-    } while (next_facing(true, position, direction, epsilon_, infinity, at, cos_outside));
+      // Light reflected off a convex object never meets it again.
+    } while (!convex_ &&
+             next_facing(true, position, direction, epsilon_, infinity, at, cos_outside));
     return false;
   }
 
@@ -135,11 +160,11 @@ class MeshBoundary {
   // filled) or the flight goes on inside, after reflections or a re-entry, to end at `next`.
   bool leaves(Vec3& position, Vec3& direction, Vec3& next, double flight, PhotonRandom& random,
               SurfaceExit& exit) const {
-    if (flight < clearance_->at(position) || ends_inside(next)) return false;
+    if (convex_ ? ends_inside(next) : flight < clearance_->at(position)) return false;
     double t_near = 0.0;
     MeshCrossing at;
     double cos_inside = 0.0;
-    while (next_facing(false, position, direction, t_near, flight, at, cos_inside)) {
+    while (next_exit(position, direction, t_near, flight, at, cos_inside)) {
       t_near = epsilon_;
       const Vec3& normal = at.normal;
       position = at.point;
@@ -170,9 +195,37 @@ class MeshBoundary {
 
  private:
   // Whether a flight from inside that ends at `next` in a convex object certainly stays inside:
-  // its end's cell is wholly inside (transport/object_boundary.hpp). Not looked up in other
-  // objects, where it would cost a cache miss a flight for a query seldom spared.
-  bool ends_inside(const Vec3& next) const { return convex_ && clearance_->at(next) > 0.0; }
+  // its end lies in the core or in a cell wholly inside (transport/object_boundary.hpp). Not
+  // looked up in other objects, where it would cost a cache miss a flight for a query seldom
+  // spared; there a flight shorter than its start's clearance stays inside.
+  bool ends_inside(const Vec3& next) const { return convex_ && interior_.inside(next); }
+
+  // The crossing of a flight from inside at `position` that would end at `next`, `flight`
+  // along `direction`, as next_facing(false, ...): in a convex object by the walk (t_near
+  // is then not needed: the walk finds the facet the ray leaves by, not the one it is on),
+  // and by Embree where the walk gives up.
+  bool next_exit(const Vec3& position, const Vec3& direction, double t_near, double flight,
+                 MeshCrossing& at, double& cos_inside) const {
+    ConvexCrossing::Crossing walked;
+    if (crossing_ &&
+        crossing_->leave(position, direction, walked) == ConvexCrossing::Walk::crosses) {
+      if (!(walked.distance < flight)) return false;
+      at = crossing_at(position, direction, walked);
+      cos_inside = walked.cos_incidence;
+      return true;
+    }
+    return next_facing(false, position, direction, t_near, flight, at, cos_inside);
+  }
+
+  static MeshCrossing crossing_at(const Vec3& position, const Vec3& direction,
+                                  const ConvexCrossing::Crossing& walked) {
+    MeshCrossing at;
+    at.point = position + walked.distance * direction;
+    at.normal = walked.normal;
+    at.triangle = walked.triangle;
+    at.distance = walked.distance;
+    return at;
+  }
 
   // The next crossing in (t_near, t_far) met from outside (`from_outside`) or from inside, and
   // the cosine of incidence on that side. A facet met from the other side is the one the ray
@@ -194,6 +247,8 @@ class MeshBoundary {
   double epsilon_;
   std::shared_ptr<const SurfaceClearance> clearance_;  // shared by the walk's copies
   bool convex_;
+  std::shared_ptr<const ConvexCrossing> crossing_;  // in a convex object only
+  InteriorClearance interior_;                      // the grid's, with the core of a convex one
 };
 
 }  // namespace scatterlab

@@ -1,16 +1,16 @@
 #pragma once
-// A convex object whose surface another module traces (a closed triangle mesh, with Embree:
+// A convex object whose surface another module traces (a closed triangle mesh:
 // render/mesh_boundary.hpp), as the lane walk (lane_walk.hpp) runs it, and as a geometry of
 // random_walk.hpp.
 //
 // The lanes decide the plain event for all lanes at once: a flight from a point inside a convex
-// object to a point inside it stays inside, and InteriorClearance says which cells lie wholly
+// object to a point inside it stays inside, and InteriorClearance says which points lie wholly
 // inside. A flight that may meet the surface, and the launch of each photon by the object's
 // light, go to the object's own code through a function pointer: the one indirect call is on
-// that rare path, beside a ray query that costs a hundred times more, and the plain event has
-// none. (In an object that is not convex, only a flight shorter than a clearance could pass,
-// the lanes take most events one at a time, and they run no faster than the one-photon walk,
-// which the engine gives such objects.)
+// that rare path, beside a search of the surface that costs many times more, and the plain
+// event has none. (In an object that is not convex, only a flight shorter than a clearance
+// could pass, the lanes take most events one at a time, and they run no faster than the
+// one-photon walk, which the engine gives such objects.)
 
 #include <cstddef>
 #include <cstdint>
@@ -27,7 +27,8 @@ namespace scatterlab {
 // inside, and no point of the surface lies within c of any point of it. So a flight from a
 // point p inside stays inside when it is shorter than c(p) (the ball of radius c(p) about p holds
 // no point of the surface), and in a convex object when it ends in a cell with c > 0 (both its
-// ends are inside).
+// ends are inside), or in its core: a ball wholly inside it, which passes in one comparison the
+// flights that end deep inside a round object and spares the grid's read.
 struct InteriorClearance {
   Vec3 lo = Vec3::Zero();     // the grid's corner
   double inverse_side = 0.0;  // 1 / the cells' side
@@ -36,6 +37,8 @@ struct InteriorClearance {
   // as the low byte of 4.
   const std::uint8_t* code = nullptr;
   const float* clearance_of = nullptr;  // c of each code; clearance_of[0] = 0
+  Vec3 core_centre = Vec3::Zero();
+  double core_radius2 = -1.0;  // the core's squared radius; none when negative
 
   // c of the cell that holds `point`; 0 outside the grid. The lane walk reads it with the same
   // arithmetic, for all lanes at once.
@@ -50,6 +53,11 @@ struct InteriorClearance {
                            static_cast<std::size_t>(cells[0]) +
                        static_cast<std::size_t>(x);
     return clearance_of[code[index]];
+  }
+
+  // Whether `point` lies wholly inside: in the core, or in a cell with c > 0.
+  bool inside(const Vec3& point) const {
+    return (point - core_centre).squaredNorm() < core_radius2 || at(point) > 0.0;
   }
 };
 
