@@ -45,25 +45,35 @@ ConvexCrossing::ConvexCrossing(const TriangleMesh& mesh, const MeshRayTracer& tr
           static_cast<std::uint32_t>(t);
     }
   }
-  const std::uint32_t ids = id.empty() ? 0 : *std::max_element(id.begin(), id.end()) + 1;
-  corner_.assign(ids, Vec3::Zero());
-  for (std::size_t v = 0; v < id.size(); ++v) corner_[id[v]] = mesh.positions[v];
   planes_.resize(n);
   centroid_ = Vec3::Zero();
   for (std::size_t t = 0; t < n; ++t) {
-    Facet& f = facets_[t];
-    for (int k = 0; k < 3; ++k) f.corner[k] = id[mesh.triangles[t][k]];
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t from = f.corner[k], to = f.corner[(k + 1) % 3];
-      if (from < to) f.rising |= 1U << k;
-      f.across[k] = owner.at({to, from});
-    }
+    centroid_ += (mesh.vertex(t, 0) + mesh.vertex(t, 1) + mesh.vertex(t, 2)) / 3.0;
     Plane& plane = planes_[t];
     plane.normal = mesh.geometric_normal(t);
-    plane.offset = plane.normal.dot(corner_[f.corner[0]]);
-    centroid_ += (corner_[f.corner[0]] + corner_[f.corner[1]] + corner_[f.corner[2]]) / 3.0;
+    plane.offset = plane.normal.dot(mesh.vertex(t, 0));
   }
   centroid_ /= static_cast<double>(std::max<std::size_t>(n, 1));
+  // Each edge once, from its lower corner to its higher, about the centroid.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> edge_of;
+  for (std::size_t t = 0; t < n; ++t) {
+    Facet& f = facets_[t];
+    for (int k = 0; k < 3; ++k) {
+      const int next = (k + 1) % 3;
+      const std::uint32_t from = id[mesh.triangles[t][k]], to = id[mesh.triangles[t][next]];
+      const bool rising = from < to;
+      if (rising) f.rising |= 1U << k;
+      f.across[k] = owner.at({to, from});
+      const auto [it, added] = edge_of.try_emplace({std::min(from, to), std::max(from, to)},
+                                                   static_cast<std::uint32_t>(edges_.size()));
+      if (added) {
+        const Vec3 a = mesh.vertex(t, rising ? k : next) - centroid_;
+        const Vec3 b = mesh.vertex(t, rising ? next : k) - centroid_;
+        edges_.push_back({a.cross(b), b - a});
+      }
+      f.edge[k] = it->second;
+    }
+  }
   radius_ = 0.0;
   for (const Vec3& v : mesh.positions) radius_ = std::max(radius_, (v - centroid_).norm());
   inner_radius_ = radius_;
@@ -147,18 +157,16 @@ ConvexCrossing::Walk ConvexCrossing::walk(double inward, const Vec3& origin, con
                                           std::uint32_t from, Crossing& out) const {
   constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
   std::uint32_t at = from, came_from = none;
+  const Vec3 moment = (origin - centroid_).cross(direction);  // the ray's, about the centroid
   for (int step = 0; step < max_steps_; ++step) {
     const Facet& f = facets_[at];
-    const std::array<Vec3, 3> seen{corner_[f.corner[0]] - origin, corner_[f.corner[1]] - origin,
-                                   corner_[f.corner[2]] - origin};
     int beyond = -1;
     for (int i = 0; i < 3; ++i) {
       const int k = (i + step) % 3;
       if (f.across[k] == came_from) continue;  // the ray passes on this side of the edge it came by
-      // The edge's product from its lower corner to its higher, and its sign for this facet.
+      const Edge& e = edges_[f.edge[k]];
+      const double product = e.moment.dot(direction) + e.along.dot(moment);
       const int rising = static_cast<int>((f.rising >> k) & 1U);
-      const double product =
-          seen[(k + 1 - rising) % 3].cross(seen[(k + rising) % 3]).dot(direction);
       if (inward * (2 * rising - 1) * product < 0.0) {
         beyond = k;
         break;

@@ -21,10 +21,17 @@
 // that it does not cycle). Coming in from outside, a walk that steps onto a facet facing away
 // from the light has crossed the rim of the shadow, which is convex: the ray misses.
 //
-// Watertight: both facets that share an edge compute its product from the same corners in the
-// same order (the lower index first), and the one that runs the edge the other way negates it,
-// so that a ray through an edge is claimed by at least one facet and never lost between two,
-// however the products are rounded (fused multiply-adds make a x b and b x a differ).
+// Each product is computed from the Plücker coordinates of the edge's line and of the ray
+// (Platis & Theoharis 2003, "Fast ray-tetrahedron intersection using Plücker coordinates",
+// J. Graphics Tools 8(4), §2): expanding the cross product,
+//   ((a - p) x (b - p)) . d = (a x b) . d + ((b - a) x p) . d = (a x b) . d + (b - a) . (p x d),
+// so an edge keeps a x b and b - a, a walk computes p x d once, and a product is two dot
+// products (all about the centroid, so that no large coordinates cancel).
+//
+// Watertight: an edge's coordinates are stored once, from its lower corner to its higher, for
+// both facets that share it, and the facet that runs the edge the other way negates the
+// product, so that a ray through an edge is claimed by at least one facet and never lost
+// between two, however the products are rounded.
 //
 // The walk starts at the facet met, from the object's centroid, in the direction of a point
 // near where the ray is expected to cross (a table over the octahedral map of directions,
@@ -72,12 +79,18 @@ class ConvexCrossing {
   double inner_radius() const { return inner_radius_; }
 
  private:
-  // What a step of the walk reads of a facet, in half a cache line: its corners (indices of
-  // positions, shared across seams), the facets across its edges (edge k runs from corner k to
-  // corner k + 1), and which edges run from the lower index to the higher (bit k), the order
-  // in which both facets of an edge compute its product.
+  // An edge's line, from its lower corner a to its higher b (indices of positions, shared across
+  // seams), about the centroid: the product of the ray p + t d with it is
+  // (a x b) . d + (b - a) . (p x d).
+  struct Edge {
+    Vec3 moment;  // a x b
+    Vec3 along;   // b - a
+  };
+  // What a step of the walk reads of a facet, in half a cache line: its edges (edge k runs from
+  // corner k to corner k + 1), the facets across them, and which run from the lower corner to
+  // the higher (bit k), whose product is then the facet's own, and not its negative.
   struct Facet {
-    std::array<std::uint32_t, 3> corner;
+    std::array<std::uint32_t, 3> edge;
     std::array<std::uint32_t, 3> across;
     std::uint32_t rising = 0;
   };
@@ -92,7 +105,7 @@ class ConvexCrossing {
   Walk walk(double inward, const Vec3& origin, const Vec3& direction, std::uint32_t from,
             Crossing& out) const;
 
-  std::vector<Vec3> corner_;
+  std::vector<Edge> edges_;
   std::vector<Facet> facets_;
   std::vector<Plane> planes_;
   Vec3 centroid_;
