@@ -7,7 +7,10 @@
 //                sphere that bounds the mesh, and those whose line misses the mesh are drawn
 //                again. Each photon therefore stands for an equal share of the power that
 //                meets the object, the normalisation of the lit sphere (source.hpp), whatever
-//                the object's shadow;
+//                the object's shadow. On a convex object, whose facing facets tile its shadow
+//                once, the same photons start on a facet drawn in proportion to its shadow
+//                (area times cosine of incidence), uniformly over it: no line to trace, none
+//                drawn again;
 //   sphere       a sphere of light of uniform radiance about `origin`, of radius `radius`
 //                (Vavassori §4.3, the light over the milk sphere): photons leave its surface
 //                uniformly, each along a cosine-distributed direction about the outward normal
@@ -18,10 +21,13 @@
 // probability F, and followed on, or refracted in. launch is false for a photon that is
 // reflected off the object and never enters.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <vector>
 
+#include "scatterlab/core/alias_table.hpp"
 #include "scatterlab/core/azimuth.hpp"
 #include "scatterlab/core/frame.hpp"
 #include "scatterlab/core/random.hpp"
@@ -50,6 +56,14 @@ class MeshLight {
     if (kind_ == Kind::beam) {
       beam_meets_ = boundary_.first_entry(origin_, direction_, 0.0, beam_entry_, beam_cos_);
     }
+    if (kind_ == Kind::directional && boundary_.convex()) {
+      const TriangleMesh& mesh = boundary_.mesh();
+      std::vector<double> shadow(mesh.triangle_count());
+      for (std::size_t t = 0; t < shadow.size(); ++t) {
+        shadow[t] = mesh.area(t) * std::max(-mesh.geometric_normal(t).dot(direction_), 0.0);
+      }
+      lit_facets_.emplace(shadow);
+    }
   }
 
   bool launch(PhotonRandom& random, Vec3& start, Vec3& heading) const {
@@ -71,6 +85,21 @@ class MeshLight {
         if (boundary_.enter(start, heading, random, 0.0, &met)) return true;
         if (met) return false;
       }
+    }
+    if (lit_facets_) {
+      const auto u = random.next4();
+      MeshCrossing at;
+      at.triangle = lit_facets_->draw(u[0]);
+      const TriangleMesh& mesh = boundary_.mesh();
+      const Vec3 &a = mesh.vertex(at.triangle, 0), &b = mesh.vertex(at.triangle, 1),
+                 &c = mesh.vertex(at.triangle, 2);
+      // Uniform over the triangle (Osada et al. 2002, "Shape distributions", ACM TOG 21(4),
+      // §4.2, eq. 1).
+      const double root = std::sqrt(u[1]);
+      at.point = (1.0 - root) * a + root * (1.0 - u[2]) * b + root * u[2] * c;
+      at.normal = mesh.geometric_normal(at.triangle);
+      heading = direction_;
+      return boundary_.enter_at(at, -at.normal.dot(direction_), start, heading, random);
     }
     // Uniform over the disc: r = R sqrt(u), on a plane a radius behind the centre. A closed mesh
     // of positive volume has a shadow of positive area, so the draw ends (a needle 1e-3 of the
@@ -95,7 +124,8 @@ class MeshLight {
   Frame across_;  // tangent and bitangent span the disc
   Vec3 center_;
   double radius_;
-  bool beam_meets_ = false;  // the beam's first crossing, and its cosine of incidence
+  std::optional<AliasTable> lit_facets_;  // directional light on a convex object
+  bool beam_meets_ = false;               // the beam's first crossing, and its cosine of incidence
   MeshCrossing beam_entry_;
   double beam_cos_ = 0.0;
 };
