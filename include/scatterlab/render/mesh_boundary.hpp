@@ -200,10 +200,10 @@ class MeshBoundary {
   // spared; there a flight shorter than its start's clearance stays inside.
   bool ends_inside(const Vec3& next) const { return convex_ && interior_.inside(next); }
 
-  // The crossing of a flight from inside at `position` that would end at `next`, `flight`
-  // along `direction`, as next_facing(false, ...): in a convex object by the walk (t_near
-  // is then not needed: the walk finds the facet the ray leaves by, not the one it is on),
-  // and by Embree where the walk gives up.
+  // The crossing of a flight of `flight` from inside at `position` along `direction`, as
+  // next_facing(false, ...): in a convex object by the walk (t_near is then not needed: the
+  // walk finds the facet the ray leaves by, not the one it is on), and by Embree where the walk
+  // gives up.
   bool next_exit(const Vec3& position, const Vec3& direction, double t_near, double flight,
                  MeshCrossing& at, double& cos_inside) const {
     ConvexCrossing::Crossing walked;
@@ -217,6 +217,7 @@ class MeshBoundary {
     return next_facing(false, position, direction, t_near, flight, at, cos_inside);
   }
 
+  // The crossing a walk found, as next_crossing gives it.
   static MeshCrossing crossing_at(const Vec3& position, const Vec3& direction,
                                   const ConvexCrossing::Crossing& walked) {
     MeshCrossing at;
