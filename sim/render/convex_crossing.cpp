@@ -39,15 +39,13 @@ ConvexCrossing::ConvexCrossing(const TriangleMesh& mesh, const MeshRayTracer& tr
   const std::size_t n = mesh.triangle_count();
   facets_.resize(n);
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> owner;  // directed edge
+  planes_.resize(n);
+  centroid_ = Vec3::Zero();
   for (std::size_t t = 0; t < n; ++t) {
     for (int k = 0; k < 3; ++k) {
       owner[{id[mesh.triangles[t][k]], id[mesh.triangles[t][(k + 1) % 3]]}] =
           static_cast<std::uint32_t>(t);
     }
-  }
-  planes_.resize(n);
-  centroid_ = Vec3::Zero();
-  for (std::size_t t = 0; t < n; ++t) {
     centroid_ += (mesh.vertex(t, 0) + mesh.vertex(t, 1) + mesh.vertex(t, 2)) / 3.0;
     Plane& plane = planes_[t];
     plane.normal = mesh.geometric_normal(t);
@@ -113,7 +111,7 @@ std::uint32_t ConvexCrossing::start(const Vec3& near) const {
 }
 
 ConvexCrossing::Walk ConvexCrossing::leave(const Vec3& origin, const Vec3& direction,
-                                           Crossing& out) const {
+                                           MeshCrossing& at, double& cos_incidence) const {
   // Start where the ray leaves the ball about the centroid that holds the object:
   // |origin - centroid + t direction| = radius.
   const Vec3 from_centroid = origin - centroid_;
@@ -121,11 +119,11 @@ ConvexCrossing::Walk ConvexCrossing::leave(const Vec3& origin, const Vec3& direc
   const double t =
       -along +
       std::sqrt(std::max(along * along - from_centroid.squaredNorm() + radius_ * radius_, 0.0));
-  return walk(1.0, origin, direction, start(origin + t * direction), out);
+  return walk(1.0, origin, direction, start(origin + t * direction), at, cos_incidence);
 }
 
 ConvexCrossing::Walk ConvexCrossing::enter(const Vec3& origin, const Vec3& direction,
-                                           Crossing& out) const {
+                                           MeshCrossing& at, double& cos_incidence) const {
   // The object lies within `radius_` of its centroid: a line that passes farther, or a ray
   // from outside that ball going away from it, misses.
   const Vec3 to_centroid = centroid_ - origin;
@@ -150,16 +148,17 @@ ConvexCrossing::Walk ConvexCrossing::enter(const Vec3& origin, const Vec3& direc
       }
     }
   }
-  return walk(-1.0, origin, direction, from, out);
+  return walk(-1.0, origin, direction, from, at, cos_incidence);
 }
 
 ConvexCrossing::Walk ConvexCrossing::walk(double inward, const Vec3& origin, const Vec3& direction,
-                                          std::uint32_t from, Crossing& out) const {
+                                          std::uint32_t from, MeshCrossing& at,
+                                          double& cos_incidence) const {
   constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-  std::uint32_t at = from, came_from = none;
+  std::uint32_t facet = from, came_from = none;
   const Vec3 moment = (origin - centroid_).cross(direction);  // the ray's, about the centroid
   for (int step = 0; step < max_steps_; ++step) {
-    const Facet& f = facets_[at];
+    const Facet& f = facets_[facet];
     int beyond = -1;
     for (int i = 0; i < 3; ++i) {
       const int k = (i + step) % 3;
@@ -173,22 +172,23 @@ ConvexCrossing::Walk ConvexCrossing::walk(double inward, const Vec3& origin, con
       }
     }
     if (beyond < 0) {
-      const Plane& plane = planes_[at];
+      const Plane& plane = planes_[facet];
       const double cos_normal = plane.normal.dot(direction);
       if (!(inward * cos_normal > 0.0)) return Walk::gave_up;  // grazing the facet
       const double distance = (plane.offset - plane.normal.dot(origin)) / cos_normal;
       // From outside, a line that enters behind its origin has passed the object.
       if (inward < 0.0 && !(distance > 0.0)) return Walk::misses;
-      out.triangle = at;
-      out.distance = std::max(distance, 0.0);  // a point on the surface may round outside
-      out.cos_incidence = inward * cos_normal;
-      out.normal = plane.normal;
+      at.triangle = facet;
+      at.distance = std::max(distance, 0.0);  // a point on the surface may round outside
+      at.point = origin + at.distance * direction;
+      at.normal = plane.normal;
+      cos_incidence = inward * cos_normal;
       return Walk::crosses;
     }
-    came_from = at;
-    at = f.across[beyond];
+    came_from = facet;
+    facet = f.across[beyond];
     // Entering, a step off the facets that face the light crosses the rim of the shadow.
-    if (inward < 0.0 && !(planes_[at].normal.dot(direction) < 0.0)) return Walk::misses;
+    if (inward < 0.0 && !(planes_[facet].normal.dot(direction) < 0.0)) return Walk::misses;
   }
   return Walk::gave_up;
 }

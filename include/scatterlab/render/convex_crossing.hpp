@@ -55,23 +55,20 @@ class ConvexCrossing {
   // `tracer` is over it and is used only here, to fill the table of starting facets.
   ConvexCrossing(const TriangleMesh& mesh, const MeshRayTracer& tracer);
 
-  struct Crossing {
-    std::uint32_t triangle = 0;  // the mesh's index of the facet
-    double distance = 0.0;       // along the unit direction, from the ray's origin (>= 0)
-    double cos_incidence = 0.0;  // |direction . normal|, > 0
-    Vec3 normal;                 // the facet's outward unit normal
-  };
   enum class Walk { crosses, misses, gave_up };
 
   // The facet through which the ray from `origin` (inside, or on the surface) along the unit
-  // `direction` leaves: crosses, or gave_up.
-  Walk leave(const Vec3& origin, const Vec3& direction, Crossing& out) const;
+  // `direction` leaves: crosses (`at` the crossing, at a distance >= 0, and `cos_incidence`
+  // = |direction . normal| > 0), or gave_up.
+  Walk leave(const Vec3& origin, const Vec3& direction, MeshCrossing& at,
+             double& cos_incidence) const;
 
   // The facet through which the ray from `origin` (outside) along the unit `direction` enters,
   // starting from the facet towards where the line comes within the object's bounding ball:
   // crosses (at a distance > 0), misses (also when the object lies behind the origin), or
   // gave_up.
-  Walk enter(const Vec3& origin, const Vec3& direction, Crossing& out) const;
+  Walk enter(const Vec3& origin, const Vec3& direction, MeshCrossing& at,
+             double& cos_incidence) const;
 
   // The centroid of the facets, inside, and its distance to the nearest facet's plane: the
   // radius of the largest ball about it inside the object.
@@ -103,7 +100,7 @@ class ConvexCrossing {
   std::uint32_t start(const Vec3& near) const;
   // The walk, for products of sign `inward` (+1 leaving, -1 entering).
   Walk walk(double inward, const Vec3& origin, const Vec3& direction, std::uint32_t from,
-            Crossing& out) const;
+            MeshCrossing& at, double& cos_incidence) const;
 
   std::vector<Edge> edges_;
   std::vector<Facet> facets_;

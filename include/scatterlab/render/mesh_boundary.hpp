@@ -44,15 +44,6 @@
 
 namespace scatterlab {
 
-// Where a ray meets a closed mesh: the point (recomputed in double from Embree's barycentrics)
-// and the facet's outward unit normal.
-struct MeshCrossing {
-  Vec3 point;
-  Vec3 normal;
-  std::uint32_t triangle = 0;
-  double distance = 0.0;
-};
-
 // The meeting of a ray from `origin` along the unit `direction` with the mesh in
 // (t_near, t_far); false when there is none.
 inline bool next_crossing(const MeshRayTracer& tracer, const TriangleMesh& mesh, const Vec3& origin,
@@ -83,8 +74,8 @@ class MeshBoundary {
         eta_(eta),
         epsilon_(tracer.epsilon()),
         clearance_(std::make_shared<const SurfaceClearance>(mesh, tracer)),
-        convex_(bounds_convex_solid(mesh)),
-        crossing_(convex_ ? std::make_shared<const ConvexCrossing>(mesh, tracer) : nullptr),
+        crossing_(bounds_convex_solid(mesh) ? std::make_shared<const ConvexCrossing>(mesh, tracer)
+                                            : nullptr),
         interior_(clearance_->interior()) {
     // A convex object's core: the largest ball about the walk's centroid that its facets'
     // planes leave whole, a millionth smaller.
@@ -100,7 +91,7 @@ class MeshBoundary {
   // The grid of clearances inside the object, which the lane walk reads, and whether the
   // object is convex, which the lane walk needs (transport/object_boundary.hpp).
   const InteriorClearance& interior() const { return interior_; }
-  bool convex() const { return convex_; }
+  bool convex() const { return crossing_ != nullptr; }
 
   // The light outside at `position`, travelling along `direction`, meets the mesh (or not):
   // reflected off it with probability F and followed on, or refracted in. True when it enters
@@ -121,15 +112,11 @@ class MeshBoundary {
   // In a convex object, by the walk over the facets facing the light (convex_crossing.hpp).
   bool first_entry(const Vec3& position, const Vec3& direction, double t_near, MeshCrossing& at,
                    double& cos_outside) const {
-    ConvexCrossing::Crossing walked;
-    const ConvexCrossing::Walk walk =
-        crossing_ ? crossing_->enter(position, direction, walked) : ConvexCrossing::Walk::gave_up;
+    const ConvexCrossing::Walk walk = crossing_
+                                          ? crossing_->enter(position, direction, at, cos_outside)
+                                          : ConvexCrossing::Walk::gave_up;
     if (walk == ConvexCrossing::Walk::misses) return false;
-    if (walk == ConvexCrossing::Walk::crosses && walked.distance > t_near) {
-      at = crossing_at(position, direction, walked);
-      cos_outside = walked.cos_incidence;
-      return true;
-    }
+    if (walk == ConvexCrossing::Walk::crosses && at.distance > t_near) return true;
     return next_facing(true, position, direction, t_near, infinity, at, cos_outside);
   }
 
@@ -150,7 +137,7 @@ class MeshBoundary {
       }
       return true;
       // Light reflected off a convex object never meets it again.
-    } while (!convex_ &&
+    } while (!convex() &&
              next_facing(true, position, direction, epsilon_, infinity, at, cos_outside));
     return false;
   }
@@ -160,7 +147,7 @@ class MeshBoundary {
   // filled) or the flight goes on inside, after reflections or a re-entry, to end at `next`.
   bool leaves(Vec3& position, Vec3& direction, Vec3& next, double flight, PhotonRandom& random,
               SurfaceExit& exit) const {
-    if (convex_ ? ends_inside(next) : flight < clearance_->at(position)) return false;
+    if (convex() ? ends_inside(next) : flight < clearance_->at(position)) return false;
     double t_near = 0.0;
     MeshCrossing at;
     double cos_inside = 0.0;
@@ -185,7 +172,7 @@ class MeshBoundary {
       exit.triangle = at.triangle;
       exit.x = position.x();
       exit.y = position.y();
-      if (convex_ || !enter(position, direction, random, epsilon_)) return true;
+      if (convex() || !enter(position, direction, random, epsilon_)) return true;
       // Back inside: a fresh flight from the point of entry.
       flight = -std::log(random.next4()[0]);
       next = position + flight * direction;
@@ -198,7 +185,7 @@ class MeshBoundary {
   // its end lies in the core or in a cell wholly inside (transport/object_boundary.hpp). Not
   // looked up in other objects, where it would cost a cache miss a flight for a query seldom
   // spared; there a flight shorter than its start's clearance stays inside.
-  bool ends_inside(const Vec3& next) const { return convex_ && interior_.inside(next); }
+  bool ends_inside(const Vec3& next) const { return convex() && interior_.inside(next); }
 
   // The crossing of a flight of `flight` from inside at `position` along `direction`, as
   // next_facing(false, ...): in a convex object by the walk (t_near is then not needed: the
@@ -206,26 +193,11 @@ class MeshBoundary {
   // gives up.
   bool next_exit(const Vec3& position, const Vec3& direction, double t_near, double flight,
                  MeshCrossing& at, double& cos_inside) const {
-    ConvexCrossing::Crossing walked;
     if (crossing_ &&
-        crossing_->leave(position, direction, walked) == ConvexCrossing::Walk::crosses) {
-      if (!(walked.distance < flight)) return false;
-      at = crossing_at(position, direction, walked);
-      cos_inside = walked.cos_incidence;
-      return true;
+        crossing_->leave(position, direction, at, cos_inside) == ConvexCrossing::Walk::crosses) {
+      return at.distance < flight;
     }
     return next_facing(false, position, direction, t_near, flight, at, cos_inside);
-  }
-
-  // The crossing a walk found, as next_crossing gives it.
-  static MeshCrossing crossing_at(const Vec3& position, const Vec3& direction,
-                                  const ConvexCrossing::Crossing& walked) {
-    MeshCrossing at;
-    at.point = position + walked.distance * direction;
-    at.normal = walked.normal;
-    at.triangle = walked.triangle;
-    at.distance = walked.distance;
-    return at;
   }
 
   // The next crossing in (t_near, t_far) met from outside (`from_outside`) or from inside, and
@@ -247,9 +219,8 @@ class MeshBoundary {
   double eta_;
   double epsilon_;
   std::shared_ptr<const SurfaceClearance> clearance_;  // shared by the walk's copies
-  bool convex_;
-  std::shared_ptr<const ConvexCrossing> crossing_;  // in a convex object only
-  InteriorClearance interior_;                      // the grid's, with the core of a convex one
+  std::shared_ptr<const ConvexCrossing> crossing_;     // in a convex object only: convex()
+  InteriorClearance interior_;                         // the grid's, with the core of a convex one
 };
 
 }  // namespace scatterlab

@@ -17,6 +17,14 @@ struct MeshHit {
   double bary_a = 0.0, bary_b = 0.0;  // point = (1 - a - b) p0 + a p1 + b p2
 };
 
+// Where a ray meets a closed mesh: the point, in double, and the facet's outward unit normal.
+struct MeshCrossing {
+  Vec3 point;
+  Vec3 normal;
+  std::uint32_t triangle = 0;
+  double distance = 0.0;  // along the (unit) direction, from the ray's origin
+};
+
 class MeshRayTracer {
  public:
   // Throws std::runtime_error when Embree cannot start.

@@ -44,7 +44,7 @@ class SurfaceClearance {
 
  private:
   std::vector<std::uint8_t> code_;  // min(k, 255) inside; 0 elsewhere
-  float clearance_of_[256] = {};     // the bound of each k, a millionth under, rounded down
+  float clearance_of_[256] = {};    // the bound of each k, a millionth under, rounded down
   InteriorClearance grid_;
 };
 
