@@ -60,15 +60,24 @@ inline double fresnel_dielectric_transmittance(double cos_incident, double eta) 
   return 1.0 - fresnel_dielectric_reflectance(cos_incident, eta);
 }
 
-// Refracts the unit travel direction `incident` through a surface with unit normal `normal`
-// pointing to the incident side (incident . normal < 0). Returns false under total internal
-// reflection, leaving `transmitted` unchanged. Snell's law in vector form (pbrt-v4 Refract):
-// t = incident / eta + (cos i / eta - cos t) normal.
+// Snell's law in vector form (pbrt-v4 Refract): the unit travel direction `incident` refracted
+// through a surface with unit normal `normal` pointing to the incident side, given
+// cos_i = -incident . normal and the cos t of fresnel_dielectric_terms(cos_i, eta),
+//   t = incident / eta + (cos i / eta - cos t) normal,
+// for a caller that has the terms already (its Fresnel choice).
+inline Vec3 refracted(const Vec3& incident, const Vec3& normal, double eta, double cos_i,
+                      double cos_transmitted) {
+  return (incident / eta + (cos_i / eta - cos_transmitted) * normal).normalized();
+}
+
+// Refracts `incident` through the surface with `normal` on the incident side
+// (incident . normal < 0). Returns false under total internal reflection, leaving `transmitted`
+// unchanged.
 inline bool refract(const Vec3& incident, const Vec3& normal, double eta, Vec3& transmitted) {
   const double cos_i = -incident.dot(normal);
   const FresnelDielectric terms = fresnel_dielectric_terms(cos_i, eta);
   if (terms.total_internal_reflection) return false;
-  transmitted = (incident / eta + (cos_i / eta - terms.cos_transmitted) * normal).normalized();
+  transmitted = refracted(incident, normal, eta, cos_i, terms.cos_transmitted);
   return true;
 }
 

@@ -73,6 +73,8 @@ class ConvexCrossing {
   // The centroid of the facets, inside, and its distance to the nearest facet's plane: the
   // radius of the largest ball about it inside the object.
   const Vec3& centroid() const { return centroid_; }
+  // The outward unit normal of facet `t` (TriangleMesh::geometric_normal).
+  const Vec3& normal(std::uint32_t t) const { return planes_[t].normal; }
   double inner_radius() const { return inner_radius_; }
 
  private:

@@ -92,6 +92,10 @@ class MeshBoundary {
   // object is convex, which the lane walk needs (transport/object_boundary.hpp).
   const InteriorClearance& interior() const { return interior_; }
   bool convex() const { return crossing_ != nullptr; }
+  // The outward unit normal of triangle `t`: the walk's, in a convex object.
+  Vec3 facet_normal(std::uint32_t t) const {
+    return crossing_ ? crossing_->normal(t) : mesh_->geometric_normal(t);
+  }
 
   // The light outside at `position`, travelling along `direction`, meets the mesh (or not):
   // reflected off it with probability F and followed on, or refracted in. True when it enters
@@ -104,7 +108,8 @@ class MeshBoundary {
     double cos_outside = 0.0;
     if (!first_entry(position, direction, t_near, at, cos_outside)) return false;
     if (met != nullptr) *met = true;
-    return enter_at(at, cos_outside, position, direction, random);
+    return enter_at(at, cos_outside, fresnel ? random.next4()[0] : 0.0, position, direction,
+                    random);
   }
 
   // The first crossing of the light outside at `position` along `direction` with the mesh,
@@ -121,25 +126,29 @@ class MeshBoundary {
   }
 
   // enter() from its first crossing `at` (first_entry): a light whose first crossing is always
-  // the same (a beam) finds it once.
-  bool enter_at(MeshCrossing at, double cos_outside, Vec3& position, Vec3& direction,
+  // the same (a beam) finds it once. `u` is the uniform of the Fresnel choice there (unused
+  // where eta = 1), so that a light may draw it with its own; the choices where light
+  // reflected off an object that is not convex meets it again draw from `random`.
+  bool enter_at(MeshCrossing at, double cos_outside, double u, Vec3& position, Vec3& direction,
                 PhotonRandom& random) const {
-    do {
-      const Vec3& normal = at.normal;
+    for (;;) {
       position = at.point;
       if constexpr (fresnel) {
         const FresnelDielectric surface = fresnel_dielectric_terms(cos_outside, eta_);
-        if (random.next4()[0] < surface.reflectance()) {
-          direction = (direction + 2.0 * cos_outside * normal).normalized();
+        if (u < surface.reflectance()) {
+          direction = (direction + 2.0 * cos_outside * at.normal).normalized();
+          // Light reflected off a convex object never meets it again.
+          if (convex() ||
+              !next_facing(true, position, direction, epsilon_, infinity, at, cos_outside)) {
+            return false;
+          }
+          u = random.next4()[0];
           continue;
         }
-        refract(direction, normal, eta_, direction);
+        direction = refracted(direction, at.normal, eta_, cos_outside, surface.cos_transmitted);
       }
       return true;
-      // Light reflected off a convex object never meets it again.
-    } while (!convex() &&
-             next_facing(true, position, direction, epsilon_, infinity, at, cos_outside));
-    return false;
+    }
   }
 
   // The walk's surface (random_walk.hpp): the flight of `flight` mfp from `position` along
@@ -165,14 +174,18 @@ class MeshBoundary {
           continue;
         }
         exit.cos_outside = surface.cos_transmitted;
-        refract(direction, -normal, 1.0 / eta_, direction);
       } else {
         exit.cos_outside = cos_inside;
       }
       exit.triangle = at.triangle;
       exit.x = position.x();
       exit.y = position.y();
-      if (convex() || !enter(position, direction, random, epsilon_)) return true;
+      // Light that leaves a convex object is not followed: its direction outside is not needed.
+      if (convex()) return true;
+      if constexpr (fresnel) {
+        direction = refracted(direction, -normal, 1.0 / eta_, cos_inside, exit.cos_outside);
+      }
+      if (!enter(position, direction, random, epsilon_)) return true;
       // Back inside: a fresh flight from the point of entry.
       flight = -std::log(random.next4()[0]);
       next = position + flight * direction;

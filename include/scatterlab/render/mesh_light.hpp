@@ -70,7 +70,9 @@ class MeshLight {
     if (kind_ == Kind::beam) {
       start = origin_;
       heading = direction_;
-      return beam_meets_ && boundary_.enter_at(beam_entry_, beam_cos_, start, heading, random);
+      return beam_meets_ && boundary_.enter_at(beam_entry_, beam_cos_,
+                                               fresnel ? random.next4()[0] : 0.0, start, heading,
+                                               random);
     }
     if (kind_ == Kind::sphere) {
       for (;;) {
@@ -97,9 +99,10 @@ class MeshLight {
       // §4.2, eq. 1).
       const double root = std::sqrt(u[1]);
       at.point = (1.0 - root) * a + root * (1.0 - u[2]) * b + root * u[2] * c;
-      at.normal = mesh.geometric_normal(at.triangle);
+      at.normal = boundary_.facet_normal(at.triangle);
       heading = direction_;
-      return boundary_.enter_at(at, -at.normal.dot(direction_), start, heading, random);
+      // The photon's one Philox call draws its Fresnel choice too.
+      return boundary_.enter_at(at, -at.normal.dot(direction_), u[3], start, heading, random);
     }
     // Uniform over the disc: r = R sqrt(u), on a plane a radius behind the centre. A closed mesh
     // of positive volume has a shadow of positive area, so the draw ends (a needle 1e-3 of the
