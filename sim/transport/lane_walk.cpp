@@ -222,12 +222,11 @@ HWY_INLINE auto stays_inside(const ObjectBoundary& object, const LaneWalk::Setup
   // is read from the table.
   const hn::Rebind<float, D> df;
   const hn::Rebind<std::int32_t, D> d32;
-  const auto code = hn::And(
-      hn::GatherOffset(d32, reinterpret_cast<const std::int32_t*>(grid.code),
-                       hn::DemoteTo(d32, hn::IfThenElseZero(on_grid, cell))),
-      hn::Set(d32, 0xFF));
-  const V clearance = hn::IfThenElseZero(
-      on_grid, hn::PromoteTo(d, hn::GatherIndex(df, grid.clearance_of, code)));
+  const auto code = hn::And(hn::GatherOffset(d32, reinterpret_cast<const std::int32_t*>(grid.code),
+                                             hn::DemoteTo(d32, hn::IfThenElseZero(on_grid, cell))),
+                            hn::Set(d32, 0xFF));
+  const V clearance =
+      hn::IfThenElseZero(on_grid, hn::PromoteTo(d, hn::GatherIndex(df, grid.clearance_of, code)));
   return hn::Or(in_core, hn::Gt(clearance, zero));
 }
 
@@ -245,8 +244,9 @@ struct Lanes {
   int order[kMaxLanes];
   int layer[kMaxLanes];  // the slab
   bool busy[kMaxLanes];
-  alignas(64) std::int64_t cell[kMaxLanes];     // the fluence cell of the flight's end, or -1
-  std::uint8_t plain[(kMaxLanes + 7) / 8 + 8];  // bit k: lane k's flight stays inside, scatters
+  alignas(64) std::int64_t cell[kMaxLanes];      // the fluence cell of the flight's end, or -1
+  std::uint8_t plain[(kMaxLanes + 7) / 8 + 8];   // bit k: lane k's flight stays inside, scatters
+  std::uint8_t inside[(kMaxLanes + 7) / 8 + 8];  // bit k: lane k's flight stays inside
 };
 
 // `isotropic`: g = 0 everywhere (never in the slab, whose g is per layer); `collisions`: the
@@ -325,8 +325,9 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
       hn::Store(next_z, d, lane.next_z);
       // The plain event, most of them: the flight stays inside, within the escape radius, and
       // the photon scatters. Such a lane needs only its move and its collision scored.
-      auto plain = hn::And(hn::Lt(u1, hn::Set(d, setup.albedo)),
-                           stays_inside(geometry, setup, next_x, next_y, next_z));
+      const auto inside = stays_inside(geometry, setup, next_x, next_y, next_z);
+      hn::StoreMaskBits(d, inside, lane.inside);
+      auto plain = hn::And(hn::Lt(u1, hn::Set(d, setup.albedo)), inside);
       if (escape_limited) {
         const V r2 =
             hn::MulAdd(next_x, next_x, hn::MulAdd(next_y, next_y, hn::Mul(next_z, next_z)));
@@ -385,29 +386,33 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
       // Constant 1 under analog absorption, where the compiler folds it away.
       double weight = 1.0;
       if constexpr (implicit) weight = lane.weight[k];
-      Vec3 next;
+      Vec3 next(lane.next_x[k], lane.next_y[k], lane.next_z[k]);  // the slab's: where it stops
       bool left = false;
+      // A flight the vector test found inside (an absorption there) meets no surface.
+      bool may_cross = Geometry::has_surface;
+      if constexpr (!Geometry::layered)
+        may_cross = may_cross && !((lane.inside[k / 8] >> (k % 8)) & 1U);
       if constexpr (Geometry::has_surface) {
-        // The geometry's own code on the lane's stream (a Fresnel choice draws from it).
-        Vec3 position(lane.x[k], lane.y[k], lane.z[k]);
-        Vec3 direction(lane.wx[k], lane.wy[k], lane.wz[k]);
-        PhotonRandom random(setup.seed, lane.photon[k], static_cast<std::uint32_t>(lane.call[k]));
-        SurfaceExit exit;
-        if constexpr (Geometry::layered) {
-          left = geometry.leaves(position, direction, lane.layer[k], lane.flight[k], random, exit);
-          next = position;
-        } else {
-          next = Vec3(lane.next_x[k], lane.next_y[k], lane.next_z[k]);
-          left = geometry.leaves(position, direction, next, lane.flight[k], random, exit);
+        if (may_cross) {
+          // The geometry's own code on the lane's stream (a Fresnel choice draws from it).
+          Vec3 position(lane.x[k], lane.y[k], lane.z[k]);
+          Vec3 direction(lane.wx[k], lane.wy[k], lane.wz[k]);
+          PhotonRandom random(setup.seed, lane.photon[k], static_cast<std::uint32_t>(lane.call[k]));
+          SurfaceExit exit;
+          if constexpr (Geometry::layered) {
+            left =
+                geometry.leaves(position, direction, lane.layer[k], lane.flight[k], random, exit);
+            next = position;
+          } else {
+            left = geometry.leaves(position, direction, next, lane.flight[k], random, exit);
+          }
+          if (left) {
+            scorer.exit(buffer, exit, lane.order[k], weight);
+          } else {
+            lane.wx[k] = direction.x(), lane.wy[k] = direction.y(), lane.wz[k] = direction.z();
+            lane.call[k] = random.calls();
+          }
         }
-        if (left) {
-          scorer.exit(buffer, exit, lane.order[k], weight);
-        } else {
-          lane.wx[k] = direction.x(), lane.wy[k] = direction.y(), lane.wz[k] = direction.z();
-          lane.call[k] = random.calls();
-        }
-      } else {
-        next = Vec3(lane.next_x[k], lane.next_y[k], lane.next_z[k]);
       }
       if (!left && next.squaredNorm() > setup.escape_radius2) {
         scorer.escape(buffer, weight);

@@ -157,6 +157,13 @@ class MeshBoundary {
   bool leaves(Vec3& position, Vec3& direction, Vec3& next, double flight, PhotonRandom& random,
               SurfaceExit& exit) const {
     if (convex() ? ends_inside(next) : flight < clearance_->at(position)) return false;
+    return meets_surface(position, direction, next, flight, random, exit);
+  }
+
+  // leaves() past its first test, for a caller that has made it: the lane walk, which reads
+  // the same interior for all lanes at once (transport/object_boundary.hpp).
+  bool meets_surface(Vec3& position, Vec3& direction, Vec3& next, double flight,
+                     PhotonRandom& random, SurfaceExit& exit) const {
     double t_near = 0.0;
     MeshCrossing at;
     double cos_inside = 0.0;

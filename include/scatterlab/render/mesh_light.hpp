@@ -70,9 +70,9 @@ class MeshLight {
     if (kind_ == Kind::beam) {
       start = origin_;
       heading = direction_;
-      return beam_meets_ && boundary_.enter_at(beam_entry_, beam_cos_,
-                                               fresnel ? random.next4()[0] : 0.0, start, heading,
-                                               random);
+      return beam_meets_ &&
+             boundary_.enter_at(beam_entry_, beam_cos_, fresnel ? random.next4()[0] : 0.0, start,
+                                heading, random);
     }
     if (kind_ == Kind::sphere) {
       for (;;) {
@@ -143,8 +143,8 @@ std::optional<ObjectBoundary> object_boundary(const MeshBoundary<fresnel>& bound
       &boundary,
       [](const void* object, Vec3& position, Vec3& direction, Vec3& next, double flight,
          PhotonRandom& random, SurfaceExit& exit) {
-        return static_cast<const MeshBoundary<fresnel>*>(object)->leaves(position, direction, next,
-                                                                         flight, random, exit);
+        return static_cast<const MeshBoundary<fresnel>*>(object)->meets_surface(
+            position, direction, next, flight, random, exit);
       },
       &light,
       [](const void* object_light, PhotonRandom& random, Vec3& start, Vec3& heading) {

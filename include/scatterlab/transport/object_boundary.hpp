@@ -1,14 +1,14 @@
 #pragma once
 // A convex object whose surface another module traces (a closed triangle mesh:
-// render/mesh_boundary.hpp), as the lane walk (lane_walk.hpp) runs it, and as a geometry of
-// random_walk.hpp.
+// render/mesh_boundary.hpp), as the lane walk (lane_walk.hpp) runs it.
 //
 // The lanes decide the plain event for all lanes at once: a flight from a point inside a convex
 // object to a point inside it stays inside, and InteriorClearance says which points lie wholly
 // inside. A flight that may meet the surface, and the launch of each photon by the object's
 // light, go to the object's own code through a function pointer: the one indirect call is on
 // that rare path, beside a search of the surface that costs many times more, and the plain
-// event has none. (In an object that is not convex, only a flight shorter than a clearance
+// event has none; nor does a flight the lanes found inside, which the object does not test
+// again. (In an object that is not convex, only a flight shorter than a clearance
 // could pass, the lanes take most events one at a time, and they run no faster than the
 // one-photon walk, which the engine gives such objects.)
 
@@ -66,7 +66,8 @@ class ObjectBoundary {
   static constexpr bool has_surface = true;
   static constexpr bool layered = false;
 
-  // The object's surface and its light, as random_walk.hpp and kernel.hpp have them.
+  // The object's surface, as random_walk.hpp has it, for a flight whose end the lanes did not
+  // find wholly inside (the interior test made), and its light, as kernel.hpp has it.
   using Leaves = bool (*)(const void* object, Vec3& position, Vec3& direction, Vec3& next,
                           double flight, PhotonRandom& random, SurfaceExit& exit);
   using Launch = bool (*)(const void* light, PhotonRandom& random, Vec3& start, Vec3& heading);
