@@ -10,9 +10,13 @@
 // (render/mesh_boundary.hpp: a ray query per flight that may reach the surface), under a beam
 // near its pole, to set the cost of Embree's boundary test against the analytic sphere's; the
 // MeshLanes rows run them on the lane walk, as the engine does (transport/object_boundary.hpp:
-// the grid of clearances decides the plain events of all lanes at once). The BumpyMesh row runs
-// a bumpy sphere of as many triangles, which is not convex, on the one-photon walk, as the
-// engine does.
+// the grid of clearances decides the plain events of all lanes at once). The BlockLanes rows run
+// the half-space's own scene as a mesh, a block whose top face takes the beam, so that they
+// differ from the HalfSpaceLanes rows of the same medium in the boundary test alone (a sphere of
+// 10 mfp also ends its photons' walks sooner, 13-19 events against the half-space's 24-35, and
+// so pays a photon's launch and exit over fewer events, as the analytic sphere's rows show).
+// The BumpyMesh row runs a bumpy sphere of as many triangles, which is not convex, on the
+// one-photon walk, as the engine does.
 //
 //   ./build/bench/scatterlab_bench --benchmark_filter='Sphere|Mesh|HalfSpace'
 //       --benchmark_counters_tabular=true
@@ -24,6 +28,7 @@
 #include "scatterlab/core/phase_function.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
 #include "scatterlab/render/mesh_light.hpp"
+#include "scatterlab/render/render_scene.hpp"
 #include "scatterlab/tally/scorer.hpp"
 #include "scatterlab/tally/tally_book.hpp"
 #include "scatterlab/transport/lane_walk.hpp"
@@ -109,10 +114,24 @@ template <class Phase>
 void mesh_walk(benchmark::State& state, const Phase& phase, double albedo, double g, double eta,
                SphereLight kind, bool lanes, bool bumpy = false) {
   LitSphereSpec spec = lit_sphere(albedo, g, eta, 10.0, kind);
-  spec.mesh = std::make_shared<const TriangleMesh>(
-      bumpy ? make_bumpy_sphere(9.0, 0.1, 4, 48, 96) : make_sphere(10.0, 48, 96, false));
+  spec.mesh = std::make_shared<const TriangleMesh>(bumpy ? make_bumpy_sphere(9.0, 0.1, 4, 48, 96)
+                                                         : make_sphere(10.0, 48, 96, false));
   if (eta != 1.0) return run_mesh_walk<Phase, true>(state, phase, spec, kind, lanes);
   run_mesh_walk<Phase, false>(state, phase, spec, kind, lanes);
+}
+
+// The half-space's scene as a mesh: a block of 200 mfp a side (12 triangles) whose top face, at
+// z = -10, takes the beam at normal incidence as the half-space's surface does. Its photons
+// scatter as often as the half-space's (those that reach its far faces, 100 mfp away, are too
+// few to count), so the two rows differ by the mesh's boundary test alone.
+template <class Phase>
+void BlockLanes(benchmark::State& state, Phase phase, double albedo, double g, double eta) {
+  LitSphereSpec spec = lit_sphere(albedo, g, eta, 10.0, SphereLight::beam);
+  TriangleMesh block = make_box(Vec3(100.0, 100.0, 100.0));
+  for (Vec3& p : block.positions) p.z() += 90.0;
+  spec.mesh = std::make_shared<const TriangleMesh>(std::move(block));
+  if (eta != 1.0) return run_mesh_walk<Phase, true>(state, phase, spec, SphereLight::beam, true);
+  run_mesh_walk<Phase, false>(state, phase, spec, SphereLight::beam, true);
 }
 
 template <class Phase>
@@ -156,6 +175,9 @@ BENCHMARK_CAPTURE(MeshLanes, beam_R10_iso_albedo0.99_eta1, iso, 0.99, 0.0, 1.0, 
 BENCHMARK_CAPTURE(MeshLanes, beam_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::beam);
 BENCHMARK_CAPTURE(MeshLanes, beam_R10_hg_g0.75_albedo0.9_eta1.33, hg075, 0.9, 0.75, 1.33, SphereLight::beam);
 BENCHMARK_CAPTURE(MeshLanes, directional_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional);
+BENCHMARK_CAPTURE(BlockLanes, beam_iso_albedo0.99_eta1, iso, 0.99, 0.0, 1.0);
+BENCHMARK_CAPTURE(BlockLanes, beam_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33);
+BENCHMARK_CAPTURE(BlockLanes, beam_hg_g0.75_albedo0.9_eta1.33, hg075, 0.9, 0.75, 1.33);
 BENCHMARK_CAPTURE(BumpyMesh, directional_R9_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional);
 // clang-format on
 
