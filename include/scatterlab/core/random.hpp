@@ -18,10 +18,8 @@ class PhotonRandom {
         counter_{{low(photon_index), high(photon_index), calls, 0}} {}
 
   // Four independent uniforms in the open interval (0, 1): never 0, so -log(u) is finite, and
-  // never 1, so a sampled cosine stays inside [-1, 1]. Always inlined: every event of a walk
-  // makes one call, and GCC's budget would otherwise leave it out of a walk's loop that has
-  // taken in its geometry's surface code.
-  [[gnu::always_inline]] std::array<double, 4> next4() {
+  // never 1, so a sampled cosine stays inside [-1, 1].
+  std::array<double, 4> next4() {
     const auto words = philox_(counter_, key_);
     ++counter_[2];
     return {open_unit(words[0]), open_unit(words[1]), open_unit(words[2]), open_unit(words[3])};
