@@ -1,6 +1,7 @@
 #include "scatterlab/render/convex_crossing.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -12,16 +13,21 @@ namespace {
 
 // The octahedral map of directions onto the square [-1, 1]^2 (Cigolle et al. 2014, "A Survey of
 // Efficient Representations for Independent Unit Vectors", JCGT 3(2), §3.1): u / |u|_1 for the
-// upper half, the lower half folded out over the square's corners. Selects, not branches: the
-// half is as good as random, and a mispredicted branch costs more than the rest of the lookup.
+// upper half, the lower half folded out over the square's corners. Selects by a mask, not
+// branches (which the compiler makes of a conditional here): the half is as good as random,
+// and a mispredicted branch costs more than the rest of the lookup.
 std::array<double, 2> octahedral(const Vec3& u) {
   const double norm = std::abs(u.x()) + std::abs(u.y()) + std::abs(u.z());
   const double scale = 1.0 / std::max(norm, 1e-300);  // u = 0: any cell will do
   const double x = u.x() * scale, y = u.y() * scale;
   const double folded_x = std::copysign(1.0 - std::abs(y), x);
   const double folded_y = std::copysign(1.0 - std::abs(x), y);
-  const bool lower = u.z() < 0.0;
-  return {lower ? folded_x : x, lower ? folded_y : y};
+  const std::uint64_t lower = std::uint64_t{0} - static_cast<std::uint64_t>(u.z() < 0.0);
+  const auto select = [lower](double upper_value, double lower_value) {
+    return std::bit_cast<double>((std::bit_cast<std::uint64_t>(upper_value) & ~lower) |
+                                 (std::bit_cast<std::uint64_t>(lower_value) & lower));
+  };
+  return {select(x, folded_x), select(y, folded_y)};
 }
 
 // The direction of the point (s, t) of the octahedral map, not normalized.
