@@ -13,11 +13,11 @@
 
 #include <vector>
 
+#include "lit_sphere_scene.hpp"
 #include "scatterlab/core/phase_function.hpp"
 #include "scatterlab/tally/scorer.hpp"
 #include "scatterlab/tally/tally_book.hpp"
 #include "scatterlab/transport/lane_walk.hpp"
-#include "scatterlab/transport/lit_sphere.hpp"
 #include "scatterlab/transport/random_walk.hpp"
 #include "scatterlab/transport/sphere.hpp"
 #include "walk_timing.hpp"
@@ -25,15 +25,7 @@
 namespace scatterlab {
 namespace {
 
-LitSphereSpec lit_sphere(double albedo, double g, double eta, double radius, SphereLight light) {
-  LitSphereSpec spec;
-  spec.medium.albedo = albedo;
-  spec.medium.g = g;
-  spec.eta = eta;
-  spec.radius = radius;
-  spec.light = light;
-  return spec;
-}
+using bench::lit_sphere;
 
 template <class Phase, bool fresnel>
 void run_walk(benchmark::State& state, const Phase& phase, const LitSphereSpec& spec) {

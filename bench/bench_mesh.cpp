@@ -22,6 +22,7 @@
 #include <memory>
 #include <utility>
 
+#include "lit_sphere_scene.hpp"
 #include "scatterlab/core/phase_function.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
 #include "scatterlab/render/mesh_light.hpp"
@@ -29,20 +30,15 @@
 #include "scatterlab/tally/scorer.hpp"
 #include "scatterlab/tally/tally_book.hpp"
 #include "scatterlab/transport/lane_walk.hpp"
-#include "scatterlab/transport/lit_sphere.hpp"
 #include "scatterlab/transport/random_walk.hpp"
 #include "walk_timing.hpp"
 
 namespace scatterlab {
 namespace {
 
-// The lit sphere's problem on `mesh`, in mfp: its medium, its index and its light.
+// The lit sphere's problem on `mesh`.
 LitSphereSpec mesh_spec(TriangleMesh mesh, double albedo, double g, double eta, SphereLight light) {
-  LitSphereSpec spec;
-  spec.medium.albedo = albedo;
-  spec.medium.g = g;
-  spec.eta = eta;
-  spec.light = light;
+  LitSphereSpec spec = bench::lit_sphere(albedo, g, eta, 10.0, light);
   spec.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
   return spec;
 }
