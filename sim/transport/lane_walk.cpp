@@ -222,11 +222,12 @@ HWY_INLINE auto stays_inside(const ObjectBoundary& object, const LaneWalk::Setup
   // is read from the table.
   const hn::Rebind<float, D> df;
   const hn::Rebind<std::int32_t, D> d32;
-  const auto code = hn::And(hn::GatherOffset(d32, reinterpret_cast<const std::int32_t*>(grid.code),
-                                             hn::DemoteTo(d32, hn::IfThenElseZero(on_grid, cell))),
-                            hn::Set(d32, 0xFF));
-  const V clearance =
-      hn::IfThenElseZero(on_grid, hn::PromoteTo(d, hn::GatherIndex(df, grid.clearance_of, code)));
+  const auto code = hn::And(
+      hn::GatherOffset(d32, reinterpret_cast<const std::int32_t*>(grid.code),
+                       hn::DemoteTo(d32, hn::IfThenElseZero(on_grid, cell))),
+      hn::Set(d32, 0xFF));
+  const V clearance = hn::IfThenElseZero(
+      on_grid, hn::PromoteTo(d, hn::GatherIndex(df, grid.clearance_of, code)));
   return hn::Or(in_core, hn::Gt(clearance, zero));
 }
 
@@ -386,14 +387,13 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
       // Constant 1 under analog absorption, where the compiler folds it away.
       double weight = 1.0;
       if constexpr (implicit) weight = lane.weight[k];
-      Vec3 next(lane.next_x[k], lane.next_y[k], lane.next_z[k]);  // the slab's: where it stops
+      Vec3 next(lane.next_x[k], lane.next_y[k], lane.next_z[k]);  // the slab's: from its surface
       bool left = false;
-      // A flight the vector test found inside (an absorption there) meets no surface.
-      bool may_cross = Geometry::has_surface;
-      if constexpr (!Geometry::layered)
-        may_cross = may_cross && !((lane.inside[k / 8] >> (k % 8)) & 1U);
       if constexpr (Geometry::has_surface) {
-        if (may_cross) {
+        // A flight the vector test found inside (then absorbed) meets no surface. (The slab,
+        // which spends its free paths layer by layer, has no such test.)
+        const bool inside = !Geometry::layered && ((lane.inside[k / 8] >> (k % 8)) & 1U);
+        if (!inside) {
           // The geometry's own code on the lane's stream (a Fresnel choice draws from it).
           Vec3 position(lane.x[k], lane.y[k], lane.z[k]);
           Vec3 direction(lane.wx[k], lane.wy[k], lane.wz[k]);
