@@ -327,7 +327,7 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
       // The plain event, most of them: the flight stays inside, within the escape radius, and
       // the photon scatters. Such a lane needs only its move and its collision scored.
       const auto inside = stays_inside(geometry, setup, next_x, next_y, next_z);
-      hn::StoreMaskBits(d, inside, lane.inside);
+      if constexpr (Geometry::has_surface) hn::StoreMaskBits(d, inside, lane.inside);
       auto plain = hn::And(hn::Lt(u1, hn::Set(d, setup.albedo)), inside);
       if (escape_limited) {
         const V r2 =

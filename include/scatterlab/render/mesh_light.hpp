@@ -59,8 +59,8 @@ class MeshLight {
     if (kind_ == Kind::directional && boundary_.convex()) {
       const TriangleMesh& mesh = boundary_.mesh();
       std::vector<double> shadow(mesh.triangle_count());
-      for (std::size_t t = 0; t < shadow.size(); ++t) {
-        shadow[t] = mesh.area(t) * std::max(-mesh.geometric_normal(t).dot(direction_), 0.0);
+      for (std::uint32_t t = 0; t < shadow.size(); ++t) {
+        shadow[t] = mesh.area(t) * std::max(-boundary_.facet_normal(t).dot(direction_), 0.0);
       }
       lit_facets_.emplace(shadow);
     }
