@@ -189,8 +189,10 @@ class Renderer {
     if constexpr (Refracting) {
       // Fresnel (core/fresnel.hpp) and Snell from outside (index 1) into the medium (eta); the
       // radiance leaving the medium towards the camera is T L / eta^2 (n^2 law).
-      if (!refract(d, n, scene_.eta, inside)) return false;
-      weight = fresnel_dielectric_transmittance(cos_i, scene_.eta) / (scene_.eta * scene_.eta);
+      const FresnelDielectric terms = fresnel_dielectric_terms(cos_i, scene_.eta);
+      if (terms.total_internal_reflection) return false;
+      inside = refracted(d, n, scene_.eta, cos_i, terms.cos_transmitted);
+      weight = (1.0 - terms.reflectance()) / (scene_.eta * scene_.eta);
     }
     if (!(inside.dot(scene_.mesh.geometric_normal(hit.triangle)) < 0.0)) return false;
     MeshHit exit;
@@ -345,17 +347,20 @@ class Renderer {
         const double cos_l = w.dot(n_s);
         if (!(cos_l > 0.0)) continue;
         if (tracer_.occluded(v, w, hit.distance + tracer_.epsilon(), distance)) continue;
-        Vec3 refracted = -w;  // omega_i', the light's direction inside
-        if (scene_.eta != 1.0 && !refract(-w, n_s, scene_.eta, refracted)) continue;
+        // omega_i', the light's direction inside, and the Fresnel terms of its crossing.
+        const FresnelDielectric terms = fresnel_dielectric_terms(cos_l, scene_.eta);
+        if (terms.total_internal_reflection) continue;
+        const Vec3 inside =
+            scene_.eta != 1.0 ? refracted(-w, n_s, scene_.eta, cos_l, terms.cos_transmitted) : -w;
         ++count.paths;
-        const double cos_t = -refracted.dot(n_s);
-        const double transmittance = fresnel_dielectric_transmittance(cos_l, scene_.eta);
+        const double cos_t = -inside.dot(n_s);
+        const double transmittance = 1.0 - terms.reflectance();
         const double refracted_distance = hit.distance * cos_l / cos_t;
         const double irradiance = transmittance *
                                   std::exp(-scene_.medium.sigma_t * refracted_distance) /
                                   (distance * distance);
         // The light travels along omega_i' and leaves towards the camera along -direction.
-        sum += phase_.evaluate(-refracted.dot(segment.direction)) * light.intensity * irradiance;
+        sum += phase_.evaluate(-inside.dot(segment.direction)) * light.intensity * irradiance;
       }
     }
     return scene_.medium.sigma_s() * sampler.mass * sum / n;
@@ -390,8 +395,10 @@ class Renderer {
       Vec3 out = w;
       double transmittance = 1.0;
       if (eta != 1.0) {
-        if (!refract(w, -n_s, 1.0 / eta, out)) continue;  // total internal reflection
-        transmittance = fresnel_dielectric_transmittance(cos_o, 1.0 / eta);
+        const FresnelDielectric terms = fresnel_dielectric_terms(cos_o, 1.0 / eta);
+        if (terms.total_internal_reflection) continue;
+        out = refracted(w, -n_s, 1.0 / eta, cos_o, terms.cos_transmitted);
+        transmittance = 1.0 - terms.reflectance();
       }
       const Vec3 p = point_at(hit);
       if (!(out.dot(scene_.mesh.geometric_normal(hit.triangle)) > 0.0)) continue;

@@ -150,12 +150,13 @@ class VolumetricTracer {
     const double eta = inside ? 1.0 / scene_.eta : scene_.eta;  // n_transmitted / n_incident
     const double cos_i = -d.dot(facing);
     if (!(cos_i > 0.0)) return false;  // met the facet from the side it should not have
-    const double reflectance = fresnel_dielectric_reflectance(cos_i, eta);
+    const FresnelDielectric terms = fresnel_dielectric_terms(cos_i, eta);
     Vec3 next;
     bool crossed = false;
-    if (xi < reflectance || !refract(d, facing, eta, next)) {
+    if (xi < terms.reflectance() || terms.total_internal_reflection) {
       next = d + 2.0 * cos_i * facing;  // mirror reflection (also total internal reflection)
     } else {
+      next = refracted(d, facing, eta, cos_i, terms.cos_transmitted);
       crossed = true;
     }
     // The facet's normal decides which side the new direction is on.
