@@ -1,5 +1,5 @@
-// Cost of the infinite-medium random walk (issue: simulator performance): photons/s and ns per
-// scattering event per core, for (g = 0.9, albedo 0.5) and (g = 0, albedo 0.99), with the
+// Cost of the infinite-medium random walk: photons/s and ns per scattering event per core, for
+// (g = 0.9, albedo 0.5) and (g = 0, albedo 0.99), with the
 // fluence tallies alone and with the full radiance tally, on the one-photon RandomWalk (Walk)
 // and on the lane walk the engine runs (Lanes), next to a bare loop that only draws the random
 // numbers and samples free paths and directions (the one-photon ceiling) and the lane walk with

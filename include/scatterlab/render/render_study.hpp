@@ -1,5 +1,5 @@
 #pragma once
-// Error against run time of the four single-scatter methods (issue: "error against run time").
+// Error against run time of the four single-scatter methods.
 // Each scene is rendered by every method at increasing budgets (straight, walter, holzschuch: a
 // budget n is n samples per eye ray, per support interval for holzschuch, and n points on the
 // sphere light; pathtrace: Monte Carlo samples per pixel), and each image is compared with a
