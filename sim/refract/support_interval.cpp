@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -290,6 +291,27 @@ class FlatSupport {
   mutable RefractionStats scratch_;
 };
 
+// The cone of three unit directions as cone_of_directions builds it (the mean as axis, the widest
+// direction's angle as half-angle), held by the cosine and sine of its half-angle rather than the
+// angle; nullopt where it is not below pi/2. The callers widen it by cone_of_directions' slack.
+struct CosineCone {
+  Vec3 axis;
+  double cos_half, sin_half;
+};
+std::optional<CosineCone> cosine_cone(const std::array<Vec3, 3>& directions) {
+  const Vec3 sum = directions[0] + directions[1] + directions[2];
+  const double length = sum.norm();
+  if (!(length > 1e-12)) return std::nullopt;
+  const Vec3 axis = sum / length;
+  const Vec3* widest = &directions[0];
+  for (const Vec3& d : directions) {
+    if (axis.dot(d) < axis.dot(*widest)) widest = &d;
+  }
+  const double cos_half = axis.dot(*widest);
+  if (!(cos_half > 0.0)) return std::nullopt;
+  return CosineCone{axis, cos_half, axis.cross(*widest).norm()};
+}
+
 // Holzschuch §3.2.4, the shading-normal test, on the part of a smooth triangle with barycentric
 // corners ab: narrows [lo, hi] to the x at which the part can hold a refraction point for V(x);
 // false if it holds none there. With (C, r) a sphere around the part, omega_V lies in the cone
@@ -308,9 +330,21 @@ bool shading_normal_interval(const RefractiveTriangle& tri, const std::array<Vec
                              const EyeSegment& segment, const Light& light, double eta, double& lo,
                              double& hi) {
   const auto corners = part_corners(tri, ab);
-  DirectionCone normal_cone, l_cone;
-  if (!part_cones(tri, ab, corners, light, normal_cone, l_cone)) return true;
-  if (normal_cone.is_everything() || l_cone.is_everything()) return true;
+  // The part's cones of shading normals and of directions to the light (part_cones), by cosines.
+  std::array<Vec3, 3> normals, to_l;
+  for (std::size_t i = 0; i < 3; ++i) {
+    normals[i] = tri.shading_normal(ab[i].x(), ab[i].y());
+    if (!light.at_infinity) {
+      const Vec3 dl = light.position - corners[i];
+      if (!(dl.norm() > 0.0)) return true;
+      to_l[i] = dl.normalized();
+    }
+  }
+  const auto normal_cone = cosine_cone(normals);
+  const auto l_cone = light.at_infinity
+                          ? std::optional(CosineCone{light.direction_to_light, 1.0, 0.0})
+                          : cosine_cone(to_l);
+  if (!normal_cone || !l_cone) return true;
   const Vec3 c = (corners[0] + corners[1] + corners[2]) / 3.0;
   double r = 0.0;
   for (const Vec3& p : corners) r = std::max(r, (p - c).norm());
@@ -323,32 +357,54 @@ bool shading_normal_interval(const RefractiveTriangle& tri, const std::array<Vec
   const double d_min = std::hypot(rho, std::clamp(x_c, lo, hi) - x_c);
   if (!(d_min > r) || !(rho > 0.0)) return true;  // V may enter the sphere: no cone of omega_V
   const Vec3 e1 = perpendicular / rho, e2 = segment.direction;
-  const Vec3& u_l = l_cone.axis;
-  const auto phi_of = [&](double x) { return std::atan2(x - x_c, rho); };
-  const double phi_lo = phi_of(lo), phi_hi = phi_of(hi);
+  const Vec3& u_l = l_cone->axis;
+  // The walk runs on s = tan(phi / 2), in which cos phi = (1 - s^2) / (1 + s^2) and sin phi =
+  // 2 s / (1 + s^2) are rational: phi in (-pi/2, pi/2) maps to s in (-1, 1), increasing, and at
+  // x, s = (x - x_c) / (rho + |V(x) - C|) and x = x_c + rho 2 s / (1 - s^2).
+  const auto s_of = [&](double x) {
+    return (x - x_c) / (rho + std::sqrt(rho * rho + (x - x_c) * (x - x_c)));
+  };
+  const double s_lo = s_of(lo), s_hi = s_of(hi);
+  const auto cos_sin = [](double t) {
+    const double q = 1.0 / (1.0 + t * t);
+    return std::pair{(1.0 - t * t) * q, 2.0 * t * q};
+  };
   // h_min: |eta u_V + u_L|^2 = eta^2 + 1 + 2 eta u_V . u_L, and u_V . u_L = k1 cos phi +
-  // k2 sin phi is least at an end of the arc or at its minimum, phi = atan2(-k2, -k1).
+  // k2 sin phi is least at an end of the arc or at its minimum, where (cos phi, sin phi) is along
+  // -(k1, k2): inside the arc when k1 < 0 and tan phi = k2 / k1 lies between the ends' tangents.
   const double k1 = e1.dot(u_l), k2 = e2.dot(u_l);
-  double least = std::min(k1 * std::cos(phi_lo) + k2 * std::sin(phi_lo),
-                          k1 * std::cos(phi_hi) + k2 * std::sin(phi_hi));
-  if (const double phi_star = std::atan2(-k2, -k1); phi_lo <= phi_star && phi_star <= phi_hi) {
+  const auto [cos_lo, sin_lo] = cos_sin(s_lo);
+  const auto [cos_hi, sin_hi] = cos_sin(s_hi);
+  double least = std::min(k1 * cos_lo + k2 * sin_lo, k1 * cos_hi + k2 * sin_hi);
+  if (k1 < 0.0 && (lo - x_c) * -k1 <= -k2 * rho && -k2 * rho <= (hi - x_c) * -k1) {
     least = -std::hypot(k1, k2);
   }
   const double h_min = std::sqrt(std::max(0.0, eta * eta + 1.0 + 2.0 * eta * least));
-  const double spread =
-      eta * 2.0 * std::sin(0.5 * std::asin(r / d_min)) + 2.0 * std::sin(0.5 * l_cone.half_angle);
+  // The chord 2 sin(theta_V / 2) of theta_V = asin(t): sqrt(2 (1 - cos theta_V)), with
+  // 1 - cos theta_V = t^2 / (1 + sqrt(1 - t^2)) free of cancellation.
+  const double t_v = r / d_min;
+  const double chord_v = std::sqrt(2.0 * t_v * t_v / (1.0 + std::sqrt(1.0 - t_v * t_v)));
+  // The light cone's chord 2 sin(theta_L / 2) = sqrt(2 (1 - cos theta_L)), 1 - cos = sin^2 /
+  // (1 + cos), widened by cone_of_directions' slack on the angle (the chord's rate is below 1).
+  const double chord_l =
+      std::sqrt(2.0 * l_cone->sin_half * l_cone->sin_half / (1.0 + l_cone->cos_half)) +
+      cosine_tie_slack;
+  const double spread = eta * chord_v + chord_l;
   if (!(spread < h_min)) return true;
-  // Slack: rounding, and the normal just outside the part (accept_path's barycentric slack).
-  const double psi = normal_cone.half_angle + std::asin(spread / h_min) + 1e-8;
-  if (psi >= pi) return true;
-  const double cos_psi = std::cos(psi);
+  // cos psi = cos(theta_n + theta_H), sin theta_H = spread / h_min, less the slack on the angle:
+  // cone_of_directions' on theta_n, rounding, and the normal just outside the part (accept_path's
+  // barycentric slack); the cosine's rate is below 1.
+  const double sin_h = spread / h_min;
+  const double cos_psi = normal_cone->cos_half * std::sqrt(1.0 - sin_h * sin_h) -
+                         normal_cone->sin_half * sin_h - cosine_tie_slack - 1e-8;
+  if (cos_psi <= -1.0) return true;
   const double sign = eta > 1.0 ? 1.0 : -1.0;
-  const Vec3& u_n = normal_cone.axis;
-  // F and dF/dphi; with |h| >= h_min, |F''| <= M: |d^2(h . u_n) / d phi^2| = |eta u_V . u_n|
+  const Vec3& u_n = normal_cone->axis;
+  // F and dF/dphi at s; with |h| >= h_min, |F''| <= M: |d^2(h . u_n) / d phi^2| = |eta u_V . u_n|
   // <= eta and d^2|h| / d phi^2 = (|h'|^2 + h . h'') / |h| - (h . h')^2 / |h|^3 <= eta^2 / h_min
   // + eta.
-  const auto f = [&](double phi, double& slope) {
-    const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
+  const auto f = [&](double t, double& slope) {
+    const auto [cos_phi, sin_phi] = cos_sin(t);
     const Vec3 h = eta * (cos_phi * e1 + sin_phi * e2) + u_l;
     const Vec3 dh = eta * (cos_phi * e2 - sin_phi * e1);
     const double length = h.norm();
@@ -356,29 +412,37 @@ bool shading_normal_interval(const RefractiveTriangle& tri, const std::array<Vec
     return -sign * h.dot(u_n) - cos_psi * length;
   };
   const double curvature = eta + std::abs(cos_psi) * (eta + eta * eta / h_min);
-  const double stop = 1e-6 * (phi_hi - phi_lo);
+  const double stop = 1e-6 * 2.0 * (std::atan(s_hi) - std::atan(s_lo));
   // Walks from an end towards `end` while F < 0. Where F < 0, F(phi + t) <= F + F' t + M t^2 / 2
-  // (t along the walk), so F has no zero before that parabola's positive root: each step is safe
-  // and, near a simple zero, about a Newton step.
-  const auto walk = [&](double phi, double direction, double end) {
-    for (int step = 0; step < 32 && direction * (end - phi) >= 0.0; ++step) {
+  // (t along the walk), so F has no zero before that parabola's positive root t: each step is
+  // safe and, near a simple zero, about a Newton step. In s the step is ds = t (1 + s^2) /
+  // (2 - t |s|) towards larger |s| (or, towards s = 0, t (1 + s^2) / (2 + t |s|)): the turn it
+  // makes, 2 atan(ds / (1 + s (s + ds))), is at most 2 ds / (1 + s (s + ds)) = t, so no step
+  // passes more than the safe turn.
+  const auto walk = [&](double t_at, double direction, double end) {
+    for (int step = 0; step < 32 && direction * (end - t_at) >= 0.0; ++step) {
       double slope = 0.0;
-      const double value = f(phi, slope);
+      const double value = f(t_at, slope);
       if (value >= 0.0) break;
       const double rate = direction * slope;
-      const double t = (-rate + std::sqrt(rate * rate - 2.0 * curvature * value)) / curvature;
-      if (!(t >= stop)) break;
-      phi += direction * t;
+      const double turn = (-rate + std::sqrt(rate * rate - 2.0 * curvature * value)) / curvature;
+      if (!(turn >= stop)) break;
+      const double outward = direction * t_at >= 0.0 ? 1.0 : -1.0;  // towards larger |s|
+      const double denominator = 2.0 - outward * turn * std::abs(t_at);
+      if (!(denominator > 0.0)) return direction > 0.0 ? 1.0 : -1.0;  // past the arc's end
+      t_at += direction * turn * (1.0 + t_at * t_at) / denominator;
     }
-    return phi;
+    return t_at;
   };
-  const double first = walk(phi_lo, 1.0, phi_hi);
-  if (first > phi_hi) return false;
-  const double last = walk(phi_hi, -1.0, first);
+  const double first = walk(s_lo, 1.0, s_hi);
+  if (first > s_hi) return false;
+  // F(first) >= 0, so the walk back stops at or above first (the max guards rounding).
+  const double last = std::max(walk(s_hi, -1.0, first), first);
   // Back to x, widened by rounding.
   const double slack = 1e-12 * (std::abs(x_c) + rho + (hi - lo));
-  lo = std::max(lo, x_c + rho * std::tan(first) - slack);
-  hi = std::min(hi, x_c + rho * std::tan(last) + slack);
+  const auto x_of = [&](double t) { return x_c + rho * 2.0 * t / (1.0 - t * t); };
+  lo = std::max(lo, x_of(first) - slack);
+  hi = std::min(hi, x_of(last) + slack);
   return lo <= hi;
 }
 
