@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <span>
 
 #include <fmt/format.h>
 
@@ -48,13 +49,14 @@ std::array<Vec3, 3> part_corners(const RefractiveTriangle& tri, const std::array
           tri.point(ab[2].x(), ab[2].y())};
 }
 
-// The normal and light cones of the sub-triangle with barycentric corners ab (at `corners`).
-// n(a, b) is linear, so inside the sub-triangle it is a non-negative combination of the
-// corners' n: its direction lies in their cone. False when a corner is at the light.
-bool part_cones(const RefractiveTriangle& tri, const std::array<Vec2, 3>& ab,
-                const std::array<Vec3, 3>& corners, const Light& light, DirectionCone& normal_cone,
-                DirectionCone& l_cone) {
-  std::array<Vec3, 3> to_l, normals;
+// The unit directions that bound the sub-triangle with barycentric corners ab (at `corners`):
+// its corners' shading normals (interpolated normals only) and, for a point light, the
+// directions from its corners to the light. n(a, b) is linear, so inside the sub-triangle it is a
+// non-negative combination of the corners' n: its direction lies in their cone. False when a
+// corner is at the light.
+bool part_directions(const RefractiveTriangle& tri, const std::array<Vec2, 3>& ab,
+                     const std::array<Vec3, 3>& corners, const Light& light,
+                     std::array<Vec3, 3>& normals, std::array<Vec3, 3>& to_l) {
   for (std::size_t i = 0; i < 3; ++i) {
     if (!light.at_infinity) {
       const Vec3 dl = light.position - corners[i];
@@ -63,14 +65,22 @@ bool part_cones(const RefractiveTriangle& tri, const std::array<Vec2, 3>& ab,
     }
     if (tri.smooth) normals[i] = tri.shading_normal(ab[i].x(), ab[i].y());
   }
+  return true;
+}
+
+// The normal and light cones of the sub-triangle with barycentric corners ab (part_directions).
+bool part_cones(const RefractiveTriangle& tri, const std::array<Vec2, 3>& ab,
+                const std::array<Vec3, 3>& corners, const Light& light, DirectionCone& normal_cone,
+                DirectionCone& l_cone) {
+  std::array<Vec3, 3> normals, to_l;
+  if (!part_directions(tri, ab, corners, light, normals, to_l)) return false;
   l_cone =
       light.at_infinity ? DirectionCone{light.direction_to_light, 0.0} : cone_of_directions(to_l);
   normal_cone = tri.smooth ? cone_of_directions(normals) : DirectionCone{tri.geometric_normal, 0.0};
   return true;
 }
 
-// The four parts of a sub-triangle, split at its edge midpoints (Walter §3.3.1), in the order of
-// RefractedLight::parts.
+// The four parts of a sub-triangle, split at its edge midpoints (Walter §3.3.1).
 std::array<std::array<Vec2, 3>, 4> quarters(const std::array<Vec2, 3>& ab) {
   const Vec2 m01 = 0.5 * (ab[0] + ab[1]), m12 = 0.5 * (ab[1] + ab[2]), m20 = 0.5 * (ab[2] + ab[0]);
   return {{{ab[0], m01, m20}, {m01, ab[1], m12}, {m20, m12, ab[2]}, {m01, m12, m20}}};
@@ -251,25 +261,19 @@ class FlatSupport {
   mutable RefractionStats scratch_;
 };
 
-// The cone of three unit directions as cone_of_directions builds it (the mean as axis, the widest
+// The cone of unit directions that cone_of_directions builds (the mean as axis, the widest
 // direction's angle as half-angle), held by the cosine and sine of its half-angle rather than the
 // angle; nullopt where it is not below pi/2. The callers widen it by cone_of_directions' slack.
 struct CosineCone {
   Vec3 axis;
   double cos_half, sin_half;
 };
-std::optional<CosineCone> cosine_cone(const std::array<Vec3, 3>& directions) {
-  const Vec3 sum = directions[0] + directions[1] + directions[2];
-  const double length = sum.norm();
-  if (!(length > 1e-12)) return std::nullopt;
-  const Vec3 axis = sum / length;
-  const Vec3* widest = &directions[0];
-  for (const Vec3& d : directions) {
-    if (axis.dot(d) < axis.dot(*widest)) widest = &d;
-  }
-  const double cos_half = axis.dot(*widest);
+std::optional<CosineCone> cosine_cone(std::span<const Vec3> directions) {
+  const auto mean = mean_direction(directions);
+  if (!mean) return std::nullopt;
+  const double cos_half = mean->axis.dot(*mean->widest);
   if (!(cos_half > 0.0)) return std::nullopt;
-  return CosineCone{axis, cos_half, axis.cross(*widest).norm()};
+  return CosineCone{mean->axis, cos_half, mean->axis.cross(*mean->widest).norm()};
 }
 
 // Holzschuch §3.2.4, the shading-normal test, on the part of a smooth triangle with barycentric
@@ -292,14 +296,7 @@ bool shading_normal_interval(const RefractiveTriangle& tri, const std::array<Vec
   const auto corners = part_corners(tri, ab);
   // The part's cones of shading normals and of directions to the light (part_cones), by cosines.
   std::array<Vec3, 3> normals, to_l;
-  for (std::size_t i = 0; i < 3; ++i) {
-    normals[i] = tri.shading_normal(ab[i].x(), ab[i].y());
-    if (!light.at_infinity) {
-      const Vec3 dl = light.position - corners[i];
-      if (!(dl.norm() > 0.0)) return true;
-      to_l[i] = dl.normalized();
-    }
-  }
+  if (!part_directions(tri, ab, corners, light, normals, to_l)) return true;
   const auto normal_cone = cosine_cone(normals);
   const auto l_cone = light.at_infinity
                           ? std::optional(CosineCone{light.direction_to_light, 1.0, 0.0})

@@ -449,8 +449,7 @@ MemoryEstimate render_memory(const RenderScene& scene, const RenderSettings& set
   if (settings.method == RenderMethod::holzschuch) {
     const std::size_t triangles = scene.mesh.triangle_count();
     // The position-normal tree has fewer nodes than twice the triangles.
-    const std::uint64_t per_light =
-        RefractedLight::table_bytes(triangles, 2 * triangles);
+    const std::uint64_t per_light = RefractedLight::table_bytes(triangles, 2 * triangles);
     need.add(fmt::format("{} light tables of {} triangles", lights, triangles),
              saturating_product(lights, per_light));
   }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <span>
 
 #include "scatterlab/core/constants.hpp"
@@ -26,21 +27,32 @@ struct DirectionCone {
   bool is_none() const { return half_angle < 0.0; }
 };
 
+// The axis of cone_of_directions, the mean of the unit directions, and the direction widest
+// from it (the least cosine); nullopt where the mean vanishes.
+struct MeanDirection {
+  Vec3 axis;
+  const Vec3* widest;
+};
+inline std::optional<MeanDirection> mean_direction(std::span<const Vec3> directions) {
+  Vec3 sum = Vec3::Zero();
+  for (const Vec3& d : directions) sum += d;
+  const double length = sum.norm();
+  if (!(length > 1e-12)) return std::nullopt;
+  MeanDirection mean{sum / length, &directions.front()};
+  for (const Vec3& d : directions) {
+    if (mean.axis.dot(d) < mean.axis.dot(*mean.widest)) mean.widest = &d;
+  }
+  return mean;
+}
+
 // Smallest-axis-is-the-mean cone holding unit directions. A cone of half-angle below pi/2 is
 // convex, so it holds every normalised non-negative combination of them: the spherical triangle
 // of three corner directions (Walter §3.3.1).
 inline DirectionCone cone_of_directions(std::span<const Vec3> directions) {
-  Vec3 sum = Vec3::Zero();
-  for (const Vec3& d : directions) sum += d;
-  const double length = sum.norm();
-  if (!(length > 1e-12)) return DirectionCone::everything();
-  DirectionCone cone{sum / length, 0.0};
-  // The widest direction has the least cosine; one accurate angle for it, not one per direction.
-  const Vec3* widest = &directions.front();
-  for (const Vec3& d : directions) {
-    if (cone.axis.dot(d) < cone.axis.dot(*widest)) widest = &d;
-  }
-  cone.half_angle = angle_between(cone.axis, *widest) + cosine_tie_slack;
+  const auto mean = mean_direction(directions);
+  if (!mean) return DirectionCone::everything();
+  // One accurate angle for the widest direction, not one per direction.
+  DirectionCone cone{mean->axis, angle_between(mean->axis, *mean->widest) + cosine_tie_slack};
   if (cone.half_angle >= 0.5 * pi) cone.half_angle = pi;
   return cone;
 }
