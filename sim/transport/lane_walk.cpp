@@ -195,40 +195,31 @@ HWY_INLINE auto stays_inside(const Sphere<fresnel>&, const LaneWalk::Setup& setu
   const V r2 = hn::MulAdd(x, x, hn::MulAdd(y, y, hn::Mul(z, z)));
   return hn::Lt(r2, hn::Set(d, setup.radius * setup.radius * (1.0 - 1e-12)));
 }
-// A convex object's: the end lies in the object's core, or the clearance of its cell, read as
-// InteriorClearance::at reads it (0 off the grid), is positive: the cell is wholly inside
-// (object_boundary.hpp). The grid is read only when some lane is out of the core.
+// A convex object's: the end lies in the object's core, or the clearance of its cell
+// (InteriorClearance::at, 0 off the grid) is positive: the cell is wholly inside
+// (object_boundary.hpp). The grid is read lane by lane, and only for the lanes out of the core:
+// in a round object those are few and mostly beyond the surface, and a gather would read a
+// cell for every lane, each a likely cache miss.
 HWY_INLINE auto stays_inside(const ObjectBoundary& object, const LaneWalk::Setup&, V x, V y, V z) {
   const D d;
   const InteriorClearance& grid = object.interior();
-  const V zero = hn::Zero(d), inverse_side = hn::Set(d, grid.inverse_side);
   const V ox = hn::Sub(x, hn::Set(d, grid.core_centre.x()));
   const V oy = hn::Sub(y, hn::Set(d, grid.core_centre.y()));
   const V oz = hn::Sub(z, hn::Set(d, grid.core_centre.z()));
   const auto in_core = hn::Lt(hn::MulAdd(ox, ox, hn::MulAdd(oy, oy, hn::Mul(oz, oz))),
                               hn::Set(d, grid.core_radius2));
   if (hn::AllTrue(d, in_core)) return in_core;
-  const V cx = hn::Mul(hn::Sub(x, hn::Set(d, grid.lo.x())), inverse_side);
-  const V cy = hn::Mul(hn::Sub(y, hn::Set(d, grid.lo.y())), inverse_side);
-  const V cz = hn::Mul(hn::Sub(z, hn::Set(d, grid.lo.z())), inverse_side);
-  const auto on_grid = hn::And(
-      hn::And(hn::And(hn::Ge(cx, zero), hn::Ge(cy, zero)), hn::Ge(cz, zero)),
-      hn::And(hn::And(hn::Lt(cx, hn::Set(d, grid.cells[0])), hn::Lt(cy, hn::Set(d, grid.cells[1]))),
-              hn::Lt(cz, hn::Set(d, grid.cells[2]))));
-  // Exact in double: the grid has far fewer than 2^31 cells. Lanes off it read cell 0.
-  const V cell = hn::MulAdd(hn::MulAdd(hn::Trunc(cz), hn::Set(d, grid.cells[1]), hn::Trunc(cy)),
-                            hn::Set(d, grid.cells[0]), hn::Trunc(cx));
-  // Each cell's code is the low byte of the 4 from it on (little-endian x86), and its clearance
-  // is read from the table.
-  const hn::Rebind<float, D> df;
-  const hn::Rebind<std::int32_t, D> d32;
-  const auto code = hn::And(
-      hn::GatherOffset(d32, reinterpret_cast<const std::int32_t*>(grid.code),
-                       hn::DemoteTo(d32, hn::IfThenElseZero(on_grid, cell))),
-      hn::Set(d32, 0xFF));
-  const V clearance = hn::IfThenElseZero(
-      on_grid, hn::PromoteTo(d, hn::GatherIndex(df, grid.clearance_of, code)));
-  return hn::Or(in_core, hn::Gt(clearance, zero));
+  alignas(64) double px[kMaxLanes], py[kMaxLanes], pz[kMaxLanes];
+  hn::Store(x, d, px);
+  hn::Store(y, d, py);
+  hn::Store(z, d, pz);
+  std::uint8_t bits[(kMaxLanes + 7) / 8 + 8] = {};
+  hn::StoreMaskBits(d, in_core, bits);
+  for (std::size_t k = 0; k < hn::Lanes(d); ++k) {
+    const std::uint8_t bit = static_cast<std::uint8_t>(1U << (k % 8));
+    if (!(bits[k / 8] & bit) && grid.at(Vec3(px[k], py[k], pz[k])) > 0.0) bits[k / 8] |= bit;
+  }
+  return hn::LoadMaskBits(d, bits);
 }
 
 // One photon per lane; the arrays are the lanes' state between vector steps.
