@@ -76,7 +76,7 @@ SurfaceClearance::SurfaceClearance(const TriangleMesh& mesh, const MeshRayTracer
   // whole, as the parity of a ray from its first cell's centre says (a direction of no special
   // alignment, so that the ray does not run along an edge).
   const Vec3 probe = Vec3(0.5773, 0.6123, 0.5407).normalized();
-  code_.assign(steps.size() + 3, 0);
+  code_.assign(steps.size(), 0);
   std::vector<bool> seen(steps.size(), false);
   std::vector<std::array<int, 3>> region;
   for (int z = 0; z < n[2]; ++z) {

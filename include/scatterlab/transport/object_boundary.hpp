@@ -33,15 +33,14 @@ struct InteriorClearance {
   Vec3 lo = Vec3::Zero();     // the grid's corner
   double inverse_side = 0.0;  // 1 / the cells' side
   int cells[3] = {0, 0, 0};   // along x, y and z
-  // Per cell, x fastest, then y, and 3 bytes more, so that the lanes may read each cell's byte
-  // as the low byte of 4.
+  // Per cell, x fastest, then y.
   const std::uint8_t* code = nullptr;
   const float* clearance_of = nullptr;  // c of each code; clearance_of[0] = 0
   Vec3 core_centre = Vec3::Zero();
   double core_radius2 = -1.0;  // the core's squared radius; none when negative
 
-  // c of the cell that holds `point`; 0 outside the grid. The lane walk reads it with the same
-  // arithmetic, for all lanes at once.
+  // c of the cell that holds `point`; 0 outside the grid. The lane walk reads it for the lanes
+  // outside the core.
   double at(const Vec3& point) const {
     const double x = (point.x() - lo.x()) * inverse_side, y = (point.y() - lo.y()) * inverse_side,
                  z = (point.z() - lo.z()) * inverse_side;
