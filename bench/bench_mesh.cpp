@@ -85,16 +85,18 @@ void mesh_walk(benchmark::State& state, const Phase& phase, double albedo, doubl
 }
 
 // The half-space's scene as a mesh: a block of 200 mfp a side (12 triangles) whose top face, at
-// z = -10, takes the beam at normal incidence as the half-space's surface does. Its photons
-// scatter as often as the half-space's (those that reach its far faces, 100 mfp away, are too
-// few to count), so the two rows differ by the mesh's boundary test alone.
+// z = -10, takes the beam, or the directional light over a disc of radius 10, at normal
+// incidence as the half-space's surface takes its beam. Its photons scatter as often as the
+// half-space's (those that reach its far faces, 90 mfp away and more, are too few to count), so
+// the two rows differ by the mesh's boundary test and its light alone.
 template <class Phase>
-void BlockLanes(benchmark::State& state, Phase phase, double albedo, double g, double eta) {
+void BlockLanes(benchmark::State& state, Phase phase, double albedo, double g, double eta,
+                SphereLight kind) {
   TriangleMesh block = make_box(Vec3(100.0, 100.0, 100.0));
   for (Vec3& p : block.positions) p.z() += 90.0;
-  const LitSphereSpec spec = mesh_spec(std::move(block), albedo, g, eta, SphereLight::beam);
-  if (eta != 1.0) return run_mesh_walk<Phase, true>(state, phase, spec, SphereLight::beam, true);
-  run_mesh_walk<Phase, false>(state, phase, spec, SphereLight::beam, true);
+  const LitSphereSpec spec = mesh_spec(std::move(block), albedo, g, eta, kind);
+  if (eta != 1.0) return run_mesh_walk<Phase, true>(state, phase, spec, kind, true);
+  run_mesh_walk<Phase, false>(state, phase, spec, kind, true);
 }
 
 template <class Phase>
@@ -128,9 +130,10 @@ BENCHMARK_CAPTURE(MeshLanes, beam_R10_iso_albedo0.99_eta1, iso, 0.99, 0.0, 1.0, 
 BENCHMARK_CAPTURE(MeshLanes, beam_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::beam);
 BENCHMARK_CAPTURE(MeshLanes, beam_R10_hg_g0.75_albedo0.9_eta1.33, hg075, 0.9, 0.75, 1.33, SphereLight::beam);
 BENCHMARK_CAPTURE(MeshLanes, directional_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional);
-BENCHMARK_CAPTURE(BlockLanes, beam_iso_albedo0.99_eta1, iso, 0.99, 0.0, 1.0);
-BENCHMARK_CAPTURE(BlockLanes, beam_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33);
-BENCHMARK_CAPTURE(BlockLanes, beam_hg_g0.75_albedo0.9_eta1.33, hg075, 0.9, 0.75, 1.33);
+BENCHMARK_CAPTURE(BlockLanes, beam_iso_albedo0.99_eta1, iso, 0.99, 0.0, 1.0, SphereLight::beam);
+BENCHMARK_CAPTURE(BlockLanes, beam_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::beam);
+BENCHMARK_CAPTURE(BlockLanes, beam_hg_g0.75_albedo0.9_eta1.33, hg075, 0.9, 0.75, 1.33, SphereLight::beam);
+BENCHMARK_CAPTURE(BlockLanes, directional_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional);
 BENCHMARK_CAPTURE(BumpyMesh, directional_R9_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional);
 // clang-format on
 

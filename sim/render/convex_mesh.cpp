@@ -1,5 +1,7 @@
 #include "scatterlab/render/convex_mesh.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <numeric>
@@ -45,6 +47,26 @@ bool bounds_convex_solid(const TriangleMesh& mesh) {
     if (root(t) != root(0)) return false;
   }
   return true;
+}
+
+std::vector<FacePlane> face_planes(const TriangleMesh& mesh, const Vec3& about, std::size_t most) {
+  const double size = mesh.bounds().diagonal();
+  std::vector<FacePlane> planes;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const Vec3 normal = mesh.geometric_normal(t);
+    const double offset = normal.dot(mesh.vertex(t, 0) - about);
+    const auto same = std::find_if(planes.begin(), planes.end(), [&](const FacePlane& plane) {
+      return (plane.normal - normal).cwiseAbs().maxCoeff() <= 1e-12 &&
+             std::abs(plane.offset - offset) <= 1e-12 * size;
+    });
+    if (same != planes.end()) {
+      same->offset = std::max(same->offset, offset);
+      continue;
+    }
+    if (planes.size() == most) return {};
+    planes.push_back({normal, offset});
+  }
+  return planes;
 }
 
 }  // namespace scatterlab

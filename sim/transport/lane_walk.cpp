@@ -195,7 +195,8 @@ HWY_INLINE auto stays_inside(const Sphere<fresnel>&, const LaneWalk::Setup& setu
   const V r2 = hn::MulAdd(x, x, hn::MulAdd(y, y, hn::Mul(z, z)));
   return hn::Lt(r2, hn::Set(d, setup.radius * setup.radius * (1.0 - 1e-12)));
 }
-// A convex object's: the end lies in the object's core, or the clearance of its cell
+// A convex object's: the end lies below every face of a polyhedron of few faces; or in the
+// object's core, or the clearance of its cell
 // (InteriorClearance::at, 0 off the grid) is positive: the cell is wholly inside
 // (object_boundary.hpp). The grid is read lane by lane, and only for the lanes out of the core:
 // in a round object those are few and mostly beyond the surface, and a gather would read a
@@ -206,6 +207,16 @@ HWY_INLINE auto stays_inside(const ObjectBoundary& object, const LaneWalk::Setup
   const V ox = hn::Sub(x, hn::Set(d, grid.core_centre.x()));
   const V oy = hn::Sub(y, hn::Set(d, grid.core_centre.y()));
   const V oz = hn::Sub(z, hn::Set(d, grid.core_centre.z()));
+  if (grid.faces > 0) {
+    auto below = hn::Eq(hn::Zero(d), hn::Zero(d));  // every lane
+    for (int i = 0; i < grid.faces; ++i) {
+      const V height = hn::MulAdd(
+          ox, hn::Set(d, grid.face_x[i]),
+          hn::MulAdd(oy, hn::Set(d, grid.face_y[i]), hn::Mul(oz, hn::Set(d, grid.face_z[i]))));
+      below = hn::And(below, hn::Lt(height, hn::Set(d, grid.face_offset[i])));
+    }
+    return below;
+  }
   const auto in_core = hn::Lt(hn::MulAdd(ox, ox, hn::MulAdd(oy, oy, hn::Mul(oz, oz))),
                               hn::Set(d, grid.core_radius2));
   if (hn::AllTrue(d, in_core)) return in_core;

@@ -1,9 +1,17 @@
 // Which closed meshes bound a convex solid (render/convex_mesh.hpp): light leaving those never
-// comes back, so the mesh's transport skips the search for a re-entry.
+// comes back, so the mesh's transport skips the search for a re-entry. The planes of a convex
+// polyhedron of few faces, which decide where a flight ends (mesh_boundary.hpp), against the
+// box they come from.
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
 
 #include "scatterlab/core/procedural_meshes.hpp"
 #include "scatterlab/render/convex_mesh.hpp"
+#include "scatterlab/render/mesh_boundary.hpp"
+#include "scatterlab/render/mesh_ray_tracer.hpp"
 #include "scatterlab/render/render_scene.hpp"
 
 namespace scatterlab {
@@ -20,6 +28,50 @@ TEST(ConvexMesh, SpheresAndBoxesAreConvexBumpsAndTwoPiecesAreNot) {
   EXPECT_FALSE(bounds_convex_solid(two));
   // An open mesh bounds no solid.
   EXPECT_FALSE(bounds_convex_solid(make_flat_square(1.0, 1)));
+}
+
+TEST(ConvexMesh, ABoxHasSixFacePlanesATessellatedSphereTooMany) {
+  const Vec3 half(1.0, 2.0, 0.3), about(0.1, -0.2, 0.05);
+  const std::vector<FacePlane> planes = face_planes(make_box(half), about, 8);
+  ASSERT_EQ(planes.size(), 6u);
+  for (const FacePlane& plane : planes) {
+    // An axis, outward, at the face's distance from `about`.
+    int axis = 0;
+    plane.normal.cwiseAbs().maxCoeff(&axis);
+    EXPECT_DOUBLE_EQ(std::abs(plane.normal[axis]), 1.0);
+    const double side = plane.normal[axis];
+    EXPECT_NEAR(plane.offset, half[axis] - side * about[axis], 1e-15);
+  }
+  EXPECT_TRUE(face_planes(make_sphere(2.0, 24, 48, false), about, 8).empty());
+  EXPECT_EQ(face_planes(make_box(half), about, 5).size(), 0u);  // six is more than five
+}
+
+// The mesh's interior test, by the planes, against the box itself: every point it passes lies
+// inside, and it passes every point farther than 1e-6 inside (its margin is 1e-9 of the box's
+// diagonal).
+TEST(ConvexMesh, ABoxsPlanesPassExactlyThePointsInside) {
+  const Vec3 half(1.0, 2.0, 0.3);
+  TriangleMesh box = make_box(half);
+  for (Vec3& p : box.positions) p += Vec3(5.0, -3.0, 1.0);
+  const MeshRayTracer tracer(box);
+  const MeshBoundary<true> boundary(tracer, box, 1.33);
+  ASSERT_EQ(boundary.interior().faces, 6);
+  std::mt19937_64 engine(7);
+  std::uniform_real_distribution<double> u(-1.2, 1.2);
+  int passed = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const Vec3 local(u(engine) * half.x(), u(engine) * half.y(), u(engine) * half.z());
+    const double depth = (half - local.cwiseAbs()).minCoeff();  // < 0 outside
+    const bool inside = boundary.interior().inside(local + Vec3(5.0, -3.0, 1.0));
+    if (inside) {
+      EXPECT_GT(depth, 0.0) << local.transpose();
+    }
+    if (depth > 1e-6) {
+      EXPECT_TRUE(inside) << local.transpose();
+    }
+    passed += inside;
+  }
+  EXPECT_GT(passed, 0);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // A convex object bounded by a triangle mesh on the lane walk (transport/object_boundary.hpp,
 // render/mesh_light.hpp's object_boundary) against the one-photon RandomWalk on the same mesh and
 // photons: a sphere of flat triangles, where the grid passes every flight that ends in a cell
-// wholly inside; under a beam, the directional light and a sphere of light; matched, and behind
+// wholly inside, and a box, where its faces' planes pass every flight that ends inside; under a beam, the directional light and a sphere of light; matched, and behind
 // a Fresnel boundary whose choices draw from the photon's stream. As in test_lane_walk.cpp the
 // two walks follow the same paths: every photon scatters the same number of times, and every
 // exitance cell (per triangle, split by order) agrees to 1e-9 of the largest. A mesh that is not
@@ -19,6 +19,7 @@
 #include "scatterlab/render/mesh_boundary.hpp"
 #include "scatterlab/render/mesh_light.hpp"
 #include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/render/render_scene.hpp"
 #include "scatterlab/tally/scorer.hpp"
 #include "scatterlab/tally/tally_book.hpp"
 #include "scatterlab/transport/lane_walk.hpp"
@@ -82,6 +83,11 @@ TEST(ObjectLanes, FollowTheOnePhotonWalkInAConvexMesh) {
   expect_same_paths<true>(sphere, 0.9, HenyeyGreenstein{0.75}, 1.4, Light::Kind::directional);
   expect_same_paths<false>(sphere, 0.95, HenyeyGreenstein{-0.3}, 1.0,
                            MeshLight<false>::Kind::sphere);
+  // A box, whose six planes decide every flight in place of the core and the grid.
+  const TriangleMesh box = make_box(Vec3(2.0, 1.5, 1.0));
+  ASSERT_EQ(MeshBoundary<true>(MeshRayTracer(box), box, 1.33).interior().faces, 6);
+  expect_same_paths<true>(box, 0.99, IsotropicPhase{}, 1.33, Light::Kind::beam);
+  expect_same_paths<true>(box, 0.9, HenyeyGreenstein{0.75}, 1.4, Light::Kind::directional);
 }
 
 TEST(ObjectLanes, AreNotGivenAMeshThatIsNotConvex) {

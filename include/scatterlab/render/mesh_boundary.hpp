@@ -31,6 +31,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <vector>
 
 #include "scatterlab/core/frame.hpp"
 #include "scatterlab/core/fresnel.hpp"
@@ -83,6 +84,18 @@ class MeshBoundary {
     if (core > 0.0) {
       interior_.core_centre = crossing_->centroid();
       interior_.core_radius2 = core * core;
+      // A polyhedron of few faces: its planes, held 1e-9 of its size inside, far beyond the
+      // 1e-12 by which the facets that share a plane may differ from it over the object.
+      const double margin = 1e-9 * mesh.bounds().diagonal();
+      const std::vector<FacePlane> planes = face_planes(
+          mesh, interior_.core_centre, static_cast<std::size_t>(InteriorClearance::max_faces));
+      for (const FacePlane& plane : planes) {
+        const int i = interior_.faces++;
+        interior_.face_x[i] = plane.normal.x();
+        interior_.face_y[i] = plane.normal.y();
+        interior_.face_z[i] = plane.normal.z();
+        interior_.face_offset[i] = plane.offset - margin;
+      }
     }
   }
 
