@@ -71,6 +71,7 @@ BENCHMARK_CAPTURE(SphereLanes, pole_R10_iso_albedo0.99_eta1.33, lit_sphere(0.99,
 BENCHMARK_CAPTURE(SphereLanes, pole_R10_hg_g0.75_albedo0.9_eta1.33, lit_sphere(0.9, 0.75, 1.33, 10.0, SphereLight::pole_beam));
 BENCHMARK_CAPTURE(SphereLanes, directional_R1_iso_albedo0.99_eta1.33, lit_sphere(0.99, 0.0, 1.33, 1.0, SphereLight::directional));
 BENCHMARK_CAPTURE(SphereLanes, directional_R10_iso_albedo0.99_eta1.33, lit_sphere(0.99, 0.0, 1.33, 10.0, SphereLight::directional));
+BENCHMARK_CAPTURE(SphereLanes, directional_R100_iso_albedo0.99_eta1.33, lit_sphere(0.99, 0.0, 1.33, 100.0, SphereLight::directional));
 // clang-format on
 
 }  // namespace

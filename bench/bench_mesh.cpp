@@ -7,11 +7,12 @@
 //   MeshLanes   the same on the lane walk, as the engine runs a convex object
 //               (transport/object_boundary.hpp: the core and the grid of clearances decide the
 //               plain events of all lanes at once), beside the analytic sphere's SphereLanes;
-//   BlockLanes  the half-space's own scene as a mesh, a block whose top face takes the beam, so
-//               that its rows differ from HalfSpaceLanes' of the same medium in the boundary
-//               test alone (a sphere of 10 mfp also ends its photons' walks sooner, 13-19 events
-//               against the half-space's 24-35, and pays a photon's launch and exit over fewer
-//               events, as the analytic sphere's rows show);
+//               and a sphere of 100 mfp, whose walks are nearly as long as the half-space's;
+//   BlockLanes  the half-space's own scene as a mesh, a block whose top face takes the beam or
+//               the directional light, so that its rows differ from HalfSpaceLanes' of the same
+//               medium in the boundary test alone (a sphere of 10 mfp also ends its photons'
+//               walks sooner, 7-19 events against the half-space's 8-35, and pays a photon's
+//               launch and exit over fewer events, as the analytic sphere's rows show);
 //   BumpyMesh   a bumpy sphere of as many triangles, which is not convex, on the one-photon walk,
 //               as the engine runs it.
 //
@@ -36,9 +37,10 @@
 namespace scatterlab {
 namespace {
 
-// The lit sphere's problem on `mesh`.
-LitSphereSpec mesh_spec(TriangleMesh mesh, double albedo, double g, double eta, SphereLight light) {
-  LitSphereSpec spec = bench::lit_sphere(albedo, g, eta, 10.0, light);
+// The lit sphere's problem on `mesh`, which lies within `radius` of the origin.
+LitSphereSpec mesh_spec(TriangleMesh mesh, double albedo, double g, double eta, SphereLight light,
+                        double radius = 10.0) {
+  LitSphereSpec spec = bench::lit_sphere(albedo, g, eta, radius, light);
   spec.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
   return spec;
 }
@@ -52,11 +54,12 @@ void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitSphereS
   const MeshRayTracer tracer(*spec.mesh);
   const MeshBoundary<fresnel> boundary(tracer, *spec.mesh, spec.eta);
   using Kind = typename MeshLight<fresnel>::Kind;
-  // The beam aims at the pole a hair off the axis; the directional light covers the sphere of
-  // radius 10 that holds the mesh.
+  // The beam aims at the pole a hair off the axis; the directional light covers the sphere
+  // that holds the mesh.
   const MeshLight<fresnel> light(boundary,
                                  kind == SphereLight::directional ? Kind::directional : Kind::beam,
-                                 Vec3(1e-3, 2e-3, -20.0), Vec3::UnitZ(), Vec3::Zero(), 10.0);
+                                 Vec3(1e-3, 2e-3, -2.0 * spec.radius), Vec3::UnitZ(),
+                                 Vec3::Zero(), spec.radius);
   if (lanes) {
     const LaneWalk walk(*object_boundary(boundary, light), scorer, problem.albedo,
                         phase.mean_cosine(), VolumeEstimator::none, problem.run.escape_radius,
@@ -72,14 +75,14 @@ void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitSphereS
   bench::time_walk(state, walk, book.size());
 }
 
-// The sphere of radius 10 in 9 216 flat triangles, or a bumpy sphere of as many, which is not
-// convex: radius 9 (1 + 0.1 sin 4 theta cos 4 phi), within the same sphere of radius 10.
+// The sphere of radius R in 9 216 flat triangles, or a bumpy sphere of as many, which is not
+// convex: radius 0.9 R (1 + 0.1 sin 4 theta cos 4 phi), within the same sphere of radius R.
 template <class Phase>
 void mesh_walk(benchmark::State& state, const Phase& phase, double albedo, double g, double eta,
-               SphereLight kind, bool lanes, bool bumpy = false) {
-  const LitSphereSpec spec =
-      mesh_spec(bumpy ? make_bumpy_sphere(9.0, 0.1, 4, 48, 96) : make_sphere(10.0, 48, 96, false),
-                albedo, g, eta, kind);
+               SphereLight kind, bool lanes, bool bumpy = false, double radius = 10.0) {
+  const LitSphereSpec spec = mesh_spec(bumpy ? make_bumpy_sphere(0.9 * radius, 0.1, 4, 48, 96)
+                                             : make_sphere(radius, 48, 96, false),
+                                       albedo, g, eta, kind, radius);
   if (eta != 1.0) return run_mesh_walk<Phase, true>(state, phase, spec, kind, lanes);
   run_mesh_walk<Phase, false>(state, phase, spec, kind, lanes);
 }
@@ -107,8 +110,8 @@ void Mesh(benchmark::State& state, Phase phase, double albedo, double g, double 
 
 template <class Phase>
 void MeshLanes(benchmark::State& state, Phase phase, double albedo, double g, double eta,
-               SphereLight kind) {
-  mesh_walk(state, phase, albedo, g, eta, kind, true);
+               SphereLight kind, double radius = 10.0) {
+  mesh_walk(state, phase, albedo, g, eta, kind, true, false, radius);
 }
 
 template <class Phase>
@@ -130,6 +133,7 @@ BENCHMARK_CAPTURE(MeshLanes, beam_R10_iso_albedo0.99_eta1, iso, 0.99, 0.0, 1.0, 
 BENCHMARK_CAPTURE(MeshLanes, beam_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::beam);
 BENCHMARK_CAPTURE(MeshLanes, beam_R10_hg_g0.75_albedo0.9_eta1.33, hg075, 0.9, 0.75, 1.33, SphereLight::beam);
 BENCHMARK_CAPTURE(MeshLanes, directional_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional);
+BENCHMARK_CAPTURE(MeshLanes, directional_R100_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional, 100.0);
 BENCHMARK_CAPTURE(BlockLanes, beam_iso_albedo0.99_eta1, iso, 0.99, 0.0, 1.0, SphereLight::beam);
 BENCHMARK_CAPTURE(BlockLanes, beam_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::beam);
 BENCHMARK_CAPTURE(BlockLanes, beam_hg_g0.75_albedo0.9_eta1.33, hg075, 0.9, 0.75, 1.33, SphereLight::beam);
