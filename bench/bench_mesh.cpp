@@ -56,10 +56,9 @@ void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitSphereS
   using Kind = typename MeshLight<fresnel>::Kind;
   // The beam aims at the pole a hair off the axis; the directional light covers the sphere
   // that holds the mesh.
-  const MeshLight<fresnel> light(boundary,
-                                 kind == SphereLight::directional ? Kind::directional : Kind::beam,
-                                 Vec3(1e-3, 2e-3, -2.0 * spec.radius), Vec3::UnitZ(),
-                                 Vec3::Zero(), spec.radius);
+  const MeshLight<fresnel> light(
+      boundary, kind == SphereLight::directional ? Kind::directional : Kind::beam,
+      Vec3(1e-3, 2e-3, -2.0 * spec.radius), Vec3::UnitZ(), Vec3::Zero(), spec.radius);
   if (lanes) {
     const LaneWalk walk(*object_boundary(boundary, light), scorer, problem.albedo,
                         phase.mean_cosine(), VolumeEstimator::none, problem.run.escape_radius,
@@ -80,9 +79,9 @@ void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitSphereS
 template <class Phase>
 void mesh_walk(benchmark::State& state, const Phase& phase, double albedo, double g, double eta,
                SphereLight kind, bool lanes, bool bumpy = false, double radius = 10.0) {
-  const LitSphereSpec spec = mesh_spec(bumpy ? make_bumpy_sphere(0.9 * radius, 0.1, 4, 48, 96)
-                                             : make_sphere(radius, 48, 96, false),
-                                       albedo, g, eta, kind, radius);
+  const LitSphereSpec spec = mesh_spec(
+      bumpy ? make_bumpy_sphere(0.9 * radius, 0.1, 4, 48, 96) : make_sphere(radius, 48, 96, false),
+      albedo, g, eta, kind, radius);
   if (eta != 1.0) return run_mesh_walk<Phase, true>(state, phase, spec, kind, lanes);
   run_mesh_walk<Phase, false>(state, phase, spec, kind, lanes);
 }

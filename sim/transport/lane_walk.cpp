@@ -195,12 +195,11 @@ HWY_INLINE auto stays_inside(const Sphere<fresnel>&, const LaneWalk::Setup& setu
   const V r2 = hn::MulAdd(x, x, hn::MulAdd(y, y, hn::Mul(z, z)));
   return hn::Lt(r2, hn::Set(d, setup.radius * setup.radius * (1.0 - 1e-12)));
 }
-// A convex object's: the end lies below every face of a polyhedron of few faces; or in the
-// object's core, or the clearance of its cell
-// (InteriorClearance::at, 0 off the grid) is positive: the cell is wholly inside
-// (object_boundary.hpp). The grid is read lane by lane, and only for the lanes out of the core:
-// in a round object those are few and mostly beyond the surface, and a gather would read a
-// cell for every lane, each a likely cache miss.
+// A convex object's (object_boundary.hpp): the end lies below every face of a polyhedron of few
+// faces; or in the object's core, or in a cell wholly inside (InteriorClearance::at positive).
+// The grid is read lane by lane, and only for the lanes out of the core: in a round object
+// those are few and mostly beyond the surface, and a gather would read a cell for every lane,
+// each a likely cache miss.
 HWY_INLINE auto stays_inside(const ObjectBoundary& object, const LaneWalk::Setup&, V x, V y, V z) {
   const D d;
   const InteriorClearance& grid = object.interior();

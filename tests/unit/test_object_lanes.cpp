@@ -1,11 +1,12 @@
 // A convex object bounded by a triangle mesh on the lane walk (transport/object_boundary.hpp,
 // render/mesh_light.hpp's object_boundary) against the one-photon RandomWalk on the same mesh and
 // photons: a sphere of flat triangles, where the grid passes every flight that ends in a cell
-// wholly inside, and a box, where its faces' planes pass every flight that ends inside; under a beam, the directional light and a sphere of light; matched, and behind
-// a Fresnel boundary whose choices draw from the photon's stream. As in test_lane_walk.cpp the
-// two walks follow the same paths: every photon scatters the same number of times, and every
-// exitance cell (per triangle, split by order) agrees to 1e-9 of the largest. A mesh that is not
-// convex is not given to the lanes.
+// wholly inside, and a box, whose faces' planes pass every flight that ends inside; under a
+// beam, the directional light and a sphere of light; matched, and behind a Fresnel boundary
+// whose choices draw from the photon's stream. As in test_lane_walk.cpp the two walks follow the
+// same paths: every photon scatters the same number of times, and every exitance cell (per
+// triangle, split by order) agrees to 1e-9 of the largest. A mesh that is not convex is not
+// given to the lanes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
