@@ -66,8 +66,8 @@ struct InteriorClearance {
     return clearance_of[code[index]];
   }
 
-  // Whether `point` lies wholly inside: below every face, or in the core, or in a cell with
-  // c > 0.
+  // Whether `point` lies wholly inside: in a polyhedron of few faces, below every face;
+  // otherwise in the core, or in a cell with c > 0.
   bool inside(const Vec3& point) const {
     const Vec3 o = point - core_centre;
     if (faces > 0) {
