@@ -370,7 +370,13 @@ bool shading_normal_interval(const RefractiveTriangle& tri, const std::array<Vec
     return -sign * h.dot(u_n) - cos_psi * length;
   };
   const double curvature = eta + std::abs(cos_psi) * (eta + eta * eta / h_min);
-  const double stop = 1e-6 * 2.0 * (std::atan(s_hi) - std::atan(s_lo));
+  // A walk ends where its safe turn falls below a hundredth of the arc's angle 2 atan((s_hi -
+  // s_lo) / (1 + s_hi s_lo)), here bounded by its argument: an end found so is still a bound, only
+  // a looser one. On the bumpy sphere (16 x 16 pixels, 4 / 32 samples per interval, one thread)
+  // the image error (RMSE over the mean, against 256 samples with a millionth of the arc) is
+  // 0.135 / 0.022, in 15 % less time than with a millionth (0.131 / 0.022); a twentieth gives
+  // 0.168 / 0.040.
+  const double stop = 1e-2 * 2.0 * (s_hi - s_lo) / (1.0 + s_hi * s_lo);
   // Walks from an end towards `end` while F < 0. Where F < 0, F(phi + t) <= F + F' t + M t^2 / 2
   // (t along the walk), so F has no zero before that parabola's positive root t: each step is
   // safe and, near a simple zero, about a Newton step. In s the step is ds = t (1 + s^2) /
