@@ -43,50 +43,66 @@ bool cones_may_connect(const DirectionCone& normals, const DirectionCone& v_cone
   return cones_admit_path(normals, v_cone, l_cone, eta);
 }
 
-// The positions of the sub-triangle with barycentric corners ab.
-std::array<Vec3, 3> part_corners(const RefractiveTriangle& tri, const std::array<Vec2, 3>& ab) {
-  return {tri.point(ab[0].x(), ab[0].y()), tri.point(ab[1].x(), ab[1].y()),
-          tri.point(ab[2].x(), ab[2].y())};
+// A corner of a part of a triangle: its barycentric (a, b), its position, its shading normal
+// (interpolated normals only) and, for a point light, its unit direction to the light. Parts
+// share corners with their neighbours and their parent, so each is evaluated once per split.
+struct PartCorner {
+  Vec2 ab;
+  Vec3 position;
+  Vec3 normal = Vec3::Zero();
+  Vec3 to_light = Vec3::Zero();
+  bool at_light = false;  // the light is at the corner: no direction to it
+};
+using Part = std::array<PartCorner, 3>;
+
+PartCorner part_corner(const RefractiveTriangle& tri, const Vec2& ab, const Light& light) {
+  PartCorner corner{ab, tri.point(ab.x(), ab.y())};
+  if (!light.at_infinity) {
+    const Vec3 dl = light.position - corner.position;
+    corner.at_light = !(dl.norm() > 0.0);
+    if (!corner.at_light) corner.to_light = dl.normalized();
+  }
+  if (tri.smooth) corner.normal = tri.shading_normal(ab.x(), ab.y());
+  return corner;
 }
 
-// The unit directions that bound the sub-triangle with barycentric corners ab (at `corners`):
-// its corners' shading normals (interpolated normals only) and, for a point light, the
-// directions from its corners to the light. n(a, b) is linear, so inside the sub-triangle it is a
-// non-negative combination of the corners' n: its direction lies in their cone. False when a
-// corner is at the light.
-bool part_directions(const RefractiveTriangle& tri, const std::array<Vec2, 3>& ab,
-                     const std::array<Vec3, 3>& corners, const Light& light,
-                     std::array<Vec3, 3>& normals, std::array<Vec3, 3>& to_l) {
+Part whole_part(const RefractiveTriangle& tri, const Light& light) {
+  return {part_corner(tri, Vec2(0, 0), light), part_corner(tri, Vec2(1, 0), light),
+          part_corner(tri, Vec2(0, 1), light)};
+}
+
+// The unit directions that bound a part: its corners' shading normals (interpolated normals
+// only) and, for a point light, the directions from its corners to the light. n(a, b) is linear,
+// so inside the part it is a non-negative combination of the corners' n: its direction lies in
+// their cone. False when a corner is at the light.
+bool part_directions(const Part& part, std::array<Vec3, 3>& normals, std::array<Vec3, 3>& to_l) {
   for (std::size_t i = 0; i < 3; ++i) {
-    if (!light.at_infinity) {
-      const Vec3 dl = light.position - corners[i];
-      if (!(dl.norm() > 0.0)) return false;
-      to_l[i] = dl.normalized();
-    }
-    if (tri.smooth) normals[i] = tri.shading_normal(ab[i].x(), ab[i].y());
+    if (part[i].at_light) return false;
+    normals[i] = part[i].normal;
+    to_l[i] = part[i].to_light;
   }
   return true;
 }
 
-// The normal and light cones of the sub-triangle with barycentric corners ab (part_directions).
-bool part_cones(const RefractiveTriangle& tri, const std::array<Vec2, 3>& ab,
-                const std::array<Vec3, 3>& corners, const Light& light, DirectionCone& normal_cone,
-                DirectionCone& l_cone) {
+// The normal and light cones of a part (part_directions).
+bool part_cones(const RefractiveTriangle& tri, const Part& part, const Light& light,
+                DirectionCone& normal_cone, DirectionCone& l_cone) {
   std::array<Vec3, 3> normals, to_l;
-  if (!part_directions(tri, ab, corners, light, normals, to_l)) return false;
+  if (!part_directions(part, normals, to_l)) return false;
   l_cone =
       light.at_infinity ? DirectionCone{light.direction_to_light, 0.0} : cone_of_directions(to_l);
   normal_cone = tri.smooth ? cone_of_directions(normals) : DirectionCone{tri.geometric_normal, 0.0};
   return true;
 }
 
-// The four parts of a sub-triangle, split at its edge midpoints (Walter §3.3.1).
-std::array<std::array<Vec2, 3>, 4> quarters(const std::array<Vec2, 3>& ab) {
-  const Vec2 m01 = 0.5 * (ab[0] + ab[1]), m12 = 0.5 * (ab[1] + ab[2]), m20 = 0.5 * (ab[2] + ab[0]);
-  return {{{ab[0], m01, m20}, {m01, ab[1], m12}, {m20, m12, ab[2]}, {m01, m12, m20}}};
+// The four parts of a part, split at its edge midpoints (Walter §3.3.1).
+std::array<Part, 4> quarters(const RefractiveTriangle& tri, const Part& part, const Light& light) {
+  const auto midpoint = [&](std::size_t i, std::size_t j) {
+    return part_corner(tri, 0.5 * (part[i].ab + part[j].ab), light);
+  };
+  const PartCorner m01 = midpoint(0, 1), m12 = midpoint(1, 2), m20 = midpoint(2, 0);
+  return {{{part[0], m01, m20}, {m01, part[1], m12}, {m20, m12, part[2]}, {m01, m12, m20}}};
 }
-
-const std::array<Vec2, 3> whole_triangle{Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
 
 // Restricts [lo, hi] to c0 + c1 x >= 0.
 void clip_half_line(double c0, double c1, double& lo, double& hi) {
@@ -290,21 +306,19 @@ std::optional<CosineCone> cosine_cone(std::span<const Vec3> directions) {
 // ends are found on the curve's parameter phi (u_V = cos phi e1 + sin phi e2) with
 // F(phi) = -s h . u_n - cos psi |h|, which is >= 0 exactly where u_H lies in the disc: walking in
 // from each end by steps that cannot pass a zero of F (below) makes every end conservative.
-bool shading_normal_interval(const RefractiveTriangle& tri, const std::array<Vec2, 3>& ab,
-                             const EyeSegment& segment, const Light& light, double eta, double& lo,
-                             double& hi) {
-  const auto corners = part_corners(tri, ab);
+bool shading_normal_interval(const Part& part, const EyeSegment& segment, const Light& light,
+                             double eta, double& lo, double& hi) {
   // The part's cones of shading normals and of directions to the light (part_cones), by cosines.
   std::array<Vec3, 3> normals, to_l;
-  if (!part_directions(tri, ab, corners, light, normals, to_l)) return true;
+  if (!part_directions(part, normals, to_l)) return true;
   const auto normal_cone = cosine_cone(normals);
   const auto l_cone = light.at_infinity
                           ? std::optional(CosineCone{light.direction_to_light, 1.0, 0.0})
                           : cosine_cone(to_l);
   if (!normal_cone || !l_cone) return true;
-  const Vec3 c = (corners[0] + corners[1] + corners[2]) / 3.0;
+  const Vec3 c = (part[0].position + part[1].position + part[2].position) / 3.0;
   double r = 0.0;
-  for (const Vec3& p : corners) r = std::max(r, (p - c).norm());
+  for (const PartCorner& corner : part) r = std::max(r, (corner.position - c).norm());
   r *= 1.0 + 1e-8;  // accept_path's barycentric slack lets P lie just outside the part
   // The ray's line about C: V(x) - C = rho e1 + (x - x_c) e2, so tan phi = (x - x_c) / rho.
   const Vec3 w0 = segment.origin - c;
@@ -414,21 +428,22 @@ bool shading_normal_interval(const RefractiveTriangle& tri, const std::array<Vec
 // (from_left) or the greatest x_max of the finest parts' intervals. A part's interval holds its
 // children's, so children are split best first and a part that cannot improve `best` is not.
 void extreme_part_end(const RefractiveTriangle& tri, const EyeSegment& segment, const Light& light,
-                      double eta, const std::array<Vec2, 3>& part, int level, double lo, double hi,
-                      bool from_left, double& best) {
+                      double eta, const Part& part, int level, double lo, double hi, bool from_left,
+                      double& best) {
   if (level == shading_normal_depth) {
     best = from_left ? std::min(best, lo) : std::max(best, hi);
     return;
   }
   struct Child {
-    std::array<Vec2, 3> ab;
+    std::size_t quarter;
     double lo, hi;
   };
+  const std::array<Part, 4> parts = quarters(tri, part, light);
   std::array<Child, 4> children;
   std::size_t count = 0;
-  for (const auto& ab : quarters(part)) {
-    Child child{ab, lo, hi};
-    if (shading_normal_interval(tri, ab, segment, light, eta, child.lo, child.hi)) {
+  for (std::size_t q = 0; q < parts.size(); ++q) {
+    Child child{q, lo, hi};
+    if (shading_normal_interval(parts[q], segment, light, eta, child.lo, child.hi)) {
       children[count++] = child;
     }
   }
@@ -440,8 +455,8 @@ void extreme_part_end(const RefractiveTriangle& tri, const EyeSegment& segment, 
     }
   }
   for (std::size_t i = 0; i < count && better(end(children[i]), best); ++i) {
-    extreme_part_end(tri, segment, light, eta, children[i].ab, level + 1, children[i].lo,
-                     children[i].hi, from_left, best);
+    extreme_part_end(tri, segment, light, eta, parts[children[i].quarter], level + 1,
+                     children[i].lo, children[i].hi, from_left, best);
   }
 }
 
@@ -450,12 +465,13 @@ void extreme_part_end(const RefractiveTriangle& tri, const EyeSegment& segment, 
 // false if no part can hold a path.
 bool tighten_smooth(const RefractiveTriangle& tri, const EyeSegment& segment, const Light& light,
                     double eta, double& lo, double& hi) {
-  if (!shading_normal_interval(tri, whole_triangle, segment, light, eta, lo, hi)) return false;
+  const Part whole = whole_part(tri, light);
+  if (!shading_normal_interval(whole, segment, light, eta, lo, hi)) return false;
   double first = std::numeric_limits<double>::infinity();
-  extreme_part_end(tri, segment, light, eta, whole_triangle, 0, lo, hi, true, first);
+  extreme_part_end(tri, segment, light, eta, whole, 0, lo, hi, true, first);
   if (!(first <= hi)) return false;
   double last = -std::numeric_limits<double>::infinity();
-  extreme_part_end(tri, segment, light, eta, whole_triangle, 0, first, hi, false, last);
+  extreme_part_end(tri, segment, light, eta, whole, 0, first, hi, false, last);
   lo = first;
   hi = last;
   return lo <= hi;
@@ -529,7 +545,7 @@ RefractedLight::RefractedLight(const RefractiveSolver& solver, const Light& ligh
     for (std::size_t t = c * count / chunk_count; t < (c + 1) * count / chunk_count; ++t) {
       const RefractiveTriangle& tri = solver.triangle(t);
       DirectionCone normal_cone, l_cone;
-      if (part_cones(tri, whole_triangle, triangle_corners(tri), light, normal_cone, l_cone)) {
+      if (part_cones(tri, whole_part(tri, light), light, normal_cone, l_cone)) {
         refracted_[t] = refracted_cone(normal_cone, l_cone, eta);
       }
       if (eta != 1.0) {
@@ -613,7 +629,7 @@ bool triangle_may_contribute(const RefractedLight& lit, std::uint32_t triangle, 
   const double eta = lit.solver().eta();
   if (eta != 1.0 && !overlap(v_cone, lit.refracted(triangle))) return false;
   DirectionCone normal_cone, l_cone;
-  if (!part_cones(tri, whole_triangle, corners, lit.light(), normal_cone, l_cone)) return true;
+  if (!part_cones(tri, whole_part(tri, lit.light()), lit.light(), normal_cone, l_cone)) return true;
   return cones_may_connect(normal_cone, v_cone, l_cone, eta);
 }
 
