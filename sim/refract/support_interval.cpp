@@ -6,6 +6,7 @@
 #include <limits>
 #include <optional>
 #include <span>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -292,30 +293,62 @@ std::optional<CosineCone> cosine_cone(std::span<const Vec3> directions) {
   return CosineCone{mean->axis, cos_half, mean->axis.cross(*mean->widest).norm()};
 }
 
-// Holzschuch §3.2.4, the shading-normal test, on the part of a smooth triangle with barycentric
-// corners ab: narrows [lo, hi] to the x at which the part can hold a refraction point for V(x);
-// false if it holds none there. With (C, r) a sphere around the part, omega_V lies in the cone
-// (u_V, theta_V = asin(r / d_min)) and omega_L in (u_L, theta_L); their unit tips lie within the
-// chords r_V = 2 sin(theta_V / 2) and r_L of the axes, so h = eta omega_V + omega_L lies within
-// eta r_V + r_L of eta u_V + u_L and its direction within theta_H = asin((eta r_V + r_L) / h_min)
-// of u_H. A path needs N_s = -s h (PathQuery's target sign s) with N_s in the normal cone
-// (u_n, theta_n): the angle between -s u_H and u_n is at most psi = theta_n + theta_H.
+// cos phi and sin phi at s = tan(phi / 2), which are rational in s.
+std::pair<double, double> cos_sin_of_half_tangent(double s) {
+  const double q = 1.0 / (1.0 + s * s);
+  return {(1.0 - s * s) * q, 2.0 * s * q};
+}
+
+// Parts tested together: a part's quarters.
+constexpr std::size_t walk_batch = 4;
+template <typename T>
+using Batch = std::array<T, walk_batch>;
+
+// The test's setup for one part: F on the arc [s_lo, s_hi], or the outcome where no walk is
+// needed (the bound does not narrow [lo, hi], or the part holds no path there).
+struct NormalWalk {
+  enum class Outcome { unchanged, walk } outcome = Outcome::unchanged;
+  Vec3 e1, e2, u_l, u_n;
+  double eta = 1.0, sign = 1.0, cos_psi = 0.0, curvature = 0.0, stop = 0.0;
+  double s_lo = 0.0, s_hi = 0.0, x_c = 0.0, rho = 0.0, slack = 0.0;
+
+  // F and dF/dphi at s = t (shading_normal_walk).
+  double f(double t, double& slope) const {
+    const auto [cos_phi, sin_phi] = cos_sin_of_half_tangent(t);
+    const Vec3 h = eta * (cos_phi * e1 + sin_phi * e2) + u_l;
+    const Vec3 dh = eta * (cos_phi * e2 - sin_phi * e1);
+    const double length = h.norm();
+    slope = -sign * dh.dot(u_n) - cos_psi * h.dot(dh) / length;
+    return -sign * h.dot(u_n) - cos_psi * length;
+  }
+  double x_of(double t) const { return x_c + rho * 2.0 * t / (1.0 - t * t); }
+};
+
+// Holzschuch §3.2.4, the shading-normal test, on a part of a smooth triangle: the x in [lo, hi]
+// at which the part can hold a refraction point for V(x). With (C, r) a sphere around the part,
+// omega_V lies in the cone (u_V, theta_V = asin(r / d_min)) and omega_L in (u_L, theta_L); their
+// unit tips lie within the chords r_V = 2 sin(theta_V / 2) and r_L of the axes, so
+// h = eta omega_V + omega_L lies within eta r_V + r_L of eta u_V + u_L and its direction within
+// theta_H = asin((eta r_V + r_L) / h_min) of u_H. A path needs N_s = -s h (PathQuery's target
+// sign s) with N_s in the normal cone (u_n, theta_n): the angle between -s u_H and u_n is at most
+// psi = theta_n + theta_H.
 // As V moves along the ray, u_V turns in the plane through C and the ray, so u_H runs along an
 // elliptic cone whose section by the plane u_n . M = 1 is the paper's hyperbola, and psi is a
 // disc about u_n in that plane. Rather than a distance to the curve by dichotomy, the interval's
 // ends are found on the curve's parameter phi (u_V = cos phi e1 + sin phi e2) with
 // F(phi) = -s h . u_n - cos psi |h|, which is >= 0 exactly where u_H lies in the disc: walking in
 // from each end by steps that cannot pass a zero of F (below) makes every end conservative.
-bool shading_normal_interval(const Part& part, const EyeSegment& segment, const Light& light,
-                             double eta, double& lo, double& hi) {
+NormalWalk shading_normal_walk(const Part& part, const EyeSegment& segment, const Light& light,
+                               double eta, double lo, double hi) {
+  NormalWalk walk;
   // The part's cones of shading normals and of directions to the light (part_cones), by cosines.
   std::array<Vec3, 3> normals, to_l;
-  if (!part_directions(part, normals, to_l)) return true;
+  if (!part_directions(part, normals, to_l)) return walk;
   const auto normal_cone = cosine_cone(normals);
   const auto l_cone = light.at_infinity
                           ? std::optional(CosineCone{light.direction_to_light, 1.0, 0.0})
                           : cosine_cone(to_l);
-  if (!normal_cone || !l_cone) return true;
+  if (!normal_cone || !l_cone) return walk;
   const Vec3 c = (part[0].position + part[1].position + part[2].position) / 3.0;
   double r = 0.0;
   for (const PartCorner& corner : part) r = std::max(r, (corner.position - c).norm());
@@ -327,7 +360,7 @@ bool shading_normal_interval(const Part& part, const EyeSegment& segment, const 
   const double rho = perpendicular.norm();
   const double along = std::clamp(x_c, lo, hi) - x_c;
   const double d_min = std::sqrt(rho * rho + along * along);
-  if (!(d_min > r) || !(rho > 0.0)) return true;  // V may enter the sphere: no cone of omega_V
+  if (!(d_min > r) || !(rho > 0.0)) return walk;  // V may enter the sphere: no cone of omega_V
   const Vec3 e1 = perpendicular / rho, e2 = segment.direction;
   const Vec3& u_l = l_cone->axis;
   // The walk runs on s = tan(phi / 2), in which cos phi = (1 - s^2) / (1 + s^2) and sin phi =
@@ -337,16 +370,12 @@ bool shading_normal_interval(const Part& part, const EyeSegment& segment, const 
     return (x - x_c) / (rho + std::sqrt(rho * rho + (x - x_c) * (x - x_c)));
   };
   const double s_lo = s_of(lo), s_hi = s_of(hi);
-  const auto cos_sin = [](double t) {
-    const double q = 1.0 / (1.0 + t * t);
-    return std::pair{(1.0 - t * t) * q, 2.0 * t * q};
-  };
   // h_min: |eta u_V + u_L|^2 = eta^2 + 1 + 2 eta u_V . u_L, and u_V . u_L = k1 cos phi +
   // k2 sin phi is least at an end of the arc or at its minimum, where (cos phi, sin phi) is along
   // -(k1, k2): inside the arc when k1 < 0 and tan phi = k2 / k1 lies between the ends' tangents.
   const double k1 = e1.dot(u_l), k2 = e2.dot(u_l);
-  const auto [cos_lo, sin_lo] = cos_sin(s_lo);
-  const auto [cos_hi, sin_hi] = cos_sin(s_hi);
+  const auto [cos_lo, sin_lo] = cos_sin_of_half_tangent(s_lo);
+  const auto [cos_hi, sin_hi] = cos_sin_of_half_tangent(s_hi);
   double least = std::min(k1 * cos_lo + k2 * sin_lo, k1 * cos_hi + k2 * sin_hi);
   if (k1 < 0.0 && (lo - x_c) * -k1 <= -k2 * rho && -k2 * rho <= (hi - x_c) * -k1) {
     least = -std::sqrt(k1 * k1 + k2 * k2);
@@ -362,27 +391,17 @@ bool shading_normal_interval(const Part& part, const EyeSegment& segment, const 
       std::sqrt(2.0 * l_cone->sin_half * l_cone->sin_half / (1.0 + l_cone->cos_half)) +
       cosine_tie_slack;
   const double spread = eta * chord_v + chord_l;
-  if (!(spread < h_min)) return true;
+  if (!(spread < h_min)) return walk;
   // cos psi = cos(theta_n + theta_H), sin theta_H = spread / h_min, less the slack on the angle:
   // cone_of_directions' on theta_n, rounding, and the normal just outside the part (accept_path's
   // barycentric slack); the cosine's rate is below 1.
   const double sin_h = spread / h_min;
   const double cos_psi = normal_cone->cos_half * std::sqrt(1.0 - sin_h * sin_h) -
                          normal_cone->sin_half * sin_h - cosine_tie_slack - 1e-8;
-  if (cos_psi <= -1.0) return true;
-  const double sign = eta > 1.0 ? 1.0 : -1.0;
-  const Vec3& u_n = normal_cone->axis;
+  if (cos_psi <= -1.0) return walk;
   // F and dF/dphi at s; with |h| >= h_min, |F''| <= M: |d^2(h . u_n) / d phi^2| = |eta u_V . u_n|
   // <= eta and d^2|h| / d phi^2 = (|h'|^2 + h . h'') / |h| - (h . h')^2 / |h|^3 <= eta^2 / h_min
   // + eta.
-  const auto f = [&](double t, double& slope) {
-    const auto [cos_phi, sin_phi] = cos_sin(t);
-    const Vec3 h = eta * (cos_phi * e1 + sin_phi * e2) + u_l;
-    const Vec3 dh = eta * (cos_phi * e2 - sin_phi * e1);
-    const double length = h.norm();
-    slope = -sign * dh.dot(u_n) - cos_psi * h.dot(dh) / length;
-    return -sign * h.dot(u_n) - cos_psi * length;
-  };
   const double curvature = eta + std::abs(cos_psi) * (eta + eta * eta / h_min);
   // A walk ends where its safe turn falls below a hundredth of the arc's angle 2 atan((s_hi -
   // s_lo) / (1 + s_hi s_lo)), here bounded by its argument: an end found so is still a bound, only
@@ -391,37 +410,110 @@ bool shading_normal_interval(const Part& part, const EyeSegment& segment, const 
   // 0.135 / 0.022, in 15 % less time than with a millionth (0.131 / 0.022); a twentieth gives
   // 0.168 / 0.040.
   const double stop = 1e-2 * 2.0 * (s_hi - s_lo) / (1.0 + s_hi * s_lo);
-  // Walks from an end towards `end` while F < 0. Where F < 0, F(phi + t) <= F + F' t + M t^2 / 2
-  // (t along the walk), so F has no zero before that parabola's positive root t: each step is
-  // safe and, near a simple zero, about a Newton step. In s the step is ds = t (1 + s^2) /
-  // (2 - t |s|) towards larger |s| (or, towards s = 0, t (1 + s^2) / (2 + t |s|)): the turn it
-  // makes, 2 atan(ds / (1 + s (s + ds))), is at most 2 ds / (1 + s (s + ds)) = t, so no step
-  // passes more than the safe turn.
-  const auto walk = [&](double t_at, double direction, double end) {
-    for (int step = 0; step < 32 && direction * (end - t_at) >= 0.0; ++step) {
+  walk.outcome = NormalWalk::Outcome::walk;
+  walk.e1 = e1;
+  walk.e2 = e2;
+  walk.u_l = u_l;
+  walk.u_n = normal_cone->axis;
+  walk.eta = eta;
+  walk.sign = eta > 1.0 ? 1.0 : -1.0;
+  walk.cos_psi = cos_psi;
+  walk.curvature = curvature;
+  walk.stop = stop;
+  walk.s_lo = s_lo;
+  walk.s_hi = s_hi;
+  walk.x_c = x_c;
+  walk.rho = rho;
+  walk.slack = 1e-12 * (std::abs(x_c) + rho + (hi - lo));  // rounding, on the way back to x
+  return walk;
+}
+
+// Walks each of `count` parts' arcs from t[i] towards end[i] (direction +1 or -1) while F < 0,
+// in lockstep: the walks are independent chains of divisions and roots, which the processor
+// overlaps when they are interleaved. Where F < 0, F(phi + t) <= F + F' t + M t^2 / 2 (t along
+// the walk), so F has no zero before that parabola's positive root t: each step is safe and, near
+// a simple zero, about a Newton step. In s the step is ds = t (1 + s^2) / (2 - t |s|) towards
+// larger |s| (or, towards s = 0, t (1 + s^2) / (2 + t |s|)): the turn it makes,
+// 2 atan(ds / (1 + s (s + ds))), is at most 2 ds / (1 + s (s + ds)) = t, so no step passes more
+// than the safe turn.
+void walk_arcs(const Batch<const NormalWalk*>& walks, std::size_t count, double direction,
+               const Batch<double>& end, Batch<double>& t) {
+  Batch<bool> active{};
+  for (std::size_t i = 0; i < count; ++i) active[i] = true;
+  for (int step = 0; step < 32; ++step) {
+    bool any = false;
+    for (std::size_t i = 0; i < count; ++i) {
+      if (!active[i]) continue;
+      const NormalWalk& w = *walks[i];
+      double& t_at = t[i];
+      active[i] = false;
+      if (!(direction * (end[i] - t_at) >= 0.0)) continue;
       double slope = 0.0;
-      const double value = f(t_at, slope);
-      if (value >= 0.0) break;
+      const double value = w.f(t_at, slope);
+      if (value >= 0.0) continue;
       const double rate = direction * slope;
-      const double turn = (-rate + std::sqrt(rate * rate - 2.0 * curvature * value)) / curvature;
-      if (!(turn >= stop)) break;
+      const double turn =
+          (-rate + std::sqrt(rate * rate - 2.0 * w.curvature * value)) / w.curvature;
+      if (!(turn >= w.stop)) continue;
       const double outward = direction * t_at >= 0.0 ? 1.0 : -1.0;  // towards larger |s|
       const double denominator = 2.0 - outward * turn * std::abs(t_at);
-      if (!(denominator > 0.0)) return direction > 0.0 ? 1.0 : -1.0;  // past the arc's end
+      if (!(denominator > 0.0)) {  // past the arc's end
+        t_at = direction > 0.0 ? 1.0 : -1.0;
+        continue;
+      }
       t_at += direction * turn * (1.0 + t_at * t_at) / denominator;
+      active[i] = any = true;
     }
-    return t_at;
-  };
-  const double first = walk(s_lo, 1.0, s_hi);
-  if (first > s_hi) return false;
+    if (!any) break;
+  }
+}
+
+// Holzschuch §3.2.4's shading-normal test (shading_normal_walk) on `count` parts at once, each
+// narrowing its own [lo[i], hi[i]]; kept[i] is false where part i holds no path there.
+void shading_normal_intervals(const Batch<const Part*>& parts, std::size_t count,
+                              const EyeSegment& segment, const Light& light, double eta,
+                              Batch<double>& lo, Batch<double>& hi, Batch<bool>& kept) {
+  Batch<NormalWalk> walks;
+  Batch<const NormalWalk*> walking{};
+  Batch<std::size_t> index{};
+  Batch<double> t{}, end{};
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    kept[i] = true;
+    walks[i] = shading_normal_walk(*parts[i], segment, light, eta, lo[i], hi[i]);
+    if (walks[i].outcome != NormalWalk::Outcome::walk) continue;
+    walking[n] = &walks[i];
+    index[n] = i;
+    t[n] = walks[i].s_lo;
+    end[n] = walks[i].s_hi;
+    ++n;
+  }
+  walk_arcs(walking, n, 1.0, end, t);
   // F(first) >= 0, so the walk back stops at or above first (the max guards rounding).
-  const double last = std::max(walk(s_hi, -1.0, first), first);
-  // Back to x, widened by rounding.
-  const double slack = 1e-12 * (std::abs(x_c) + rho + (hi - lo));
-  const auto x_of = [&](double t) { return x_c + rho * 2.0 * t / (1.0 - t * t); };
-  lo = std::max(lo, x_of(first) - slack);
-  hi = std::min(hi, x_of(last) + slack);
-  return lo <= hi;
+  Batch<double> first{};
+  std::size_t m = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    const NormalWalk& w = *walking[j];
+    if (t[j] > w.s_hi) {
+      kept[index[j]] = false;
+      continue;
+    }
+    first[m] = t[j];
+    walking[m] = walking[j];
+    index[m] = index[j];
+    end[m] = t[j];
+    t[m] = w.s_hi;
+    ++m;
+  }
+  walk_arcs(walking, m, -1.0, end, t);
+  for (std::size_t j = 0; j < m; ++j) {
+    const NormalWalk& w = *walking[j];
+    const std::size_t i = index[j];
+    const double last = std::max(t[j], first[j]);
+    lo[i] = std::max(lo[i], w.x_of(first[j]) - w.slack);
+    hi[i] = std::min(hi[i], w.x_of(last) + w.slack);
+    kept[i] = lo[i] <= hi[i];
+  }
 }
 
 // One end of a smooth triangle's support by branch and bound over its parts: the least x_min
@@ -439,13 +531,14 @@ void extreme_part_end(const RefractiveTriangle& tri, const EyeSegment& segment, 
     double lo, hi;
   };
   const std::array<Part, 4> parts = quarters(tri, part, light);
+  Batch<double> los{lo, lo, lo, lo}, his{hi, hi, hi, hi};
+  Batch<bool> kept{};
+  shading_normal_intervals({&parts[0], &parts[1], &parts[2], &parts[3]}, 4, segment, light, eta,
+                           los, his, kept);
   std::array<Child, 4> children;
   std::size_t count = 0;
   for (std::size_t q = 0; q < parts.size(); ++q) {
-    Child child{q, lo, hi};
-    if (shading_normal_interval(parts[q], segment, light, eta, child.lo, child.hi)) {
-      children[count++] = child;
-    }
+    if (kept[q]) children[count++] = Child{q, los[q], his[q]};
   }
   const auto better = [from_left](double a, double b) { return from_left ? a < b : a > b; };
   const auto end = [from_left](const Child& c) { return from_left ? c.lo : c.hi; };
@@ -466,7 +559,12 @@ void extreme_part_end(const RefractiveTriangle& tri, const EyeSegment& segment, 
 bool tighten_smooth(const RefractiveTriangle& tri, const EyeSegment& segment, const Light& light,
                     double eta, double& lo, double& hi) {
   const Part whole = whole_part(tri, light);
-  if (!shading_normal_interval(whole, segment, light, eta, lo, hi)) return false;
+  Batch<double> whole_lo{lo}, whole_hi{hi};
+  Batch<bool> kept{};
+  shading_normal_intervals({&whole}, 1, segment, light, eta, whole_lo, whole_hi, kept);
+  if (!kept[0]) return false;
+  lo = whole_lo[0];
+  hi = whole_hi[0];
   double first = std::numeric_limits<double>::infinity();
   extreme_part_end(tri, segment, light, eta, whole, 0, lo, hi, true, first);
   if (!(first <= hi)) return false;
