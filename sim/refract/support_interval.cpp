@@ -350,9 +350,10 @@ NormalWalk shading_normal_walk(const Part& part, const EyeSegment& segment, cons
                           : cosine_cone(to_l);
   if (!normal_cone || !l_cone) return walk;
   const Vec3 c = (part[0].position + part[1].position + part[2].position) / 3.0;
-  double r = 0.0;
-  for (const PartCorner& corner : part) r = std::max(r, (corner.position - c).norm());
-  r *= 1.0 + 1e-8;  // accept_path's barycentric slack lets P lie just outside the part
+  double r2 = 0.0;
+  for (const PartCorner& corner : part) r2 = std::max(r2, (corner.position - c).squaredNorm());
+  // accept_path's barycentric slack lets P lie just outside the part.
+  const double r = std::sqrt(r2) * (1.0 + 1e-8);
   // The ray's line about C: V(x) - C = rho e1 + (x - x_c) e2, so tan phi = (x - x_c) / rho.
   const Vec3 w0 = segment.origin - c;
   const double x_c = -w0.dot(segment.direction);
