@@ -81,6 +81,27 @@ std::vector<std::uint32_t> vertex_ids_by_position(const TriangleMesh& mesh) {
   return id;
 }
 
+std::vector<std::array<std::uint32_t, 3>> triangles_across_edges(
+    const TriangleMesh& mesh, const std::vector<std::uint32_t>& id) {
+  const auto corner = [&](std::size_t t, int k) {
+    return id[mesh.triangles[t][static_cast<std::size_t>(k % 3)]];
+  };
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> owner;  // directed edge
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      owner[{corner(t, k), corner(t, k + 1)}] = static_cast<std::uint32_t>(t);
+    }
+  }
+  std::vector<std::array<std::uint32_t, 3>> across(mesh.triangle_count());
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const auto found = owner.find({corner(t, k + 1), corner(t, k)});
+      across[t][static_cast<std::size_t>(k)] = found == owner.end() ? no_triangle : found->second;
+    }
+  }
+  return across;
+}
+
 std::vector<Vec3> area_weighted_vertex_normals(const TriangleMesh& mesh) {
   std::vector<Vec3> sums(mesh.positions.size(), Vec3::Zero());
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {

@@ -44,14 +44,10 @@ ConvexCrossing::ConvexCrossing(const TriangleMesh& mesh, const MeshRayTracer& tr
   const std::vector<std::uint32_t> id = vertex_ids_by_position(mesh);
   const std::size_t n = mesh.triangle_count();
   facets_.resize(n);
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> owner;  // directed edge
+  const auto across = triangles_across_edges(mesh, id);
   planes_.resize(n);
   centroid_ = Vec3::Zero();
   for (std::size_t t = 0; t < n; ++t) {
-    for (int k = 0; k < 3; ++k) {
-      owner[{id[mesh.triangles[t][k]], id[mesh.triangles[t][(k + 1) % 3]]}] =
-          static_cast<std::uint32_t>(t);
-    }
     centroid_ += (mesh.vertex(t, 0) + mesh.vertex(t, 1) + mesh.vertex(t, 2)) / 3.0;
     Plane& plane = planes_[t];
     plane.normal = mesh.geometric_normal(t);
@@ -67,7 +63,7 @@ ConvexCrossing::ConvexCrossing(const TriangleMesh& mesh, const MeshRayTracer& tr
       const std::uint32_t from = id[mesh.triangles[t][k]], to = id[mesh.triangles[t][next]];
       const bool rising = from < to;
       if (rising) f.rising |= 1U << k;
-      f.across[k] = owner.at({to, from});
+      f.across[k] = across[t][static_cast<std::size_t>(k)];
       const auto [it, added] = edge_of.try_emplace({std::min(from, to), std::max(from, to)},
                                                    static_cast<std::uint32_t>(edges_.size()));
       if (added) {

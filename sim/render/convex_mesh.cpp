@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <map>
 #include <numeric>
 #include <utility>
 #include <vector>
@@ -14,14 +13,7 @@ bool bounds_convex_solid(const TriangleMesh& mesh) {
   if (mesh.triangle_count() == 0) return false;
   // Vertices by position, so that OBJ seams where normals split still join (as
   // require_closed_mesh matches them).
-  const std::vector<std::uint32_t> id = vertex_ids_by_position(mesh);
-  const auto corner = [&](std::size_t t, int c) {
-    return id[mesh.triangles[t][static_cast<std::size_t>(c)]];
-  };
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> owner;  // directed edge
-  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-    for (int c = 0; c < 3; ++c) owner[{corner(t, c), corner(t, (c + 1) % 3)}] = t;
-  }
+  const auto across = triangles_across_edges(mesh, vertex_ids_by_position(mesh));
   // Pieces by union-find over triangles that share an edge.
   std::vector<std::size_t> parent(mesh.triangle_count());
   std::iota(parent.begin(), parent.end(), std::size_t{0});
@@ -33,10 +25,8 @@ bool bounds_convex_solid(const TriangleMesh& mesh) {
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
     const Vec3 normal = mesh.geometric_normal(t);
     const Vec3& origin = mesh.vertex(t, 0);
-    for (int c = 0; c < 3; ++c) {
-      const auto across = owner.find({corner(t, (c + 1) % 3), corner(t, c)});
-      if (across == owner.end()) return false;  // open: not a solid
-      const std::size_t u = across->second;
+    for (const std::uint32_t u : across[t]) {
+      if (u == no_triangle) return false;  // open: not a solid
       for (int k = 0; k < 3; ++k) {
         if (normal.dot(mesh.vertex(u, k) - origin) > tolerance) return false;
       }

@@ -30,6 +30,40 @@ TEST(ConvexMesh, SpheresAndBoxesAreConvexBumpsAndTwoPiecesAreNot) {
   EXPECT_FALSE(bounds_convex_solid(make_flat_square(1.0, 1)));
 }
 
+// The triangle across each edge, which both the convexity test and the convex mesh's surface
+// walk read: in a closed box, a different triangle holding the same edge reversed, and across
+// that one's edge the first again; in an open square, none across the rim.
+TEST(ConvexMesh, EachEdgeIsSharedWithTheTriangleAcrossItOrWithNone) {
+  const TriangleMesh box = make_box(Vec3(1.0, 2.0, 0.3));
+  const std::vector<std::uint32_t> id = vertex_ids_by_position(box);
+  const auto across = triangles_across_edges(box, id);
+  ASSERT_EQ(across.size(), box.triangle_count());
+  const auto corner = [&](std::size_t t, std::size_t k) { return id[box.triangles[t][k % 3]]; };
+  for (std::size_t t = 0; t < box.triangle_count(); ++t) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t u = across[t][k];
+      ASSERT_NE(u, no_triangle);
+      ASSERT_NE(u, t);
+      int reversed = 0;
+      for (std::size_t j = 0; j < 3; ++j) {
+        if (corner(u, j) == corner(t, k + 1) && corner(u, j + 1) == corner(t, k)) {
+          ++reversed;
+          EXPECT_EQ(across[u][j], t);
+        }
+      }
+      EXPECT_EQ(reversed, 1);
+    }
+  }
+  const TriangleMesh square = make_flat_square(1.0, 1);
+  const auto open = triangles_across_edges(square, vertex_ids_by_position(square));
+  int rim = 0, shared = 0;
+  for (const auto& edges : open) {
+    for (const std::uint32_t u : edges) (u == no_triangle ? rim : shared) += 1;
+  }
+  EXPECT_EQ(rim, 4);
+  EXPECT_EQ(shared, 3 * static_cast<int>(square.triangle_count()) - 4);
+}
+
 TEST(ConvexMesh, ABoxHasSixFacePlanesATessellatedSphereTooMany) {
   const Vec3 half(1.0, 2.0, 0.3), about(0.1, -0.2, 0.05);
   const std::vector<FacePlane> planes = face_planes(make_box(half), about, 8);

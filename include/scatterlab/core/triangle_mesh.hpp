@@ -52,6 +52,13 @@ struct TriangleMesh {
 // normals split) share it, so that edges can be matched across the seam.
 std::vector<std::uint32_t> vertex_ids_by_position(const TriangleMesh& mesh);
 
+// For every triangle, the triangle across each of its edges (corner k to corner k + 1): the one
+// that holds the same edge reversed, its corners matched by `id` (vertex_ids_by_position), or
+// no_triangle where none does (an open edge).
+inline constexpr std::uint32_t no_triangle = 0xffffffffU;
+std::vector<std::array<std::uint32_t, 3>> triangles_across_edges(
+    const TriangleMesh& mesh, const std::vector<std::uint32_t>& id);
+
 // Area-weighted average of the facet normals around each vertex, normalised: smooth shading
 // normals for a mesh that has none.
 std::vector<Vec3> area_weighted_vertex_normals(const TriangleMesh& mesh);
