@@ -45,9 +45,12 @@ LitSphereSpec mesh_spec(TriangleMesh mesh, double albedo, double g, double eta, 
   return spec;
 }
 
+// The one-photon walk (RandomWalk) or the lanes (LaneWalk).
+enum class Walker { one_photon, lanes };
+
 template <class Phase, bool fresnel>
 void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitSphereSpec& spec,
-                   SphereLight kind, bool lanes) {
+                   SphereLight kind, Walker walker) {
   const TransportProblem problem = transport_problem(spec);
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
@@ -59,7 +62,7 @@ void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitSphereS
   const MeshLight<fresnel> light(
       boundary, kind == SphereLight::directional ? Kind::directional : Kind::beam,
       Vec3(1e-3, 2e-3, -2.0 * spec.radius), Vec3::UnitZ(), Vec3::Zero(), spec.radius);
-  if (lanes) {
+  if (walker == Walker::lanes) {
     const LaneWalk walk(*object_boundary(boundary, light), scorer, problem.albedo,
                         phase.mean_cosine(), VolumeEstimator::none, problem.run.escape_radius,
                         problem.run.seed);
@@ -74,16 +77,24 @@ void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitSphereS
   bench::time_walk(state, walk, book.size());
 }
 
-// The sphere of radius R in 9 216 flat triangles, or a bumpy sphere of as many, which is not
-// convex: radius 0.9 R (1 + 0.1 sin 4 theta cos 4 phi), within the same sphere of radius R.
+// The lit sphere's problem on `mesh`, within `radius` of the origin, with either walk.
 template <class Phase>
-void mesh_walk(benchmark::State& state, const Phase& phase, double albedo, double g, double eta,
-               SphereLight kind, bool lanes, bool bumpy = false, double radius = 10.0) {
-  const LitSphereSpec spec = mesh_spec(
-      bumpy ? make_bumpy_sphere(0.9 * radius, 0.1, 4, 48, 96) : make_sphere(radius, 48, 96, false),
-      albedo, g, eta, kind, radius);
-  if (eta != 1.0) return run_mesh_walk<Phase, true>(state, phase, spec, kind, lanes);
-  run_mesh_walk<Phase, false>(state, phase, spec, kind, lanes);
+void mesh_walk(benchmark::State& state, const Phase& phase, TriangleMesh mesh, double radius,
+               double albedo, double g, double eta, SphereLight kind, Walker walker) {
+  const LitSphereSpec spec = mesh_spec(std::move(mesh), albedo, g, eta, kind, radius);
+  if (eta != 1.0) return run_mesh_walk<Phase, true>(state, phase, spec, kind, walker);
+  run_mesh_walk<Phase, false>(state, phase, spec, kind, walker);
+}
+
+// The sphere of radius R in 9 216 flat triangles.
+TriangleMesh sphere_mesh(double radius) {
+  return make_sphere(radius, 48, 96, false);
+}
+
+// A bumpy sphere of as many triangles, which is not convex: radius 0.9 R (1 + 0.1 sin 4 theta
+// cos 4 phi), within the sphere of radius R.
+TriangleMesh bumpy_mesh(double radius) {
+  return make_bumpy_sphere(0.9 * radius, 0.1, 4, 48, 96);
 }
 
 // The half-space's scene as a mesh: a block of 200 mfp a side (12 triangles) whose top face, at
@@ -96,27 +107,25 @@ void BlockLanes(benchmark::State& state, Phase phase, double albedo, double g, d
                 SphereLight kind) {
   TriangleMesh block = make_box(Vec3(100.0, 100.0, 100.0));
   for (Vec3& p : block.positions) p.z() += 90.0;
-  const LitSphereSpec spec = mesh_spec(std::move(block), albedo, g, eta, kind);
-  if (eta != 1.0) return run_mesh_walk<Phase, true>(state, phase, spec, kind, true);
-  run_mesh_walk<Phase, false>(state, phase, spec, kind, true);
+  mesh_walk(state, phase, std::move(block), 10.0, albedo, g, eta, kind, Walker::lanes);
 }
 
 template <class Phase>
 void Mesh(benchmark::State& state, Phase phase, double albedo, double g, double eta,
           SphereLight kind) {
-  mesh_walk(state, phase, albedo, g, eta, kind, false);
+  mesh_walk(state, phase, sphere_mesh(10.0), 10.0, albedo, g, eta, kind, Walker::one_photon);
 }
 
 template <class Phase>
 void MeshLanes(benchmark::State& state, Phase phase, double albedo, double g, double eta,
                SphereLight kind, double radius = 10.0) {
-  mesh_walk(state, phase, albedo, g, eta, kind, true, false, radius);
+  mesh_walk(state, phase, sphere_mesh(radius), radius, albedo, g, eta, kind, Walker::lanes);
 }
 
 template <class Phase>
 void BumpyMesh(benchmark::State& state, Phase phase, double albedo, double g, double eta,
                SphereLight kind) {
-  mesh_walk(state, phase, albedo, g, eta, kind, false, true);
+  mesh_walk(state, phase, bumpy_mesh(10.0), 10.0, albedo, g, eta, kind, Walker::one_photon);
 }
 
 const IsotropicPhase iso{};
