@@ -307,8 +307,9 @@ constexpr std::size_t walk_batch = 4;
 template <typename T>
 using Batch = std::array<T, walk_batch>;
 
-// The test's setup for one part: F on the arc [s_lo, s_hi], or the outcome where no walk is
-// needed (the bound does not narrow [lo, hi], or the part holds no path there).
+// The shading-normal test's setup for one part (shading_normal_walk): F on the arc
+// [s_lo, s_hi], to be walked in from both ends, or Outcome::unchanged where the bound cannot
+// narrow [lo, hi] and no walk is needed.
 struct NormalWalk {
   enum class Outcome { unchanged, walk } outcome = Outcome::unchanged;
   Vec3 e1, e2, u_l, u_n;
@@ -328,7 +329,8 @@ struct NormalWalk {
 };
 
 // Holzschuch §3.2.4, the shading-normal test, on a part of a smooth triangle: the x in [lo, hi]
-// at which the part can hold a refraction point for V(x). With (C, r) a sphere around the part,
+// at which the part can hold a refraction point for V(x), set up here and walked by
+// shading_normal_intervals. With (C, r) a sphere around the part,
 // omega_V lies in the cone (u_V, theta_V = asin(r / d_min)) and omega_L in (u_L, theta_L); their
 // unit tips lie within the chords r_V = 2 sin(theta_V / 2) and r_L of the axes, so
 // h = eta omega_V + omega_L lies within eta r_V + r_L of eta u_V + u_L and its direction within
