@@ -20,6 +20,10 @@ void print_run_time(const TransportOutput& out) {
       out.photons, out.batches_done, ranks, out.threads, out.threads == 1 ? "" : "s", seconds,
       static_cast<double>(out.photons) / seconds, events,
       events > 0 ? seconds * workers / events * 1e9 : 0.0);
+  if (out.threads < out.threads_asked) {
+    fmt::print("  OpenMP granted {} of the {} threads asked for (OMP_DYNAMIC, OMP_THREAD_LIMIT)\n",
+               out.threads, out.threads_asked);
+  }
   if (out.photons_resumed == 0) return;
   fmt::print(
       "  this session: {} photons in {:.2f} s ({:.3g} photons/s), after {} photons in {:.2f} s "

@@ -110,6 +110,7 @@ TransportOutput detail::run_kernel(const TransportProblem& problem,
   output.resumed_wall_seconds = outcome.resumed_wall_seconds;
   output.batches_done = outcome.batches_done;
   output.threads = outcome.threads;
+  output.threads_asked = outcome.threads_asked;
   output.ranks = outcome.ranks;
   output.scattering_events = outcome.scattering_events;
   output.wall_seconds =

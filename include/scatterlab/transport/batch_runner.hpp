@@ -36,6 +36,7 @@
 #include <exception>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -93,7 +94,8 @@ struct BatchOutcome {
   std::uint64_t batches_resumed = 0;
   std::uint64_t photons_resumed = 0;
   double resumed_wall_seconds = 0.0;
-  int threads = 1;  // per rank
+  int threads = 1;        // per rank: what OpenMP granted
+  int threads_asked = 1;  // per rank: run.threads (or OpenMP's count for 0), at most the batches
   int ranks = 1;
 
   bool complete(const RunSettings& run) const { return batches_done == run.batches; }
@@ -460,15 +462,40 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
     }
   };
 
+  // A thread that cannot work (an allocation refused, a walk that threw) keeps the first such
+  // failure here and hands in the group it takes cut short, so that every rank stops after the
+  // whole groups before it; the failure is thrown once the threads have left the region, where an
+  // exception may pass.
+  std::mutex thread_failure_mutex;
+  std::exception_ptr thread_failure;
+  auto keep_failure = [&](std::exception_ptr error) {
+    std::lock_guard<std::mutex> lock(thread_failure_mutex);
+    if (!thread_failure) thread_failure = std::move(error);
+  };
+  std::atomic<bool> ring_failed{false};
+  std::atomic<int> granted{threads};
+
 #pragma omp parallel num_threads(threads)
   {
-    // Each thread first touches its own share of the ring.
+    // OpenMP may grant fewer threads than asked (OMP_DYNAMIC, OMP_THREAD_LIMIT, a nested region):
+    // the team shares the work by its own size.
+    const auto team = static_cast<std::size_t>(omp_get_num_threads());
     const auto t = static_cast<std::size_t>(omp_get_thread_num());
-    for (std::size_t s = t; s < slots; s += static_cast<std::size_t>(threads)) {
-      ring[s].assign(cells, 0.0);
+    if (t == 0) granted = static_cast<int>(team);
+    // Each thread first touches its own share of the ring.
+    try {
+      for (std::size_t s = t; s < slots; s += team) ring[s].assign(cells, 0.0);
+    } catch (...) {
+      keep_failure(std::current_exception());
+      ring_failed = true;
     }
 #pragma omp barrier
-    auto scratch = walk.make_scratch();
+    std::optional<decltype(walk.make_scratch())> scratch;
+    try {
+      if (!ring_failed) scratch.emplace(walk.make_scratch());
+    } catch (...) {
+      keep_failure(std::current_exception());
+    }
     for (;;) {
       const std::uint64_t g = next_group.fetch_add(1);
       if (g >= groups) {
@@ -479,11 +506,17 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
       if (halted) break;
       const std::uint64_t batch = start + g * rank_count + rank;
       std::uint64_t batch_scatterings = 0;
-      bool whole = true;
-      if (batch < batches) {
-        whole = detail::transport_batch(walk, batch_range(photons, batches, batch),
-                                        ring[g % slots].data(), scratch, control.stop_requested,
-                                        halted, batch_scatterings);
+      bool whole = scratch.has_value();
+      if (scratch && batch < batches) {
+        try {
+          whole = detail::transport_batch(walk, batch_range(photons, batches, batch),
+                                          ring[g % slots].data(), *scratch,
+                                          control.stop_requested, halted, batch_scatterings);
+        } catch (...) {
+          keep_failure(std::current_exception());
+          scratch.reset();
+          whole = false;
+        }
       }
       {
         std::lock_guard<std::mutex> lock(ring_mutex);
@@ -491,11 +524,13 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
       }
       fold_ready();
       if (t == 0) report_progress();
+      if (!scratch) break;
     }
   }
   report_progress();
 
   RunState state = gather_state();
+  if (thread_failure) std::rethrow_exception(thread_failure);
   if (failure) std::rethrow_exception(failure);
   BatchOutcome outcome;
   outcome.batches_done = done;
@@ -507,7 +542,8 @@ BatchOutcome run_batches(const RunSettings& run, std::size_t cells, const Walk& 
   outcome.batches_resumed = start;
   outcome.photons_resumed = batch_range(photons, batches, start).first;
   outcome.resumed_wall_seconds = resumed_wall_seconds;
-  outcome.threads = threads;
+  outcome.threads = granted;
+  outcome.threads_asked = threads;
   outcome.ranks = ranks;
   return outcome;
 }

@@ -23,7 +23,8 @@ struct TransportOutput {
   double resumed_wall_seconds = 0.0;
   std::uint64_t batches_done = 0;  // run.batches unless stopped early
   std::uint64_t scattering_events = 0;
-  int threads = 1;  // per rank
+  int threads = 1;        // per rank: what OpenMP granted
+  int threads_asked = 1;  // per rank: what the run asked for (fewer when OpenMP withheld some)
   int ranks = 1;
 
   // The whole run's wall time, over every process that ran it.
