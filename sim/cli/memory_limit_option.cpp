@@ -27,7 +27,8 @@ void add_memory_limit_option(CLI::App& command) {
             set_memory_limit(parse_memory_size(text, "--memory-limit"), text);
           },
           "Memory the run may use, e.g. 512M or 4G (K, M, G, T: powers of 1024); by default the "
-          "machine's physical memory, or its cgroup's limit when lower. The run's peak "
+          "machine's physical memory, or its cgroup's limit, or what ulimit -v leaves, "
+          "whichever is lowest. The run's peak "
           "(tallies, a buffer per thread, images, datasets read) is estimated before anything "
           "is allocated, and a run over the limit is refused, naming the fields that size it")
       ->type_name("SIZE")

@@ -1,6 +1,7 @@
 #include "scatterlab/core/memory_budget.hpp"
 
 #include <fmt/format.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -65,6 +66,27 @@ std::optional<std::uint64_t> cgroup_limit() {
   return lowest;
 }
 
+// RLIMIT_AS (ulimit -v) less the address space this process already maps (/proc/self/statm's
+// first field, in pages): what a run may still allocate. nullopt without a limit.
+struct AddressSpace {
+  std::uint64_t limit;
+  std::uint64_t left;
+};
+std::optional<AddressSpace> address_space_left() {
+  rlimit address_space{};
+  if (getrlimit(RLIMIT_AS, &address_space) != 0 || address_space.rlim_cur == RLIM_INFINITY) {
+    return std::nullopt;
+  }
+  const auto limit = static_cast<std::uint64_t>(address_space.rlim_cur);
+  std::uint64_t mapped_pages = 0;
+  std::ifstream statm("/proc/self/statm");
+  statm >> mapped_pages;
+  const long page_size = sysconf(_SC_PAGESIZE);
+  const std::uint64_t mapped =
+      saturating_product(mapped_pages, page_size > 0 ? static_cast<std::uint64_t>(page_size) : 0);
+  return AddressSpace{limit, mapped < limit ? limit - mapped : 0};
+}
+
 // The power of 1024 a size's unit stands for: none or B (bytes), or K, M, G, T alone or with
 // B or iB after it ("4G", "4GB", "4GiB" are all 4 x 1024^3 bytes).
 std::optional<int> unit_power(std::string_view unit) {
@@ -126,11 +148,17 @@ MemoryLimit machine_memory_limit() {
                                      ? saturating_product(static_cast<std::uint64_t>(pages),
                                                           static_cast<std::uint64_t>(page_size))
                                      : saturated;
+  MemoryLimit limit{physical, fmt::format("the {} this machine has", format_bytes(physical))};
   const std::optional<std::uint64_t> cgroup = cgroup_limit();
-  if (cgroup && *cgroup < physical) {
-    return {*cgroup, fmt::format("the {} this process's cgroup allows", format_bytes(*cgroup))};
+  if (cgroup && *cgroup < limit.bytes) {
+    limit = {*cgroup, fmt::format("the {} this process's cgroup allows", format_bytes(*cgroup))};
   }
-  return {physical, fmt::format("the {} this machine has", format_bytes(physical))};
+  const std::optional<AddressSpace> space = address_space_left();
+  if (space && space->left < limit.bytes) {
+    limit = {space->left, fmt::format("the {} of address space that ulimit -v ({}) leaves",
+                                      format_bytes(space->left), format_bytes(space->limit))};
+  }
+  return limit;
 }
 
 void set_memory_limit(std::optional<std::uint64_t> bytes, const std::string& as_given) {

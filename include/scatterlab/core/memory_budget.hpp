@@ -5,7 +5,8 @@
 // over the limit with one InputError naming the fields that drive the size and the figure.
 //
 // The limit is this machine's physical memory, or the cgroup's memory limit when that is lower
-// (a container or a batch job), or what --memory-limit sets for the whole process.
+// (a container or a batch job), or the address space ulimit -v leaves when that is lower still,
+// or what --memory-limit sets for the whole process.
 
 #include <cstdint>
 #include <optional>
@@ -50,7 +51,8 @@ struct MemoryLimit {
 };
 
 // The machine's limit: physical memory, or the cgroup's (v2 memory.max, v1
-// memory.limit_in_bytes) when lower.
+// memory.limit_in_bytes) when lower, or what RLIMIT_AS (ulimit -v) leaves beyond the address
+// space already mapped when lower still.
 MemoryLimit machine_memory_limit();
 
 // --memory-limit for this process; nullopt returns to the machine's limit.
