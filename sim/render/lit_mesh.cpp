@@ -22,12 +22,37 @@ Vec3 vec3(const std::array<double, 3>& a) {
 // A direction of no special alignment, so that a parity ray does not run along an edge.
 const Vec3 kProbe = Vec3(0.5773, 0.6123, 0.5407).normalized();
 
+// The distance from p to the triangle abc: to its closest point, found by the Voronoi region of
+// the triangle p falls in (Ericson, Real-Time Collision Detection, 2005, §5.1.5).
+double distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return (p - a).norm();  // corner a
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0.0 && d4 <= d3) return (p - b).norm();  // corner b
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return (p - (a + d1 / (d1 - d3) * ab)).norm();  // ab
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0.0 && d5 <= d6) return (p - c).norm();  // corner c
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return (p - (a + d2 / (d2 - d6) * ac)).norm();  // ac
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) {  // edge bc
+    return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
+  }
+  const double denominator = 1.0 / (va + vb + vc);  // inside the face
+  return (p - (a + ab * (vb * denominator) + ac * (vc * denominator))).norm();
+}
+
 }  // namespace
 
 void check_lit_mesh(const LitSphereSpec& spec) {
   const TriangleMesh& mesh = *spec.mesh;
   require_closed_mesh(mesh);
   require_enclosed_volume(mesh);
+  require_no_self_intersection(mesh);
   if (spec.light != SphereLight::beam && spec.light != SphereLight::sphere) return;
   const MeshRayTracer tracer(mesh);
   if (spec.light == SphereLight::sphere) {
@@ -35,10 +60,15 @@ void check_lit_mesh(const LitSphereSpec& spec) {
     if (tracer.count_crossings(center, kProbe) % 2 == 1) {
       throw InputError("source.position", "is inside the mesh", "a point outside the object");
     }
-    for (const Vec3& p : mesh.positions) {
-      if ((p - center).norm() <= spec.light_radius) {
-        throw InputError("source.radius", "makes the sphere of light overlap the object",
-                         "a radius that keeps the light clear of every vertex of the mesh");
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+      const double clearance =
+          distance_to_triangle(center, mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2));
+      if (clearance <= spec.light_radius) {
+        throw InputError("source.radius",
+                         fmt::format("makes the sphere of light cut into the object: triangle {} "
+                                     "is {:g} from source.position",
+                                     t, clearance),
+                         "a radius less than the light's distance to the object's surface");
       }
     }
     return;

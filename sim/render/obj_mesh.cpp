@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <string>
@@ -20,8 +21,8 @@ namespace {
 // tinyobjloader reads a number it cannot parse ("nan", "inf", "1e999", "x") as 0, which would
 // move a vertex silently: every vertex line is read here first, and each of its coordinates must
 // be a finite decimal number.
-void check_vertex_lines(const std::filesystem::path& path) {
-  std::ifstream in(path);
+void check_vertex_lines(const std::string& contents, const std::string& name) {
+  std::istringstream in(contents);
   std::string line;
   for (std::size_t number = 1; std::getline(in, line); ++number) {
     std::istringstream fields(line);
@@ -38,12 +39,24 @@ void check_vertex_lines(const std::filesystem::path& path) {
           !std::isfinite(value)) {
         throw InputError(
             "mesh.path",
-            fmt::format("'{}' line {}: coordinate {} of '{}' is {}", path.string(), number, c + 1,
+            fmt::format("'{}' line {}: coordinate {} of '{}' is {}", name, number, c + 1,
                         tag, read ? "'" + text + "', not finite" : "missing"),
             "three finite decimal coordinates on every v and vn line");
       }
     }
   }
+}
+
+// A face corner's index into an array of `count` triples (positions or normals), checked: a file
+// may name a vertex it does not have, and tinyobjloader passes the index on as it is.
+std::size_t checked_index(int index, std::size_t count, const char* what, const std::string& name) {
+  if (index < 0 || static_cast<std::size_t>(index) >= count) {
+    throw InputError("mesh.path",
+                     fmt::format("'{}': a face names {} {} but the file has {}", name, what,
+                                 static_cast<long long>(index) + 1, count),
+                     fmt::format("face indices within the file's {}s (1 to {})", what, count));
+  }
+  return static_cast<std::size_t>(index);
 }
 
 }  // namespace
@@ -55,13 +68,25 @@ TriangleMesh read_obj_mesh(const std::filesystem::path& path, bool interpolated_
     throw InputError("mesh.path", fmt::format("'{}' does not exist or is not a file", name),
                      "a readable Wavefront OBJ file");
   }
-  check_vertex_lines(path);
+  std::ifstream in(path, std::ios::binary);
+  std::string contents{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (!in && !in.eof()) {
+    throw InputError("mesh.path", fmt::format("cannot read '{}'", name),
+                     "a readable Wavefront OBJ file");
+  }
+  return parse_obj_mesh(contents, name, interpolated_normals);
+}
+
+TriangleMesh parse_obj_mesh(const std::string& text, const std::string& name,
+                            bool interpolated_normals) {
+  check_vertex_lines(text, name);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
-  config.mtl_search_path = path.parent_path().string();
+  // From text, tinyobjloader ignores `mtllib`: a medium comes from the scene, and a mesh file
+  // opens no other file.
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(name, config)) {
+  if (!reader.ParseFromString(text, "", config)) {
     throw InputError("mesh.path", fmt::format("cannot read '{}': {}", name, reader.Error()),
                      "a readable Wavefront OBJ file");
   }
@@ -86,11 +111,13 @@ TriangleMesh read_obj_mesh(const std::filesystem::path& path, bool interpolated_
         auto [it, inserted] =
             vertex_of.try_emplace(key, static_cast<std::uint32_t>(mesh.positions.size()));
         if (inserted) {
-          const auto v = static_cast<std::size_t>(index.vertex_index);
+          const std::size_t v =
+              checked_index(index.vertex_index, attrib.vertices.size() / 3, "vertex", name);
           mesh.positions.emplace_back(attrib.vertices[3 * v], attrib.vertices[3 * v + 1],
                                       attrib.vertices[3 * v + 2]);
           if (file_normals) {
-            const auto n = static_cast<std::size_t>(normal);
+            const std::size_t n =
+                checked_index(normal, attrib.normals.size() / 3, "normal", name);
             const Vec3 value(attrib.normals[3 * n], attrib.normals[3 * n + 1],
                              attrib.normals[3 * n + 2]);
             const double length = value.norm();

@@ -343,6 +343,58 @@ void require_closed_mesh(const TriangleMesh& mesh) {
   }
 }
 
+namespace {
+
+// Whether the segment [p, q] crosses the triangle uvw properly: its ends on opposite sides of the
+// triangle's plane, each farther than `tolerance`, and the crossing point inside the triangle. An
+// edge that lies in the plane, or ends in it (at a corner it shares), does not cross.
+bool crosses(const Vec3& p, const Vec3& q, const Vec3& u, const Vec3& v, const Vec3& w,
+             double tolerance) {
+  const Vec3 normal = (v - u).cross(w - u).normalized();
+  const double from = normal.dot(p - u), to = normal.dot(q - u);
+  if (!((from > tolerance && to < -tolerance) || (from < -tolerance && to > tolerance))) {
+    return false;
+  }
+  const Vec3 x = p + (q - p) * (from / (from - to));
+  return normal.dot((v - u).cross(x - u)) > 0.0 && normal.dot((w - v).cross(x - v)) > 0.0 &&
+         normal.dot((u - w).cross(x - w)) > 0.0;
+}
+
+}  // namespace
+
+void require_no_self_intersection(const TriangleMesh& mesh) {
+  // Two surfaces cross where an edge of one passes through a triangle of the other, so each edge
+  // is traced from end to end: Embree finds the triangles near it (in single precision, where an
+  // edge grazes its neighbours), and each is confirmed in double (crosses). Overlaps confined to
+  // one plane, with no edge through a face, are not seen.
+  const std::vector<std::uint32_t> id = vertex_ids_by_position(mesh);
+  const MeshRayTracer tracer(mesh);
+  const double margin = tracer.epsilon();
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const auto& corners = mesh.triangles[t];
+    for (std::size_t c = 0; c < 3; ++c) {
+      const std::uint32_t a = corners[c], b = corners[(c + 1) % 3];
+      if (id[a] > id[b]) continue;  // each edge once: a closed mesh holds it in both directions
+      const Vec3 from = mesh.positions[a], to = mesh.positions[b];
+      const double length = (to - from).norm();
+      MeshHit hit;
+      for (double near = 0.0; tracer.intersect(from, (to - from) / length, near, length, hit);
+           near = std::max(near + margin, hit.distance)) {
+        const std::size_t other = hit.triangle;
+        if (crosses(from, to, mesh.vertex(other, 0), mesh.vertex(other, 1), mesh.vertex(other, 2),
+                    margin)) {
+          throw InputError("mesh",
+                           fmt::format("intersects itself: an edge of triangle {} passes through "
+                                       "triangle {}",
+                                       t, other),
+                           "a surface that does not pass through itself (closed parts that do "
+                           "not overlap)");
+        }
+      }
+    }
+  }
+}
+
 void require_enclosed_volume(const TriangleMesh& mesh) {
   // The mesh's extent sets the scale below which an area or a volume is round-off, not geometry.
   Vec3 lowest = mesh.positions.front(), highest = lowest;
@@ -405,6 +457,7 @@ void RenderScene::validate() const {
     }
   }
   require_enclosed_volume(mesh);
+  require_no_self_intersection(mesh);
   const Vec3 forward = camera.look_at - camera.position;
   if (!(forward.norm() > 0.0) || !(forward.cross(camera.up).norm() > 1e-12 * forward.norm())) {
     throw InputError("camera", "look_at equals position, or up is parallel to the view",
