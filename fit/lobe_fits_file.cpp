@@ -281,6 +281,12 @@ RadianceLobes read_radiance_lobes(const std::filesystem::path& path) {
     lobes.z_edges = grid.read_dataset("z").values;
     lobes.theta_edges = grid.read_dataset("theta").values;
     lobes.phi_edges = grid.read_dataset("phi").values;
+    try {
+      LobeGrid(lobes.theta_edges, lobes.phi_edges, lobes.phi_folded, 1);  // the angles' ranges
+    } catch (const std::invalid_argument& angles) {
+      unusable_file(path, fmt::format("its direction grid is not one lobes are fitted on: {}",
+                                      angles.what()));
+    }
     check_fit_memory(root.open_dataset("tallies/radiance/mean"));
     hdf5::Array mean = root.read_dataset("tallies/radiance/mean");
     hdf5::Array error = root.read_dataset("tallies/radiance/stderr");

@@ -5,9 +5,11 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <stdexcept>
 
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/core/fnv1a.hpp"
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
 #include "scatterlab/io/simulation_file.hpp"
@@ -16,7 +18,8 @@ namespace scatterlab {
 namespace {
 
 constexpr const char* kFormat = "scatterlab-checkpoint";
-constexpr std::int64_t kFormatVersion = 1;
+// 2: with the checksum; a version 1 checkpoint, which has none, cannot be trusted and is refused.
+constexpr std::int64_t kFormatVersion = 2;
 
 std::int64_t as_int64(std::uint64_t value) {
   if (value > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
@@ -54,6 +57,20 @@ std::string state_problem(std::int64_t batches_folded, std::int64_t scattering_e
   return {};
 }
 
+// The checksum of everything a resumed run takes from the file, in the order written: a file
+// whose fingerprint matches but whose counts or values were edited since is refused.
+std::string state_checksum(const std::string& spec_fingerprint, std::int64_t batches_folded,
+                           std::int64_t scattering_events, const RunState& state) {
+  Fnv1a hash;
+  hash.add(spec_fingerprint);
+  hash.add_bytes_of(std::span<const std::int64_t>(&batches_folded, 1));
+  hash.add_bytes_of(std::span<const std::int64_t>(&scattering_events, 1));
+  hash.add_bytes_of(std::span<const double>(&state.wall_seconds, 1));
+  hash.add_bytes_of(std::span<const double>(state.mean));
+  hash.add_bytes_of(std::span<const double>(state.squares));
+  return fmt::format("{:016x}", hash.value());
+}
+
 }  // namespace
 
 std::filesystem::path default_checkpoint_path(const std::filesystem::path& output) {
@@ -71,9 +88,13 @@ void write_checkpoint(const std::filesystem::path& path, const std::string& spec
     root.write_string_attribute("format", kFormat);
     root.write_int64_attribute("format_version", kFormatVersion);
     root.write_string_attribute("spec_fingerprint", spec_fingerprint);
-    root.write_int64_attribute("batches_folded", as_int64(state.batches_folded));
-    root.write_int64_attribute("scattering_events", as_int64(state.scattering_events));
+    const std::int64_t batches_folded = as_int64(state.batches_folded);
+    const std::int64_t scattering_events = as_int64(state.scattering_events);
+    root.write_int64_attribute("batches_folded", batches_folded);
+    root.write_int64_attribute("scattering_events", scattering_events);
     root.write_double_attribute("wall_seconds", state.wall_seconds);
+    root.write_string_attribute(
+        "checksum", state_checksum(spec_fingerprint, batches_folded, scattering_events, state));
     root.write_string_attribute("created", iso8601_now());
     root.write_dataset("welford_mean", state.mean);
     root.write_dataset("welford_squares", state.squares);
@@ -126,8 +147,11 @@ RunState read_checkpoint(const std::filesystem::path& path, const std::string& s
     if (version != kFormatVersion) {
       throw InputError(field,
                        fmt::format("'{}' has checkpoint format_version {}, this scatterlab reads "
-                                   "{}",
-                                   path.string(), version, kFormatVersion),
+                                   "{}{}",
+                                   path.string(), version, kFormatVersion,
+                                   version == 1 ? " (version 1 has no checksum: run again "
+                                                  "without --resume)"
+                                                : ""),
                        accepted);
     }
     RunState state;
@@ -135,9 +159,14 @@ RunState read_checkpoint(const std::filesystem::path& path, const std::string& s
     const std::int64_t scattering_events = root.read_int64_attribute("scattering_events");
     state.mean = root.read_dataset("welford_mean").values;
     state.squares = root.read_dataset("welford_squares").values;
-    // Checkpoints written before the run's wall time was kept count none for the earlier work.
-    if (root.has_attribute("wall_seconds")) {
-      state.wall_seconds = root.read_double_attribute("wall_seconds");
+    state.wall_seconds = root.read_double_attribute("wall_seconds");
+    const std::string stored = root.read_string_attribute("checksum");
+    if (stored != state_checksum(written_for, batches_folded, scattering_events, state)) {
+      throw InputError(field,
+                       fmt::format("the checkpoint '{}' was changed after it was written: its "
+                                   "checksum {} does not match what it holds",
+                                   path.string(), stored),
+                       accepted);
     }
     const std::string problem = state_problem(batches_folded, scattering_events, state);
     if (!problem.empty()) {

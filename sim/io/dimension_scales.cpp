@@ -10,19 +10,6 @@
 namespace scatterlab {
 namespace {
 
-std::vector<std::string> split_dims(const std::string& dims) {
-  std::vector<std::string> names;
-  if (dims.empty()) return names;
-  std::size_t start = 0;
-  for (std::size_t comma = dims.find(','); comma != std::string::npos;
-       comma = dims.find(',', start)) {
-    names.push_back(dims.substr(start, comma - start));
-    start = comma + 1;
-  }
-  names.push_back(dims.substr(start));
-  return names;
-}
-
 // The scale of dimension `name` (n bins) in `group`: bin centres of /grid/<name>, or indices.
 hdf5::Dataset write_scale(const hdf5::Group& root, hdf5::Group& group, const std::string& name,
                           std::size_t n) {
@@ -73,6 +60,19 @@ void label_dimensions(const hdf5::Group& root, hdf5::Group& group, const std::st
 }
 
 }  // namespace
+
+std::vector<std::string> split_dims(const std::string& dims) {
+  std::vector<std::string> names;
+  if (dims.empty()) return names;
+  std::size_t start = 0;
+  for (std::size_t comma = dims.find(','); comma != std::string::npos;
+       comma = dims.find(',', start)) {
+    names.push_back(dims.substr(start, comma - start));
+    start = comma + 1;
+  }
+  names.push_back(dims.substr(start));
+  return names;
+}
 
 void write_dimension_scales(hdf5::Group& root) {
   if (root.has_member("tallies")) {

@@ -218,6 +218,21 @@ std::vector<std::string> split_path(std::string_view path) {
   return parts;
 }
 
+// Refuses a path that passes through an external link: a file is read for what it holds, and a
+// link to another file would read a tally (or anything) from somewhere the user did not name.
+void refuse_external_links(hid_t group, std::string_view path, const std::string& where) {
+  std::string prefix;
+  for (const std::string& part : split_path(path)) {
+    prefix += (prefix.empty() ? "" : "/") + part;
+    H5L_info_t link{};
+    if (H5Lget_info(group, prefix.c_str(), &link, H5P_DEFAULT) < 0) return;  // opening says why
+    if (link.type == H5L_TYPE_EXTERNAL) {
+      throw std::runtime_error(fmt::format(
+          "HDF5: {} is a link to another file (external links are not followed)", where));
+    }
+  }
+}
+
 }  // namespace
 
 namespace detail {
@@ -473,6 +488,7 @@ Group Group::create_group(std::string_view path) {
 Group Group::open_group(std::string_view path) const {
   const std::string key(path);
   const std::string full = child_path(path);
+  refuse_external_links(id(), path, file() + ":" + full);
   return Group(
       Handle(check_id(H5Gopen2(id(), key.c_str(), H5P_DEFAULT), "open group", file() + ":" + full),
              H5Gclose),
@@ -537,6 +553,7 @@ Dataset Group::write_dataset(std::string_view name, std::span<const double> valu
 Dataset Group::open_dataset(std::string_view path) const {
   const std::string key(path);
   const std::string full = child_path(path);
+  refuse_external_links(id(), path, file() + ":" + full);
   return Dataset(Handle(check_id(H5Dopen2(id(), key.c_str(), H5P_DEFAULT), "open dataset",
                                  file() + ":" + full),
                         H5Dclose),

@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <map>
 #include <set>
@@ -18,6 +19,7 @@
 #include "scatterlab/io/hdf5_file.hpp"
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/tally/pooled_statistics.hpp"
+#include "scatterlab/transport/run_settings.hpp"
 
 namespace scatterlab {
 namespace {
@@ -83,17 +85,44 @@ void check_parameters(const FileSummary& first, const FileSummary& other) {
   }
 }
 
-std::vector<std::uint64_t> seeds_of(const hdf5::Group& parameters) {
-  if (parameters.has_attribute("seed")) return {parameters.read_uint64_attribute("seed")};
+// The seeds a file ran: /parameters seed, or a merged file's list "seeds". Each is a seed a run
+// can have, [0, 2^63 - 1]: anything else (a negative number, a word) was not written by a run.
+std::vector<std::uint64_t> seeds_of(const fs::path& path, const hdf5::Group& parameters) {
+  std::vector<std::string> texts;
+  if (parameters.has_attribute("seed")) {
+    // Read as what it is stored as: HDF5 would clip a negative integer read as unsigned to 0.
+    switch (parameters.attribute_type("seed")) {
+      case hdf5::AttributeType::unsigned_integer:
+        texts.push_back(std::to_string(parameters.read_uint64_attribute("seed")));
+        break;
+      case hdf5::AttributeType::signed_integer:
+        texts.push_back(std::to_string(parameters.read_int64_attribute("seed")));
+        break;
+      case hdf5::AttributeType::string:
+        texts.push_back(parameters.read_string_attribute("seed"));
+        break;
+      default:
+        texts.push_back("of another type");
+    }
+  } else {
+    const std::string list =
+        parameters.has_attribute("seeds") ? parameters.read_string_attribute("seeds") : "";
+    for (std::size_t at = 0; at < list.size();) {
+      std::size_t next = list.find(',', at);
+      if (next == std::string::npos) next = list.size();
+      texts.push_back(list.substr(at, next - at));
+      at = next + 1;
+    }
+  }
   std::vector<std::uint64_t> seeds;
-  const std::string list =
-      parameters.has_attribute("seeds") ? parameters.read_string_attribute("seeds") : "";
-  std::size_t at = 0;
-  while (at < list.size()) {
-    std::size_t next = list.find(',', at);
-    if (next == std::string::npos) next = list.size();
-    seeds.push_back(std::stoull(list.substr(at, next - at)));
-    at = next + 1;
+  for (const std::string& text : texts) {
+    std::uint64_t seed = 0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), seed);
+    if (error != std::errc{} || end != text.data() + text.size() || seed > max_seed) {
+      throw InputError("FILES", fmt::format("{} has seed {}", path.string(), text),
+                       fmt::format("runs whose seeds are each {}", seed_accepted));
+    }
+    seeds.push_back(seed);
   }
   return seeds;
 }
@@ -127,10 +156,6 @@ void check_input(const fs::path& path, const hdf5::File& file, const FileSummary
   const auto refuse = [&path](const std::string& problem) {
     throw InputError("FILES", fmt::format("{} {}", path.string(), problem), input_accepted);
   };
-  if (summary.format_version != kSimulationFormatVersion) {
-    refuse(fmt::format("has format_version {}; this scatterlab reads {}", summary.format_version,
-                       kSimulationFormatVersion));
-  }
   const hdf5::Group& root = file.root();
   const hdf5::Group parameters = root.open_group("parameters");
   const std::int64_t batches = parameters.read_int64_attribute("batches");
@@ -156,14 +181,21 @@ void check_input(const fs::path& path, const hdf5::File& file, const FileSummary
   }
 }
 
-// An input's tally as it is pooled: finite means, finite and non-negative standard errors.
+// The tallies whose mean may be negative: the vector irradiance's components and the first
+// moment of the absorption depth. Every other tally counts power, fluence or radiance.
+bool is_signed_tally(const std::string& name) {
+  return name == "flux" || name == "absorbed_mean_depth";
+}
+
+// An input's tally as it is pooled: finite means, non-negative unless the tally is signed, and
+// finite, non-negative standard errors.
 void check_input_tally(const fs::path& path, const std::string& name, const hdf5::Array& mean,
                        const hdf5::Array& stderr_of_mean) {
   for (const auto& [values, dataset] :
        {std::pair{&mean.values, "mean"}, std::pair{&stderr_of_mean.values, "stderr"}}) {
-    const bool is_error = std::string_view(dataset) == "stderr";
+    const bool non_negative = std::string_view(dataset) == "stderr" || !is_signed_tally(name);
     const auto bad = std::find_if(values->begin(), values->end(), [&](double v) {
-      return !std::isfinite(v) || (is_error && v < 0.0);
+      return !std::isfinite(v) || (non_negative && v < 0.0);
     });
     if (bad != values->end()) {
       throw InputError("FILES",
@@ -342,7 +374,7 @@ MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs
   std::map<std::uint64_t, fs::path> seeds;
   MergeSummary summary;
   for (const fs::path& path : paths) {
-    FileSummary summary_of_input = read_file_summary(path);  // an InputError unless scatterlab's
+    FileSummary summary_of_input = read_file_summary(path, "FILES");  // InputError unless sound
     hdf5::File file = hdf5::File::open_read_only(path);
     check_input(path, file, summary_of_input);
     const double batches = batches_of(file);
@@ -351,7 +383,7 @@ MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs
                        "files of at least 2 batches (a standard error needs two)");
     }
     const std::uint64_t photons = count(file.root(), "photons_run");
-    for (const std::uint64_t seed : seeds_of(file.root().open_group("parameters"))) {
+    for (const std::uint64_t seed : seeds_of(path, file.root().open_group("parameters"))) {
       const auto [it, fresh] = seeds.emplace(seed, path);
       if (!fresh) {
         throw InputError("parameters.seed",

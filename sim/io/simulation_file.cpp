@@ -391,9 +391,62 @@ TallySummary summarize_tally(const hdf5::Group& tallies, const std::string& name
   return summary;
 }
 
+// A grid axis's edges increase strictly and are finite; only the last may be +inf (a slab's
+// semi-infinite layer). A file that says otherwise was damaged or edited, and every bin width,
+// centre and density read from it would be wrong.
+void check_edges(const std::string& name, const std::vector<double>& edges) {
+  if (edges.size() < 2) {
+    throw std::runtime_error(
+        fmt::format("is damaged: /grid/{} holds {} edges, not 2 or more", name, edges.size()));
+  }
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const bool last = i + 1 == edges.size();
+    if (!(std::isfinite(edges[i]) || (last && edges[i] == std::numeric_limits<double>::infinity()))) {
+      throw std::runtime_error(
+          fmt::format("is damaged: /grid/{}[{}] is {}, not a finite edge", name, i, edges[i]));
+    }
+    if (i > 0 && !(edges[i] > edges[i - 1])) {
+      throw std::runtime_error(fmt::format("is damaged: /grid/{}[{}] is {}, not above the edge "
+                                           "before it ({})",
+                                           name, i, edges[i], edges[i - 1]));
+    }
+  }
+}
+
+// Each tally's mean and stderr have one extent per name in its dims, and the extent along a grid
+// axis is that axis's bins (from the datasets' shapes: nothing is read whole).
+void check_tally_shapes(const hdf5::Group& root, const hdf5::Group& grid) {
+  if (!root.has_member("tallies")) return;
+  const hdf5::Group tallies = root.open_group("tallies");
+  for (const std::string& name : tallies.member_names()) {
+    const hdf5::Group node = tallies.open_group(name);
+    const std::vector<std::string> dims = split_dims(string_or_empty(node, "dims"));
+    for (const char* part : {"mean", "stderr"}) {
+      const hdf5::Dataset dataset = node.open_dataset(part);
+      const std::vector<std::size_t> shape = dataset.shape();
+      if (shape.size() != dims.size()) {
+        throw std::runtime_error(fmt::format("is damaged: /tallies/{}/{} has {} dimensions but "
+                                             "its dims name {}",
+                                             name, part, shape.size(), dims.size()));
+      }
+      for (std::size_t d = 0; d < dims.size(); ++d) {
+        if (!grid.has_member(dims[d])) continue;
+        const std::vector<std::size_t> axis = grid.open_dataset(dims[d]).shape();
+        const std::size_t edges = axis.size() == 1 ? axis[0] : 0;
+        if (shape[d] + 1 != edges) {
+          throw std::runtime_error(fmt::format("is damaged: /tallies/{}/{} has {} bins along {} "
+                                               "but /grid/{} has {} edges",
+                                               name, part, shape[d], dims[d], dims[d], edges));
+        }
+      }
+    }
+  }
+}
+
 AxisSummary summarize_axis(const hdf5::Group& grid, const std::string& name) {
   const hdf5::Dataset edges = grid.open_dataset(name);
   const hdf5::Array values = edges.read();
+  check_edges(name, values.values);
   AxisSummary axis;
   axis.name = name;
   axis.bins = values.values.empty() ? 0 : values.values.size() - 1;
@@ -434,11 +487,16 @@ FileSummary summarize(const hdf5::File& file, bool read_tallies) {
   for (const std::string& name : parameters.attribute_names()) {
     summary.parameters.emplace_back(name, attribute_text(parameters, name));
   }
+  if (summary.format_version != kSimulationFormatVersion) {
+    throw std::runtime_error(fmt::format("has format_version {}; this scatterlab reads {}",
+                                         summary.format_version, kSimulationFormatVersion));
+  }
   const hdf5::Group grid = root.open_group("grid");
   summary.phi_folded = grid.has_attribute("phi_folded") && grid.read_int64_attribute("phi_folded");
   for (const std::string& name : grid.member_names()) {
     summary.grid.push_back(summarize_axis(grid, name));
   }
+  check_tally_shapes(root, grid);
   if (read_tallies) {
     const hdf5::Group tallies = root.open_group("tallies");
     for (const std::string& name : tallies.member_names()) {
@@ -486,9 +544,19 @@ std::string tally_text(const TallySummary& tally) {
 }
 
 [[noreturn]] void not_a_simulation_file(const std::filesystem::path& path,
-                                        const std::string& reason) {
-  throw InputError("FILE", path.string() + " is not a scatterlab HDF5 file (" + reason + ")",
+                                        const std::string& reason,
+                                        const std::string& field = "FILE") {
+  throw InputError(field, path.string() + " is not a scatterlab HDF5 file (" + reason + ")",
                    "a file written by scatterlab simulate or searchlight");
+}
+
+// A scatterlab file that this build cannot read as it stands: damaged, edited or of another
+// format version.
+[[noreturn]] void unreadable_simulation_file(const std::filesystem::path& path,
+                                             const std::string& reason, const std::string& field) {
+  throw InputError(field, path.string() + " " + reason,
+                   "a file written by scatterlab (format_version " +
+                       std::to_string(kSimulationFormatVersion) + "), as written");
 }
 
 }  // namespace
@@ -607,35 +675,44 @@ void write_layered_slab_file(const std::filesystem::path& path, const LayeredSla
 
 namespace {
 
-FileSummary read_summary(const std::filesystem::path& path, bool read_tallies) {
+FileSummary read_summary(const std::filesystem::path& path, bool read_tallies,
+                         const std::string& field) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) {
     not_a_simulation_file(
-        path, std::filesystem::exists(path, error) ? "not a regular file" : "no such file");
+        path, std::filesystem::exists(path, error) ? "not a regular file" : "no such file", field);
   }
-  if (!hdf5::is_hdf5_file(path)) not_a_simulation_file(path, "not an HDF5 file, or unreadable");
+  if (!hdf5::is_hdf5_file(path)) {
+    not_a_simulation_file(path, "not an HDF5 file, or unreadable", field);
+  }
   try {
     const hdf5::File file = hdf5::File::open_read_only(path);
     const hdf5::Group& root = file.root();
-    if (!root.has_attribute("format")) not_a_simulation_file(path, "no 'format' attribute");
+    if (!root.has_attribute("format")) not_a_simulation_file(path, "no 'format' attribute", field);
     const std::string format = root.read_string_attribute("format");
-    if (format != "scatterlab") not_a_simulation_file(path, "format is '" + format + "'");
-    return summarize(file, read_tallies);
+    if (format != "scatterlab") not_a_simulation_file(path, "format is '" + format + "'", field);
+    try {
+      return summarize(file, read_tallies);
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::runtime_error& failure) {
+      unreadable_simulation_file(path, failure.what(), field);
+    }
   } catch (const InputError&) {
     throw;
   } catch (const std::runtime_error& failure) {
-    not_a_simulation_file(path, failure.what());
+    not_a_simulation_file(path, failure.what(), field);
   }
 }
 
 }  // namespace
 
-FileSummary read_file_summary(const std::filesystem::path& path) {
-  return read_summary(path, true);
+FileSummary read_file_summary(const std::filesystem::path& path, const std::string& field) {
+  return read_summary(path, true, field);
 }
 
-FileSummary read_file_header(const std::filesystem::path& path) {
-  return read_summary(path, false);
+FileSummary read_file_header(const std::filesystem::path& path, const std::string& field) {
+  return read_summary(path, false, field);
 }
 
 std::string describe(const FileSummary& summary) {

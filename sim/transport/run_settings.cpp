@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/core/fnv1a.hpp"
 
 namespace scatterlab {
 
@@ -96,13 +97,9 @@ void check_seed(std::uint64_t seed, const std::string& field, std::uint64_t coun
 }
 
 std::string fingerprint_of(std::string_view canonical) {
-  // A fingerprint, not a defence against forgery.
-  std::uint64_t hash = 0xcbf29ce484222325ull;
-  for (const char c : canonical) {
-    hash ^= static_cast<unsigned char>(c);
-    hash *= 0x100000001b3ull;
-  }
-  return fmt::format("{:016x}", hash);
+  Fnv1a hash;
+  hash.add(canonical);
+  return fmt::format("{:016x}", hash.value());
 }
 
 }  // namespace scatterlab

@@ -91,6 +91,12 @@ with h5py.File("crafted.h5", "r+") as f:
     d = f["tallies/radiance"].create_dataset("mean", shape=(1000000, 1000000), dtype="f8",
                                              chunks=(64, 64))
     d[0, 0] = 1.0
+    # The stderr alike, along dimensions of no grid axis, so that the shapes agree with the
+    # tally's dims and the declared size is what is refused.
+    del f["tallies/radiance/stderr"]
+    f["tallies/radiance"].create_dataset("stderr", shape=(1000000, 1000000), dtype="f8",
+                                         chunks=(64, 64))
+    f["tallies/radiance"].attrs["dims"] = "a,b"
 PY
   size=$(stat -c %s crafted.h5)
   if [ "$size" -gt 1000000 ]; then fail "setup: crafted.h5 is $size bytes"; fi

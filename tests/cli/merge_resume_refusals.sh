@@ -2,11 +2,14 @@
 # Usage: merge_resume_refusals.sh SCATTERLAB TAMPER_FILE
 # Inputs that look right but are not, made from real outputs with tamper_file:
 #   merge refuses a partial input, a NaN or infinite tally, an unknown format_version, batch and
-#   photon counts that disagree; it keeps /models when the inputs agree on them, and says in one
-#   line what it leaves out when they do not;
+#   photon counts that disagree, a negative mean of a tally that cannot be negative, a seed no
+#   run can have; info and fit refuse grid edges that are not finite, do not increase or are
+#   one too few, and an unknown format_version, as merge does; merge keeps /models when the
+#   inputs agree on them, and says in one line what it leaves out when they do not;
 #   --resume refuses a damaged checkpoint: numbers that are not finite, negative Welford squares,
-#   counts out of range, another format_version.
-# Each refusal: exit 2, one line naming FILES or --resume and the file, nothing touched.
+#   counts out of range, another format_version, and any value edited after it was written (its
+#   checksum).
+# Each refusal: exit 2, one line naming FILE, FILES or --resume and the file, nothing touched.
 set -u
 exe=$(realpath "$1")
 tamper=$(realpath "$2")
@@ -52,6 +55,26 @@ expect_refused "merge: batches_done against parameters.batches" "FILES: batches.
   merge s1.h5 batches.h5 -o m.h5
 expect_refused "merge: photons_run against parameters.photons" "FILES: photons.h5 .*photons_run" \
   merge s1.h5 photons.h5 -o m.h5
+damaged negative-mean.h5 s2.h5 element tallies/radiance mean 0 -1
+damaged seed.h5 s2.h5 attribute parameters seed int -1
+expect_refused "merge: negative radiance" "FILES: negative-mean.h5 has -1 in tallies/radiance/mean" \
+  merge s1.h5 negative-mean.h5 -o m.h5
+expect_refused "merge: seed -1" "FILES: seed.h5 has seed -1" merge s1.h5 seed.h5 -o m.h5
+
+# info and fit: a file that contradicts itself is refused by name, as merge refuses it.
+damaged nan-edge.h5 s2.h5 element grid r 2 nan
+damaged reversed.h5 s2.h5 element grid z 1 100
+damaged short.h5 s2.h5 element grid theta 3 drop
+damaged theta-range.h5 s2.h5 element grid theta 6 4
+for bad in nan-edge reversed short version; do
+  expect_refused "info: $bad" "FILE: $bad.h5 .*\(damaged\|format_version\)" info "$bad.h5"
+  expect_refused "fit: $bad" "FILE: $bad.h5 .*\(damaged\|format_version\)" \
+    fit "$bad.h5" --models sg
+  expect_refused "merge: $bad" "FILES: $bad.h5" merge s1.h5 "$bad.h5" -o m.h5
+done
+expect_refused "fit: theta past pi" "FILE: theta-range.h5: its direction grid" \
+  fit theta-range.h5 --models sg
+
 # The damage is what is refused: the same merge of sound files goes through.
 if "$exe" merge s1.h5 s2.h5 -o sound.h5 >/dev/null 2>"$scratch/err" && [ ! -s "$scratch/err" ]
 then pass; else fail "merge of sound files: $(cat "$scratch/err")"; fi
@@ -87,8 +110,11 @@ damaged negative.ckpt c.h5.checkpoint element / welford_squares 3 -1
 damaged many.ckpt c.h5.checkpoint attribute / batches_folded int 9
 damaged none.ckpt c.h5.checkpoint attribute / batches_folded int 0
 damaged events.ckpt c.h5.checkpoint attribute / scattering_events int -5
-damaged version.ckpt c.h5.checkpoint attribute / format_version int 2
-for bad in nan inf negative many none events version; do
+damaged version.ckpt c.h5.checkpoint attribute / format_version int 3
+damaged old.ckpt c.h5.checkpoint attribute / format_version int 1
+damaged walltime.ckpt c.h5.checkpoint attribute / wall_seconds double 0.5
+damaged edited.ckpt c.h5.checkpoint element / welford_mean 3 0.125
+for bad in nan inf negative many none events version old walltime edited; do
   expect_refused "resume: $bad" "--resume.*$bad.ckpt" \
     "${run[@]}" --out c.h5 --checkpoint "$bad.ckpt" --resume
 done

@@ -1,11 +1,13 @@
 // Usage: tamper_file FILE.h5 attribute GROUP NAME int|double|string VALUE
-//        tamper_file FILE.h5 element GROUP DATASET INDEX VALUE
-// Changes one attribute, or one element of a double dataset (keeping its shape and attributes),
+//        tamper_file FILE.h5 element GROUP DATASET INDEX VALUE|drop
+// Changes one attribute, or one element of a double dataset (keeping its shape and attributes;
+// "drop" removes the element of a 1-D dataset instead, which is then one shorter),
 // of an HDF5 file in place (a rewritten dataset loses its dimension scales). Tests use it to make
 // damaged inputs from real outputs: a NaN tally, a count that disagrees with another, an unknown
 // format version. GROUP is "/" for the root.
 #include <fmt/format.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <exception>
 #include <stdexcept>
@@ -31,10 +33,17 @@ void set_attribute(Object& object, const std::string& name, const std::string& t
 
 // Rewrites the dataset with one element changed; its attributes are carried over (numbers as
 // doubles).
-void set_element(Group& group, const std::string& name, std::size_t index, double value) {
+void set_element(Group& group, const std::string& name, std::size_t index,
+                 const std::string& value) {
   const scatterlab::hdf5::Dataset old = group.open_dataset(name);
   scatterlab::hdf5::Array array = old.read();
-  array.values.at(index) = value;
+  if (value == "drop") {
+    if (array.shape.size() != 1) throw std::invalid_argument("drop needs a 1-D dataset");
+    array.values.erase(array.values.begin() + static_cast<std::ptrdiff_t>(index));
+    array.shape[0] -= 1;
+  } else {
+    array.values.at(index) = std::stod(value);
+  }
   struct Saved {
     std::string name;
     AttributeType type;
@@ -67,7 +76,7 @@ int main(int argc, char** argv) {
   if (!((what == "attribute" && argc == 7) || (what == "element" && argc == 7))) {
     fmt::print(stderr,
                "usage: tamper_file FILE.h5 attribute GROUP NAME int|double|string VALUE\n"
-               "       tamper_file FILE.h5 element GROUP DATASET INDEX VALUE\n");
+               "       tamper_file FILE.h5 element GROUP DATASET INDEX VALUE|drop\n");
     return 2;
   }
   try {
@@ -76,7 +85,7 @@ int main(int argc, char** argv) {
       if (what == "attribute") {
         set_attribute(group, argv[4], argv[5], argv[6]);
       } else {
-        set_element(group, argv[4], std::stoull(argv[5]), std::stod(argv[6]));
+        set_element(group, argv[4], std::stoull(argv[5]), argv[6]);
       }
     };
     const std::string path = argv[3];

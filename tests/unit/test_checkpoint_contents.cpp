@@ -2,9 +2,11 @@
 // with one error naming the checkpoint and what is wrong, before any batch runs.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/checkpoint_file.hpp"
@@ -107,19 +109,50 @@ TEST_F(CheckpointContents, WallTimeIsKeptAndAWrongOneRefused) {
 }
 
 TEST_F(CheckpointContents, AnotherFormatVersionIsRefused) {
-  write_checkpoint(path_, "fingerprint", sound());
-  {
-    hdf5::File file = hdf5::File::open_read_write(path_);
-    file.root().write_int64_attribute("format_version", 2);
-    file.close();
-  }
-  try {
-    read_checkpoint(path_, "fingerprint");
-    FAIL() << "read a checkpoint of format_version 2";
-  } catch (const InputError& error) {
-    EXPECT_NE(std::string(error.what()).find("format_version 2"), std::string::npos);
+  for (const std::int64_t version : {1, 3}) {
+    write_checkpoint(path_, "fingerprint", sound());
+    {
+      hdf5::File file = hdf5::File::open_read_write(path_);
+      file.root().write_int64_attribute("format_version", version);
+      file.close();
+    }
+    try {
+      read_checkpoint(path_, "fingerprint");
+      FAIL() << "read a checkpoint of format_version " << version;
+    } catch (const InputError& error) {
+      EXPECT_NE(std::string(error.what()).find("format_version " + std::to_string(version)),
+                std::string::npos);
+    }
   }
 }
 
+// A checkpoint whose fingerprint matches is still refused when anything it holds was changed
+// after it was written, even to values that are sound on their own.
+TEST_F(CheckpointContents, AnEditedStateIsRefusedByItsChecksum) {
+  const auto edited = [this](auto edit) {
+    write_checkpoint(path_, "fingerprint", sound());
+    {
+      hdf5::File file = hdf5::File::open_read_write(path_);
+      edit(file.root());
+      file.close();
+    }
+    try {
+      read_checkpoint(path_, "fingerprint");
+    } catch (const InputError& error) {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  for (const std::string& refusal :
+       {edited([](hdf5::Group& root) { root.write_int64_attribute("batches_folded", 4); }),
+        edited([](hdf5::Group& root) { root.write_int64_attribute("scattering_events", 1000); }),
+        edited([](hdf5::Group& root) { root.write_double_attribute("wall_seconds", 1.0); }),
+        edited([](hdf5::Group& root) {
+          root.remove_member("welford_mean");
+          root.write_dataset("welford_mean", std::vector<double>{0.5, 0.25, 0.125});
+        })}) {
+    EXPECT_NE(refusal.find("checksum"), std::string::npos) << refusal;
+  }
+}
 }  // namespace
 }  // namespace scatterlab

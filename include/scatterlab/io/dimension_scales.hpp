@@ -23,6 +23,9 @@ namespace scatterlab {
 // /models/<model>/<curve> (dims on the curve), read from the file being written.
 void write_dimension_scales(hdf5::Group& root);
 
+// The names in a `dims` attribute ("r,z,theta,phi"); none for a scalar's "".
+std::vector<std::string> split_dims(const std::string& dims);
+
 // The members of a /models/<model> group that are curves, not the scales of their dimensions.
 std::vector<std::string> curve_names(const hdf5::Group& model);
 

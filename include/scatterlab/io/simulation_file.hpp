@@ -172,12 +172,14 @@ struct FileSummary {
   std::vector<std::string> fits;
 };
 
-// Throws InputError("FILE", ...) for a file that is missing, not HDF5, or not a scatterlab file.
-FileSummary read_file_summary(const std::filesystem::path& path);
+// Throws InputError(field, ...) for a file that is missing, not HDF5, not a scatterlab file, of
+// another format_version, or one that contradicts itself: grid edges that are not finite or do
+// not increase, or tallies whose shape is not the grid's.
+FileSummary read_file_summary(const std::filesystem::path& path, const std::string& field = "FILE");
 // The same without the tallies' values (`tallies` left empty): what a run, a resume, a merge or a
 // fit needs to know of a file (partial, fingerprint, counts, parameters, grid) without reading
 // every tally whole.
-FileSummary read_file_header(const std::filesystem::path& path);
+FileSummary read_file_header(const std::filesystem::path& path, const std::string& field = "FILE");
 std::string describe(const FileSummary& summary);
 // read_file_summary + describe: the text of `scatterlab info FILE`.
 std::string describe_simulation_file(const std::filesystem::path& path);
