@@ -65,7 +65,7 @@ int run_layered_slab_scene(CLI::App& command, const SlabFlags& flags,
                            const LongRunOptions& long_run_options, double log_interval,
                            const std::string& command_line, World& world) {
   refuse_other_flags(command, flags.scene);
-  const LayeredSlabScene scene = load_layered_slab_scene(flags.scene, Validation::on_read);
+  const LayeredSlabScene scene = load_layered_slab_scene(flags.scene, Validation::by_caller);
   LayeredSlabSpec spec = scene.spec;
   if (command.get_option("--split-orders")->count() > 0) spec.split_by_order = flags.split_orders;
   apply_run_options(command, flags.run, spec.run);

@@ -113,7 +113,7 @@ int run_lit_sphere_scene(CLI::App& command, const SphereFlags& flags,
                          const LongRunOptions& long_run_options, double log_interval,
                          const std::string& command_line, World& world) {
   refuse_other_flags(command, flags.scene);
-  LitSphereScene scene = load_lit_sphere_scene(flags.scene, Validation::on_read);
+  LitSphereScene scene = load_lit_sphere_scene(flags.scene, Validation::by_caller);
   if (scene.mesh) load_mesh(flags.scene, scene.spec);
   LitSphereSpec spec = sphere_spec(command, flags, scene);
 #ifdef SCATTERLAB_WITH_RENDER

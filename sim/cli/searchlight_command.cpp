@@ -118,8 +118,8 @@ int run_searchlight_command(CLI::App& command, const SearchlightOptions& o,
                             const std::string& command_line, World& world) {
   auto given = [&command](const char* flag) { return command.get_option(flag)->count() > 0; };
   SearchlightScene scene;
-  // The file valid on its own, then the flags over it, validated again below.
-  if (given("--scene")) scene = load_searchlight_scene(o.scene, Validation::on_read);
+  // The file read strictly (keys, types), the flags over it, then the whole validated below.
+  if (given("--scene")) scene = load_searchlight_scene(o.scene, Validation::by_caller);
   SearchlightSpec& spec = scene.spec;
   const std::optional<double> material_eta = apply_medium_options(
       command, o.medium, o.albedo, o.g, o.sigma_t, scene.material, spec.medium, spec.material);

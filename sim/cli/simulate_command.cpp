@@ -179,9 +179,9 @@ struct RunPlan {
 // One run, or one per combination of a sweep (scene.hpp), each with its output path.
 RunPlan plan_runs(CLI::App& command, const SimulateOptions& o, const LongRunOptions& long_run) {
   auto given = [&command](const char* flag) { return command.get_option(flag)->count() > 0; };
-  // Each point of the file valid on its own, then the flags over it, validated again
-  // (apply_flags).
-  std::vector<SweepPoint> points = given("--scene") ? load_sweep(o.scene, Validation::on_read)
+  // Each point of the file read strictly (keys, types), the flags over it, then the whole
+  // validated (apply_flags).
+  std::vector<SweepPoint> points = given("--scene") ? load_sweep(o.scene, Validation::by_caller)
                                                     : std::vector<SweepPoint>{SweepPoint{}};
   const bool sweep = points.size() > 1 || !points.front().label.empty();
   // Many files go into a directory: --out names it for a sweep (as for every command that

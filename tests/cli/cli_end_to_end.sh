@@ -100,15 +100,29 @@ if [ $? -eq 2 ] && grep -q -- "--model" "$work/stderr" && grep -q "quantized_dif
 if "$exe" searchlight --scene "$source_dir/data/scenes/searchlight.toml" --photons 20000 --batches 8 \
   --out "$work/scene.h5" >/dev/null 2>&1 && "$exe" info "$work/scene.h5" | grep -q "eta *1.3"
 then pass; else fail "searchlight scene"; fi
-# A scene file is valid on its own, before any flag: a flag cannot hide what the file gets wrong.
+# Flags lay over the scene before it is checked as a whole: a scene that is incomplete or out of
+# range alone is refused, naming the key, and runs once a flag completes or mends it.
 printf '[medium]\nalbedo = 1\n' >"$work/conservative.toml"
 expect_command_error searchlight scene_needs_radius run.escape_radius \
-  --scene "$work/conservative.toml" --escape-radius 5
+  --scene "$work/conservative.toml"
 expect_command_error simulate scene_needs_radius_infinite run.escape_radius \
-  --scene "$work/conservative.toml" --escape-radius 5
+  --scene "$work/conservative.toml"
 printf '[medium]\nalbedo = 1.5\n' >"$work/bad-albedo.toml"
-expect_command_error simulate flag_over_bad_key medium.albedo \
-  --scene "$work/bad-albedo.toml" --albedo 0.5
+expect_command_error simulate bad_key_alone medium.albedo --scene "$work/bad-albedo.toml"
+mend=(--photons 2000 --batches 4 --threads 1)
+if "$exe" searchlight --scene "$work/conservative.toml" --escape-radius 5 "${mend[@]}" \
+  --no-fluence --out "$work/mended-half.h5" >/dev/null 2>&1 &&
+  "$exe" simulate --scene "$work/conservative.toml" --escape-radius 5 "${mend[@]}" \
+    --out "$work/mended.h5" >/dev/null 2>&1 &&
+  "$exe" simulate --scene "$work/bad-albedo.toml" --albedo 0.5 "${mend[@]}" \
+    --out "$work/mended-albedo.h5" >/dev/null 2>&1 &&
+  "$exe" info "$work/mended-albedo.h5" | grep -q "albedo *0.5"
+then pass; else fail "flags that mend a scene"; fi
+# A scene read strictly: a misspelt key or a wrong type is refused, whatever the flags.
+printf '[medium]\nalbdo = 0.5\n' >"$work/typo.toml"
+expect_command_error simulate flag_over_typo medium.albdo --scene "$work/typo.toml" --albedo 0.5
+printf '[medium]\nalbedo = "half"\n' >"$work/type.toml"
+expect_command_error simulate flag_over_type medium.albedo --scene "$work/type.toml" --albedo 0.5
 # A valid file, and flags over it: validated again after them.
 printf '[medium]\nalbedo = 1\n[run]\nescape_radius = 5\n' >"$work/conservative.toml"
 if "$exe" searchlight --scene "$work/conservative.toml" --escape-radius 4 --photons 2000 --batches 4 \

@@ -41,9 +41,11 @@
 
 namespace scatterlab {
 
-// Whether reading also validates the spec. The CLI reads with on_read: a scene file must be valid
-// on its own, and flags override a valid file (then the result is validated again), never mend a
-// broken one. by_caller leaves a partial spec for code that fills it in before validating.
+// Whether reading also validates the spec. Reading is strict either way: an unknown key, a wrong
+// type or a malformed value is refused as read. on_read then validates the whole spec; by_caller
+// leaves that to code that lays more over it first, as the command line does with its flags, so
+// that a flag can mend a scene (photons = 10 with --batches 4) and every refusal names the value
+// that is in force.
 enum class Validation { on_read, by_caller };
 
 struct Scene {
