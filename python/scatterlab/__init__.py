@@ -70,7 +70,8 @@ def _run(geometry: str | None, scene, out, progress, model_fluence: bool, keys: 
          call: str) -> Result:
     geometry, doc, origin = scene_dict(geometry, scene, keys)
     # A file without keywords is read as written, so that its messages point into it.
-    text = Path(scene).read_text() if scene is not None and not keys else to_toml(doc)
+    text = _scatterlab.read_scene_file(os.fspath(scene)) if scene is not None and not keys \
+        else to_toml(doc)
     progress = _progress_of(progress, "batches")
     # The file goes to out=, else to the scene's output.path, else to a temporary file that is
     # read back whole and removed.

@@ -23,10 +23,13 @@ from __future__ import annotations
 import json
 import math
 import numbers
+import os
 import re
 import tomllib
 from pathlib import Path
 from typing import Any
+
+from ._scatterlab import read_scene_file as read_scene_text
 
 TABLES = ("geometry", "medium", "source", "grid", "tallies", "run", "output", "layers")
 
@@ -90,10 +93,7 @@ def scene_dict(geometry: str | None, scene: str | Path | None,
     if scene is not None:
         origin = f"{scene} with keywords" if keys else str(scene)
         try:
-            doc = tomllib.loads(Path(scene).read_text())
-        except OSError as e:
-            raise ValueError(f"scene: cannot read {scene} ({e.strerror}); accepted: a readable "
-                             f"TOML scene file") from None
+            doc = tomllib.loads(read_scene_text(os.fspath(scene)))
         except tomllib.TOMLDecodeError as e:
             if not keys:  # read as written: the scene reader reports it, as for the program
                 doc = {}

@@ -21,6 +21,7 @@
 #include "scatterlab/fit/lobe_model.hpp"
 #endif
 #include "scatterlab/io/scene.hpp"
+#include "scatterlab/io/text_file.hpp"
 #include "scatterlab/models/chandrasekhar_h.hpp"
 #include "scatterlab/models/dipole.hpp"
 #include "scatterlab/models/half_space_medium.hpp"
@@ -201,6 +202,12 @@ PYBIND11_MODULE(_scatterlab, m) {
   m.attr("version") = SCATTERLAB_VERSION;
   // Bad input: ValueError, the message naming the field as the command line's does.
   py::register_exception<scatterlab::InputError>(m, "InputError", PyExc_ValueError);
+  // A scene file's text, read as the command line reads one: a device, FIFO or directory, or a
+  // file over 1 MiB, is refused before it is opened or read.
+  m.def(
+      "read_scene_file",
+      [](const std::string& path) { return scatterlab::read_scene_file(path, "scene"); },
+      py::arg("path"));
   m.def("run_scene", &sp::run_scene, py::arg("toml"), py::arg("origin"), py::arg("geometry"),
         py::arg("path"), py::arg("command"), py::arg("model_fluence"), py::arg("progress"));
   m.def("fit_file", &sp::fit_file, py::arg("path"), py::arg("csv"), py::arg("models"),

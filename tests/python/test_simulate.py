@@ -256,3 +256,35 @@ def test_sphere_and_slab_without_scattering_match_beer_lambert():
     t = slab.tallies["total_transmittance"]
     assert abs(float(t.mean) - math.exp(-1.0)) < 4 * float(t.stderr)
     assert float(slab.tallies["diffuse_reflectance"].mean) == 0.0
+
+
+def test_a_device_or_huge_file_is_refused_before_it_is_read(tmp_path):
+    import time
+
+    start = time.monotonic()
+    for device in ("/dev/zero", "/dev/urandom", tmp_path):
+        with pytest.raises(ValueError, match=r"^scene: "):
+            scatterlab.simulate(device)
+        with pytest.raises(ValueError, match=r"^scene: "):
+            scatterlab.simulate(device, albedo=0.9)  # read in Python, to merge the keywords
+    huge = tmp_path / "huge.toml"
+    huge.write_text("# padding\n" * 200_000)  # 2 MB, over the 1 MiB a scene may hold
+    with pytest.raises(ValueError, match=r"^scene: .*huge\.toml"):
+        scatterlab.simulate(huge)
+    assert time.monotonic() - start < 10.0
+
+
+@pytest.mark.parametrize("environment", [{"OMP_THREAD_LIMIT": "1"}, {"OMP_DYNAMIC": "true"}])
+def test_threads_that_openmp_withholds_still_run(environment):
+    import os
+    import subprocess
+    import sys
+
+    # A child interpreter: OpenMP reads these variables once, when it starts.
+    code = ("import scatterlab\n"
+            "r = scatterlab.simulate(photons=4000, batches=8, threads=2, radiance=False)\n"
+            "print(r.tallies['absorbed'].mean)\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          env={**os.environ, **environment}, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert 0.0 < float(done.stdout) <= 1.0
