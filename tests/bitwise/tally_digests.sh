@@ -1,13 +1,17 @@
 #!/usr/bin/env bash
-# Runs a fixed set of scenes that covers every transport kernel (both geometries, both phase
-# functions, both estimators, split orders, the point source, normal and oblique incidence,
-# eta = 1, eta > 1 and eta < 1, a finite escape radius) and prints every tally's digest.
+# Runs a fixed set of scenes that covers every transport kernel: every geometry (the infinite
+# medium, the half-space, the analytic sphere, a convex and a non-convex mesh, the layered slab),
+# every light of each (beam, point, directional, pole beam, off-axis beam, sphere of light), both
+# phase functions, both estimators with each source, split orders, normal and oblique incidence,
+# eta = 1, eta > 1 and eta < 1, a finite escape radius, analog and implicit weighting, and prints
+# every tally's digest. The scenes of the sphere, the meshes and the slab are in scenes/.
 #
 #   tally_digests.sh SCATTERLAB TALLY_DIGEST              prints "<scene> <tally> <digest>"
 #   tally_digests.sh SCATTERLAB TALLY_DIGEST --check FILE  compares with FILE, exit 1 on a change
 #
 # tally_digests.txt beside this script holds the digests of the kernels as they stood before
-# the transport engine was unified; a refactor that should not change results must keep them.
+# the transport engine was unified (the first 13 scenes), and of the scenes added after them as
+# they stood when added (CHANGELOG.md); a refactor that should not change results must keep them.
 # The isotropic scenes' (beam_isotropic, point_collision, half_space_fresnel,
 # half_space_matched_oblique, half_space_conservative) are those of the walk that draws a
 # direction afresh at g = 0 instead of rotating the old one: the same law, other bits. The flux
@@ -27,6 +31,8 @@ run() {  # run NAME ARGS...: one scene
   "$digest" "$work/$name.h5" | sed "s/^/$name /"
 }
 
+scenes=$(dirname "$0")/scenes
+
 all() {
   run beam_collision simulate
   run beam_track_length simulate --estimator track_length
@@ -41,6 +47,14 @@ all() {
   run half_space_hg_oblique searchlight --eta 1.4 --incidence 45 --g 0.8 --no-fluence
   run half_space_low_index searchlight --eta 0.8 --incidence 30 --g -0.3
   run half_space_conservative searchlight --albedo 1 --escape-radius 6
+  run beam_collision_isotropic simulate --g 0 --albedo 0.7
+  run point_collision_hg simulate --source point --g 0.7 --albedo 0.9
+  run point_track_length_isotropic simulate --source point --g 0 --albedo 0.9 \
+    --estimator track_length --split-orders
+  for scene in sphere_directional sphere_pole_beam_matched sphere_beam_off_axis \
+    mesh_bumpy_directional mesh_box_beam mesh_sphere_light_matched slab_analog slab_implicit; do
+    run "$scene" simulate "$scenes/$scene.toml"
+  done
 }
 
 if [ "${3:-}" = "--check" ]; then
