@@ -36,8 +36,8 @@ void run_walk(benchmark::State& state, const Phase& phase, const SearchlightSpec
   const TransportProblem problem = transport_problem(spec);
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
-  constexpr VolumeEstimator estimator =
-      fluence ? VolumeEstimator::collision : VolumeEstimator::none;
+  constexpr Estimator estimator =
+      fluence ? Estimator::collision : Estimator::none;
   const RandomWalk<HalfSpace<fresnel>, Phase, estimator> walk(
       HalfSpace<fresnel>(spec.eta), phase, problem.source, scorer, problem.albedo,
       problem.run.escape_radius, problem.run.seed);
@@ -62,7 +62,7 @@ void HalfSpaceLanes(benchmark::State& state, SearchlightSpec spec) {
   const LaneWalk walk(
       spec.eta == 1.0 ? LaneWalk::Geometry::half_space : LaneWalk::Geometry::fresnel_half_space,
       spec.eta, scorer, problem.source, problem.albedo, problem.g,
-      spec.tallies.fluence ? VolumeEstimator::collision : VolumeEstimator::none,
+      spec.tallies.fluence ? Estimator::collision : Estimator::none,
       problem.run.escape_radius, problem.run.seed);
   bench::time_walk(state, walk, book.size());
   state.counters["lanes"] = LaneWalk::lanes();

@@ -37,7 +37,7 @@ void time_slab_walk(benchmark::State& state, const std::string& name) {
   const TransportProblem problem = transport_problem(mcml_spec(name, weighting));
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
-  const RandomWalk<Slab, IsotropicPhase, VolumeEstimator::none, weighting> walk(
+  const RandomWalk<Slab, IsotropicPhase, Estimator::none, weighting> walk(
       Slab(problem.layers, problem.n_above, problem.n_below), IsotropicPhase{}, problem.source,
       scorer, problem.albedo, problem.run.escape_radius, problem.run.seed);
   bench::time_walk(state, walk, book.size());

@@ -32,7 +32,7 @@ void run_walk(benchmark::State& state, const Phase& phase, const LitSphereSpec& 
   const TransportProblem problem = transport_problem(spec);
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
-  const RandomWalk<Sphere<fresnel>, Phase, VolumeEstimator::none> walk(
+  const RandomWalk<Sphere<fresnel>, Phase, Estimator::none> walk(
       Sphere<fresnel>(problem.radius, problem.eta), phase, problem.source, scorer, problem.albedo,
       problem.run.escape_radius, problem.run.seed);
   bench::time_walk(state, walk, book.size());
@@ -50,7 +50,7 @@ void SphereLanes(benchmark::State& state, LitSphereSpec spec) {
   const Scorer scorer(problem.axes, book);
   const LaneWalk walk(
       spec.eta == 1.0 ? LaneWalk::Geometry::sphere : LaneWalk::Geometry::fresnel_sphere,
-      problem.eta, scorer, problem.source, problem.albedo, problem.g, VolumeEstimator::none,
+      problem.eta, scorer, problem.source, problem.albedo, problem.g, Estimator::none,
       problem.run.escape_radius, problem.run.seed, problem.radius);
   bench::time_walk(state, walk, book.size());
   state.counters["lanes"] = LaneWalk::lanes();

@@ -64,13 +64,13 @@ void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitSphereS
       Vec3(1e-3, 2e-3, -2.0 * spec.radius), Vec3::UnitZ(), Vec3::Zero(), spec.radius);
   if (walker == Walker::lanes) {
     const LaneWalk walk(*object_boundary(boundary, light), scorer, problem.albedo,
-                        phase.mean_cosine(), VolumeEstimator::none, problem.run.escape_radius,
+                        phase.mean_cosine(), Estimator::none, problem.run.escape_radius,
                         problem.run.seed);
     bench::time_walk(state, walk, book.size());
     state.counters["lanes"] = LaneWalk::lanes();
     return;
   }
-  const RandomWalk<MeshBoundary<fresnel>, Phase, VolumeEstimator::none, Weighting::analog,
+  const RandomWalk<MeshBoundary<fresnel>, Phase, Estimator::none, Weighting::analog,
                    MeshLight<fresnel>>
       walk(boundary, phase, light, scorer, problem.albedo, problem.run.escape_radius,
            problem.run.seed);

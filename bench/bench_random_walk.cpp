@@ -58,7 +58,7 @@ void BareLoop(benchmark::State& state, Phase phase, double albedo) {
   bench::report_walk(state, photons, scatterings);
 }
 
-template <class Phase, VolumeEstimator estimator>
+template <class Phase, Estimator estimator>
 void run_walk(benchmark::State& state, const Phase& phase, const SimulationSpec& spec) {
   const TransportProblem problem = transport_problem(spec);
   const TallyBook book(problem.tallies, problem.split_by_order);
@@ -81,9 +81,9 @@ void run_walk(benchmark::State& state, const Phase& phase, const SimulationSpec&
 template <class Phase>
 void Walk(benchmark::State& state, Phase phase, SimulationSpec spec) {
   if (spec.tallies.estimator == Estimator::collision) {
-    run_walk<Phase, VolumeEstimator::collision>(state, phase, spec);
+    run_walk<Phase, Estimator::collision>(state, phase, spec);
   } else {
-    run_walk<Phase, VolumeEstimator::track_length>(state, phase, spec);
+    run_walk<Phase, Estimator::track_length>(state, phase, spec);
   }
 }
 
@@ -94,7 +94,7 @@ void Lanes(benchmark::State& state, SimulationSpec spec) {
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
   const LaneWalk walk(LaneWalk::Geometry::infinite_medium, 1.0, scorer, problem.source,
-                      problem.albedo, problem.g, VolumeEstimator::collision,
+                      problem.albedo, problem.g, Estimator::collision,
                       problem.run.escape_radius, problem.run.seed);
   bench::time_walk(state, walk, book.size());
   state.counters["lanes"] = LaneWalk::lanes();
@@ -108,7 +108,7 @@ void LaneLoop(benchmark::State& state, SimulationSpec spec) {
   const TallyBook book(problem.tallies, false);
   const Scorer scorer(problem.axes, book);
   const LaneWalk walk(LaneWalk::Geometry::infinite_medium, 1.0, scorer, problem.source,
-                      problem.albedo, problem.g, VolumeEstimator::none, problem.run.escape_radius,
+                      problem.albedo, problem.g, Estimator::none, problem.run.escape_radius,
                       problem.run.seed);
   bench::time_walk(state, walk, book.size());
   state.counters["lanes"] = LaneWalk::lanes();

@@ -21,10 +21,10 @@ BatchOutcome run_slab(const detail::Kernel& kernel) {
   }
   const Slab geometry(problem.layers, problem.n_above, problem.n_below);
   if (problem.weighting == Weighting::implicit_capture) {
-    return kernel.run<Slab, IsotropicPhase, VolumeEstimator::none, Weighting::implicit_capture>(
+    return kernel.run<Slab, IsotropicPhase, Estimator::none, Weighting::implicit_capture>(
         geometry, IsotropicPhase{}, problem.source);
   }
-  return kernel.run<Slab, IsotropicPhase, VolumeEstimator::none>(geometry, IsotropicPhase{},
+  return kernel.run<Slab, IsotropicPhase, Estimator::none>(geometry, IsotropicPhase{},
                                                                  problem.source);
 }
 

@@ -526,8 +526,8 @@ HWY_EXPORT(LaneCount);
 
 namespace {
 
-void refuse_track_length(VolumeEstimator estimator) {
-  if (estimator == VolumeEstimator::track_length) {
+void refuse_track_length(Estimator estimator) {
+  if (estimator == Estimator::track_length) {
     throw std::invalid_argument("LaneWalk: the track-length estimator runs on RandomWalk");
   }
 }
@@ -542,7 +542,7 @@ void refuse_sphere_light_off_the_sphere(LaneWalk::Geometry geometry, const Sourc
 }  // namespace
 
 LaneWalk::LaneWalk(Geometry geometry, double eta, const Scorer& scorer, const Source& source,
-                   double albedo, double g, VolumeEstimator estimator, double escape_radius,
+                   double albedo, double g, Estimator estimator, double escape_radius,
                    std::uint64_t seed, double radius)
     : setup_{geometry,
              eta,
@@ -552,7 +552,7 @@ LaneWalk::LaneWalk(Geometry geometry, double eta, const Scorer& scorer, const So
              g,
              escape_radius * escape_radius,
              radius,
-             estimator == VolumeEstimator::collision,
+             estimator == Estimator::collision,
              seed,
              std::nullopt,
              Weighting::analog,
@@ -586,7 +586,7 @@ LaneWalk::LaneWalk(const Slab& slab, Weighting weighting, const Scorer& scorer,
 }
 
 LaneWalk::LaneWalk(const ObjectBoundary& object, const Scorer& scorer, double albedo, double g,
-                   VolumeEstimator estimator, double escape_radius, std::uint64_t seed)
+                   Estimator estimator, double escape_radius, std::uint64_t seed)
     : setup_{Geometry::object,
              1.0,  // the object's own surface holds its index
              &scorer,
@@ -595,7 +595,7 @@ LaneWalk::LaneWalk(const ObjectBoundary& object, const Scorer& scorer, double al
              g,
              escape_radius * escape_radius,
              0.0,
-             estimator == VolumeEstimator::collision,
+             estimator == Estimator::collision,
              seed,
              std::nullopt,
              Weighting::analog,

@@ -174,6 +174,8 @@ std::string to_string(SourceKind source) {
 
 std::string to_string(Estimator estimator) {
   switch (estimator) {
+    case Estimator::none:
+      return "none";
     case Estimator::collision:
       return "collision";
     case Estimator::track_length:

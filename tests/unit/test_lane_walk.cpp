@@ -71,12 +71,12 @@ void expect_same_paths(const TransportProblem& problem, const Geometry& geometry
                        std::uint64_t last = 4004, double radius = 0.0) {
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
-  const RandomWalk<Geometry, Phase, VolumeEstimator::collision> one(
+  const RandomWalk<Geometry, Phase, Estimator::collision> one(
       geometry, phase, problem.source, scorer, problem.albedo, problem.run.escape_radius,
       problem.run.seed);
   on_every_target([&] {
     const LaneWalk lanes(kind, problem.eta, scorer, problem.source, problem.albedo, problem.g,
-                         VolumeEstimator::collision, problem.run.escape_radius, problem.run.seed,
+                         Estimator::collision, problem.run.escape_radius, problem.run.seed,
                          radius);
     expect_same_sums(one, lanes, book.size(), first, last);
   });
@@ -202,7 +202,7 @@ void expect_same_paths_in_the_slab() {
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
   const Slab slab(problem.layers, problem.n_above, problem.n_below);
-  const RandomWalk<Slab, IsotropicPhase, VolumeEstimator::none, weighting> one(
+  const RandomWalk<Slab, IsotropicPhase, Estimator::none, weighting> one(
       slab, IsotropicPhase{}, problem.source, scorer, problem.albedo, problem.run.escape_radius,
       problem.run.seed);
   on_every_target([&] {
@@ -230,19 +230,19 @@ TEST(LaneWalk, RefusesWhatItDoesNotRun) {
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
   EXPECT_THROW(LaneWalk(LaneWalk::Geometry::infinite_medium, 1.0, scorer, problem.source, 0.9, 0.0,
-                        VolumeEstimator::track_length, problem.run.escape_radius, 1),
+                        Estimator::track_length, problem.run.escape_radius, 1),
                std::invalid_argument);
   // A slab without its stack, and the sphere's light on another geometry.
   EXPECT_THROW(LaneWalk(LaneWalk::Geometry::layered_slab, 1.0, scorer, problem.source, 0.9, 0.0,
-                        VolumeEstimator::none, problem.run.escape_radius, 1),
+                        Estimator::none, problem.run.escape_radius, 1),
                std::invalid_argument);
   Source sphere_light = problem.source;
   sphere_light.kind = Source::Kind::sphere_light;
   EXPECT_THROW(LaneWalk(LaneWalk::Geometry::half_space, 1.0, scorer, sphere_light, 0.9, 0.0,
-                        VolumeEstimator::none, problem.run.escape_radius, 1),
+                        Estimator::none, problem.run.escape_radius, 1),
                std::invalid_argument);
   EXPECT_NO_THROW(LaneWalk(LaneWalk::Geometry::sphere, 1.0, scorer, sphere_light, 0.9, 0.0,
-                           VolumeEstimator::none, problem.run.escape_radius, 1, 2.0));
+                           Estimator::none, problem.run.escape_radius, 1, 2.0));
 }
 
 }  // namespace

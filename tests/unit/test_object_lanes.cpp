@@ -54,7 +54,7 @@ void expect_same_paths(const TriangleMesh& mesh, double albedo, const Phase& pha
   const MeshLight<fresnel> light(boundary, kind, origin,
                                  kind == Kind::beam ? Vec3::UnitZ() : Vec3(0.1, 0.0, 1.0),
                                  Vec3::Zero(), kind == Kind::sphere ? 0.5 : 3.0);
-  const RandomWalk<MeshBoundary<fresnel>, Phase, VolumeEstimator::none, Weighting::analog,
+  const RandomWalk<MeshBoundary<fresnel>, Phase, Estimator::none, Weighting::analog,
                    MeshLight<fresnel>>
       one(boundary, phase, light, scorer, albedo, problem.run.escape_radius, problem.run.seed);
   // A range that does not start at 0 and is no multiple of any lane count.
@@ -67,7 +67,7 @@ void expect_same_paths(const TriangleMesh& mesh, double albedo, const Phase& pha
   for (const double v : a) largest = std::max(largest, std::abs(v));
   on_every_target([&] {
     const LaneWalk lanes(*object_boundary(boundary, light), scorer, albedo, phase.mean_cosine(),
-                         VolumeEstimator::none, problem.run.escape_radius, problem.run.seed);
+                         Estimator::none, problem.run.escape_radius, problem.run.seed);
     std::vector<double> b(book.size(), 0.0);
     EXPECT_EQ(lanes.run(first, last, b.data(), scratch), a_scatterings);
     std::size_t differing = 0;
@@ -112,7 +112,7 @@ TEST(ObjectLanes, RefuseTheTrackLengthEstimator) {
   const MeshLight<false> light(boundary, MeshLight<false>::Kind::directional, Vec3::Zero(),
                                Vec3::UnitZ(), Vec3::Zero(), 1.0);
   EXPECT_THROW(LaneWalk(*object_boundary(boundary, light), scorer, 0.9, 0.0,
-                        VolumeEstimator::track_length, 1e3, 1),
+                        Estimator::track_length, 1e3, 1),
                std::invalid_argument);
 }
 

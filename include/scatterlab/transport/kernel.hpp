@@ -40,12 +40,12 @@ struct Kernel {
   // photons share vector lanes (lane_walk.hpp): an object when its module gives it and its light
   // as an ObjectBoundary (object_boundary(geometry, light), found by argument-dependent lookup).
   // The track-length estimator and other objects keep RandomWalk.
-  template <class Geometry, class Phase, VolumeEstimator estimator,
+  template <class Geometry, class Phase, Estimator estimator,
             Weighting weighting = Weighting::analog, class Light = Source>
   BatchOutcome run(const Geometry& geometry, const Phase& phase, const Light& light) const {
     constexpr std::optional<LaneWalk::Geometry> lanes = homogeneous_lanes<Geometry>();
     if constexpr (requires { object_boundary(geometry, light); } &&
-                  weighting == Weighting::analog && estimator != VolumeEstimator::track_length) {
+                  weighting == Weighting::analog && estimator != Estimator::track_length) {
       if (const std::optional<ObjectBoundary> object = object_boundary(geometry, light)) {
         const LaneWalk walk(*object, scorer, problem.albedo, phase.mean_cosine(), estimator,
                             problem.run.escape_radius, problem.run.seed);
@@ -58,7 +58,7 @@ struct Kernel {
       return run_batches(problem.run, book.size(), walk, progress, control);
     } else if constexpr (std::is_same_v<Light, Source> && lanes.has_value() &&
                          weighting == Weighting::analog &&
-                         estimator != VolumeEstimator::track_length) {
+                         estimator != Estimator::track_length) {
       const LaneWalk walk(*lanes, problem.eta, scorer, light, problem.albedo, phase.mean_cosine(),
                           estimator, problem.run.escape_radius, problem.run.seed, problem.radius);
       return run_batches(problem.run, book.size(), walk, progress, control);
@@ -93,18 +93,18 @@ struct Kernel {
   BatchOutcome with_estimator(const Geometry& geometry, const Phase& phase,
                               const Light& light) const {
     if (!book.scores_volume()) {
-      return run<Geometry, Phase, VolumeEstimator::none, Weighting::analog, Light>(geometry, phase,
+      return run<Geometry, Phase, Estimator::none, Weighting::analog, Light>(geometry, phase,
                                                                                    light);
     }
     if (problem.estimator == Estimator::collision) {
-      return run<Geometry, Phase, VolumeEstimator::collision, Weighting::analog, Light>(
+      return run<Geometry, Phase, Estimator::collision, Weighting::analog, Light>(
           geometry, phase, light);
     }
     if constexpr (Geometry::has_surface) {
       throw std::invalid_argument(
           "transport: the track-length estimator runs only in the infinite medium");
     } else {
-      return run<Geometry, Phase, VolumeEstimator::track_length, Weighting::analog, Light>(
+      return run<Geometry, Phase, Estimator::track_length, Weighting::analog, Light>(
           geometry, phase, light);
     }
   }

@@ -66,7 +66,7 @@ class LaneWalk {
   // `estimator` none or collision, `source` a beam, a point or, on a sphere, the sphere light
   // (std::invalid_argument otherwise).
   LaneWalk(Geometry geometry, double eta, const Scorer& scorer, const Source& source, double albedo,
-           double g, VolumeEstimator estimator, double escape_radius, std::uint64_t seed,
+           double g, Estimator estimator, double escape_radius, std::uint64_t seed,
            double radius = 0.0);
 
   // The layered slab, scored at absorption and exit (no volume estimator), analog or with
@@ -76,7 +76,7 @@ class LaneWalk {
 
   // A convex object, lit by its own light (`object.launch`); `estimator` none or collision.
   LaneWalk(const ObjectBoundary& object, const Scorer& scorer, double albedo, double g,
-           VolumeEstimator estimator, double escape_radius, std::uint64_t seed);
+           Estimator estimator, double escape_radius, std::uint64_t seed);
 
   std::vector<double> make_scratch() const { return {}; }
 

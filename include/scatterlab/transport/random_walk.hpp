@@ -32,24 +32,21 @@
 #include "scatterlab/core/random.hpp"
 #include "scatterlab/tally/scorer.hpp"
 #include "scatterlab/tally/surface_exit.hpp"
+#include "scatterlab/transport/estimator.hpp"
 #include "scatterlab/transport/source.hpp"
 #include "scatterlab/transport/weighting.hpp"
 
 namespace scatterlab {
 
-// How the volume tallies are scored: at each collision, along each flight, or not at all (a
-// run with surface tallies alone).
-enum class VolumeEstimator { none, collision, track_length };
-
 // `Light` launches each photon (Source, or a light that knows its geometry: kernel.hpp).
-template <class Geometry, class Phase, VolumeEstimator estimator,
+template <class Geometry, class Phase, Estimator estimator,
           Weighting weighting = Weighting::analog, class Light = Source>
 class RandomWalk {
   // A flight that is bent at a surface is not one straight track.
-  static_assert(!(Geometry::has_surface && estimator == VolumeEstimator::track_length),
+  static_assert(!(Geometry::has_surface && estimator == Estimator::track_length),
                 "the track-length estimator needs a geometry without a surface");
   // Layers are scored at their events alone (absorption, exit).
-  static_assert(!(Geometry::layered && estimator != VolumeEstimator::none),
+  static_assert(!(Geometry::layered && estimator != Estimator::none),
                 "a layered geometry has no volume estimator");
 
  public:
@@ -68,7 +65,7 @@ class RandomWalk {
 
   // Working memory of the track-length estimator's bin crossings, one per thread.
   std::vector<double> make_scratch() const {
-    if constexpr (estimator == VolumeEstimator::track_length)
+    if constexpr (estimator == Estimator::track_length)
       return scorer_.make_crossing_scratch();
     return {};
   }
@@ -111,18 +108,18 @@ class RandomWalk {
           }
         }
         if (next.squaredNorm() > escape_radius2_) {
-          if constexpr (estimator == VolumeEstimator::track_length) {
+          if constexpr (estimator == Estimator::track_length) {
             scorer_.flight(buffer, crossings, position, direction,
                            distance_to_sphere(position, direction, escape_radius_), order);
           }
           scorer_.escape(buffer, weight);
           break;
         }
-        if constexpr (estimator == VolumeEstimator::track_length) {
+        if constexpr (estimator == Estimator::track_length) {
           scorer_.flight(buffer, crossings, position, direction, flight, order);
         }
         position = next;
-        if constexpr (estimator == VolumeEstimator::collision) {
+        if constexpr (estimator == Estimator::collision) {
           scorer_.collision(buffer, position, direction, order);
         }
         double albedo = albedo_;
