@@ -1,4 +1,4 @@
-// Cost of the random walk in an object bounded by a triangle mesh (render/mesh_boundary.hpp),
+// Cost of the random walk in an object bounded by a triangle mesh (mesh/mesh_boundary.hpp),
 // with the mesh's tallies on (exitance per triangle, totals, split by order): photons/s and ns
 // per scattering event per core, for the media of the Sphere and HalfSpace rows
 // (bench_lit_sphere.cpp, bench_half_space.cpp).
@@ -26,7 +26,7 @@
 #include "lit_sphere_scene.hpp"
 #include "scatterlab/core/phase_function.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
-#include "scatterlab/render/mesh_light.hpp"
+#include "scatterlab/mesh/mesh_light.hpp"
 #include "scatterlab/render/render_scene.hpp"
 #include "scatterlab/tally/scorer.hpp"
 #include "scatterlab/tally/tally_book.hpp"

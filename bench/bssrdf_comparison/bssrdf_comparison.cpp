@@ -36,7 +36,7 @@
 #include "scatterlab/io/hdf5_file.hpp"
 #include "scatterlab/io/image.hpp"
 #include "scatterlab/render/bssrdf_renderer.hpp"
-#include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/mesh/mesh_ray_tracer.hpp"
 #include "scatterlab/render/render_scene.hpp"
 #include "scatterlab/render/single_scatter_renderer.hpp"
 #include "scatterlab/render/volumetric_renderer.hpp"

@@ -15,7 +15,7 @@
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/validate/run_file.hpp"
 #ifdef SCATTERLAB_WITH_RENDER
-#include "scatterlab/render/lit_mesh.hpp"
+#include "scatterlab/mesh/lit_mesh.hpp"
 #include "scatterlab/render/render_scene.hpp"
 #endif
 

@@ -1,6 +1,8 @@
 #include "scatterlab/core/procedural_meshes.hpp"
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 
 #include "scatterlab/core/constants.hpp"
@@ -105,5 +107,22 @@ TriangleMesh make_flat_square(double half_width, int up) {
   }
   return mesh;
 }
+
+TriangleMesh make_box(const Vec3& h) {
+  TriangleMesh mesh;
+  for (int k = 0; k < 8; ++k) {
+    mesh.positions.emplace_back((k & 1) ? h.x() : -h.x(), (k & 2) ? h.y() : -h.y(),
+                                (k & 4) ? h.z() : -h.z());
+  }
+  // Counter-clockwise seen from outside: quads (a, b, c, d) split into (a, b, c), (a, c, d).
+  const std::array<std::array<std::uint32_t, 4>, 6> faces{
+      {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}}};
+  for (const auto& f : faces) {
+    mesh.triangles.push_back({f[0], f[1], f[2]});
+    mesh.triangles.push_back({f[0], f[2], f[3]});
+  }
+  return mesh;
+}
+
 
 }  // namespace scatterlab

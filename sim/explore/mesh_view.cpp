@@ -24,6 +24,7 @@
 #include <utility>
 
 #include "scatterlab/core/quadrature.hpp"
+#include "scatterlab/mesh/mesh_checks.hpp"
 #include "scatterlab/models/bssrdf.hpp"
 #include "scatterlab/models/diffusion_profile.hpp"
 #include "scatterlab/render/point_cloud.hpp"

@@ -15,7 +15,7 @@
 #include "scatterlab/models/bssrdf.hpp"
 #include "scatterlab/models/half_space_medium.hpp"
 #include "scatterlab/render/image_tiles.hpp"
-#include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/mesh/mesh_ray_tracer.hpp"
 #include "scatterlab/render/point_octree.hpp"
 #include "scatterlab/render/single_scatter_renderer.hpp"
 

@@ -16,7 +16,7 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/core/random.hpp"
-#include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/mesh/mesh_ray_tracer.hpp"
 #include "scatterlab/render/single_scatter_renderer.hpp"
 
 namespace scatterlab {

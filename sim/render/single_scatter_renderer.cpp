@@ -17,7 +17,7 @@
 #include "scatterlab/refract/refractive_solver.hpp"
 #include "scatterlab/refract/support_interval.hpp"
 #include "scatterlab/render/image_tiles.hpp"
-#include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/mesh/mesh_ray_tracer.hpp"
 
 namespace scatterlab {
 

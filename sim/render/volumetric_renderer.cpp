@@ -14,7 +14,7 @@
 #include "scatterlab/core/phase_function.hpp"
 #include "scatterlab/core/random.hpp"
 #include "scatterlab/render/image_tiles.hpp"
-#include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/mesh/mesh_ray_tracer.hpp"
 
 namespace scatterlab {
 namespace {

@@ -49,7 +49,7 @@ BatchOutcome select_kernel(const detail::Kernel& kernel) {
       return run_slab(kernel);
     case GeometryKind::mesh:
       throw std::invalid_argument(
-          "transport: a mesh runs with its geometry and light (kernel.hpp, render/lit_mesh.hpp)");
+          "transport: a mesh runs with its geometry and light (kernel.hpp, mesh/lit_mesh.hpp)");
   }
   throw std::invalid_argument("transport: unknown geometry");
 }

@@ -150,7 +150,7 @@ void check_beam(const LitSphereSpec& spec) {
 }
 
 // The mesh's own checks (closed, outside the beam's origin, met by the beam) need its ray
-// tracer: render/lit_mesh.hpp makes them.
+// tracer: mesh/lit_mesh.hpp makes them.
 void validate_mesh_spec(const LitSphereSpec& spec) {
   if (spec.light == SphereLight::pole_beam) {
     throw InputError("source.type", "\"pole_beam\" on a mesh, which has no pole",

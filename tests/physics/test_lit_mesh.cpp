@@ -1,4 +1,4 @@
-// Objects bounded by a triangle mesh (render/lit_mesh.hpp, render/mesh_boundary.hpp): two boxes
+// Objects bounded by a triangle mesh (mesh/lit_mesh.hpp, mesh/mesh_boundary.hpp): two boxes
 // in line, which light leaves and re-enters, against the closed form of a stack of slabs; a
 // sphere of light against the chords its rays cross; a finely tessellated sphere against the
 // analytic sphere of the same engine; a block's once-scattered light against the refractive
@@ -17,8 +17,8 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
 #include "scatterlab/refract/half_space_single_scatter.hpp"
-#include "scatterlab/render/lit_mesh.hpp"
-#include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/mesh/lit_mesh.hpp"
+#include "scatterlab/mesh/mesh_ray_tracer.hpp"
 #include "scatterlab/render/render_scene.hpp"
 #include "simulation_fixtures.hpp"
 

@@ -1,4 +1,4 @@
-// The walks over a convex mesh's facets (render/convex_crossing.hpp) find the facet and the
+// The walks over a convex mesh's facets (mesh/convex_crossing.hpp) find the facet and the
 // distance at which Embree sees a ray from inside leave, from points inside and from points on
 // the surface after a reflection, and a ray from outside enter or miss, on shapes with slivers
 // at a pole (the UV sphere), coplanar facets (a box), rounded edges (a tile) and a long bar
@@ -12,28 +12,12 @@
 #include <random>
 
 #include "scatterlab/core/procedural_meshes.hpp"
-#include "scatterlab/render/convex_crossing.hpp"
-#include "scatterlab/render/convex_mesh.hpp"
-#include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/mesh/convex_crossing.hpp"
+#include "scatterlab/mesh/convex_mesh.hpp"
+#include "scatterlab/mesh/mesh_ray_tracer.hpp"
 
 namespace scatterlab {
 namespace {
-
-// A box of 12 triangles: each face two coplanar facets, counter-clockwise seen from outside.
-TriangleMesh make_box(const Vec3& half) {
-  TriangleMesh mesh;
-  for (int k = 0; k < 8; ++k) {
-    mesh.positions.emplace_back((k & 1 ? 1 : -1) * half.x(), (k & 2 ? 1 : -1) * half.y(),
-                                (k & 4 ? 1 : -1) * half.z());
-  }
-  const std::uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                                     {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& q : quads) {
-    mesh.triangles.push_back({q[0], q[1], q[2]});
-    mesh.triangles.push_back({q[0], q[2], q[3]});
-  }
-  return mesh;
-}
 
 Vec3 random_direction(std::mt19937_64& generator) {
   std::normal_distribution<double> normal;

@@ -1,4 +1,4 @@
-// Which closed meshes bound a convex solid (render/convex_mesh.hpp): light leaving those never
+// Which closed meshes bound a convex solid (mesh/convex_mesh.hpp): light leaving those never
 // comes back, so the mesh's transport skips the search for a re-entry. The planes of a convex
 // polyhedron of few faces, which decide where a flight ends (mesh_boundary.hpp), against the
 // box they come from.
@@ -9,9 +9,9 @@
 #include <random>
 
 #include "scatterlab/core/procedural_meshes.hpp"
-#include "scatterlab/render/convex_mesh.hpp"
-#include "scatterlab/render/mesh_boundary.hpp"
-#include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/mesh/convex_mesh.hpp"
+#include "scatterlab/mesh/mesh_boundary.hpp"
+#include "scatterlab/mesh/mesh_ray_tracer.hpp"
 #include "scatterlab/render/render_scene.hpp"
 
 namespace scatterlab {

@@ -1,4 +1,4 @@
-// The directional light on a convex mesh (render/mesh_light.hpp) starts its photons on a facet
+// The directional light on a convex mesh (mesh/mesh_light.hpp) starts its photons on a facet
 // drawn in proportion to its shadow and uniformly over it: held against lines drawn uniformly
 // over a disc across the light and traced with Embree, facet by facet (4 sigma each, fixed
 // seeds), and in the mean point of entry.
@@ -10,8 +10,8 @@
 
 #include "scatterlab/core/procedural_meshes.hpp"
 #include "scatterlab/core/random.hpp"
-#include "scatterlab/render/mesh_light.hpp"
-#include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/mesh/mesh_light.hpp"
+#include "scatterlab/mesh/mesh_ray_tracer.hpp"
 
 namespace scatterlab {
 namespace {

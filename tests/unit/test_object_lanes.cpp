@@ -1,5 +1,5 @@
 // A convex object bounded by a triangle mesh on the lane walk (transport/object_boundary.hpp,
-// render/mesh_light.hpp's object_boundary) against the one-photon RandomWalk on the same mesh and
+// mesh/mesh_light.hpp's object_boundary) against the one-photon RandomWalk on the same mesh and
 // photons: a sphere of flat triangles, where the grid passes every flight that ends in a cell
 // wholly inside, and a box, whose faces' planes pass every flight that ends inside; under a
 // beam, the directional light and a sphere of light; matched, and behind a Fresnel boundary
@@ -17,9 +17,9 @@
 #include "every_target.hpp"
 #include "scatterlab/core/phase_function.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
-#include "scatterlab/render/mesh_boundary.hpp"
-#include "scatterlab/render/mesh_light.hpp"
-#include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/mesh/mesh_boundary.hpp"
+#include "scatterlab/mesh/mesh_light.hpp"
+#include "scatterlab/mesh/mesh_ray_tracer.hpp"
 #include "scatterlab/render/render_scene.hpp"
 #include "scatterlab/tally/scorer.hpp"
 #include "scatterlab/tally/tally_book.hpp"

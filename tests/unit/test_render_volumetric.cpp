@@ -15,7 +15,7 @@
 #include "scatterlab/core/constants.hpp"
 #include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
-#include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/mesh/mesh_ray_tracer.hpp"
 #include "scatterlab/render/render_scene.hpp"
 #include "scatterlab/render/single_scatter_renderer.hpp"
 #include "scatterlab/render/volumetric_renderer.hpp"

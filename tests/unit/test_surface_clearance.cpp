@@ -1,4 +1,4 @@
-// The clearance grid (render/surface_clearance.hpp) is a lower bound: from points inside a
+// The clearance grid (mesh/surface_clearance.hpp) is a lower bound: from points inside a
 // shape that is not convex, no ray meets the surface within the clearance, and points outside
 // it read 0; and it is of use: deep inside it is the Chebyshev bound it promises. In a convex
 // shape, a segment from a point inside to a point of a cell with a clearance never meets the
@@ -9,8 +9,8 @@
 #include <random>
 
 #include "scatterlab/core/procedural_meshes.hpp"
-#include "scatterlab/render/mesh_ray_tracer.hpp"
-#include "scatterlab/render/surface_clearance.hpp"
+#include "scatterlab/mesh/mesh_ray_tracer.hpp"
+#include "scatterlab/mesh/surface_clearance.hpp"
 
 namespace scatterlab {
 namespace {

@@ -19,6 +19,9 @@ TriangleMesh make_sphere(double radius, int rings, int segments, bool smooth_nor
 TriangleMesh make_bumpy_sphere(double radius, double amplitude, int frequency, int rings,
                                int segments);
 
+// An axis-aligned box of the given half sizes centred at the origin, flat facets (12 triangles).
+TriangleMesh make_box(const Vec3& half_size);
+
 // A rounded tile: the superellipsoid |x/a|^(2/e) + |y/b|^(2/e) + |z/c|^(2/e) = 1 (e < 1 gives a
 // box with rounded edges), with area-weighted interpolated normals, like Walter's glass tile.
 TriangleMesh make_rounded_tile(double half_x, double half_y, double half_z, double exponent,

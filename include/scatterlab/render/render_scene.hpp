@@ -113,19 +113,5 @@ RenderScene parse_render_scene(std::string_view toml_text, const std::string& or
                                const std::filesystem::path& base = {});
 RenderScene load_render_scene(const std::filesystem::path& path);
 
-// Throws InputError("mesh", ...) naming the edge when the mesh is open or non-manifold.
-void require_closed_mesh(const TriangleMesh& mesh);
-
-// Throws InputError("mesh", ...) naming the triangle when one has zero area (relative to the
-// mesh's extent), and when the mesh encloses no positive volume (flat, or inside out).
-void require_enclosed_volume(const TriangleMesh& mesh);
-
-// Throws InputError("mesh", ...) naming two triangles when an edge of one passes through the
-// other: overlapping closed parts, whose inside by crossing parity would be wrong. For a closed
-// mesh (require_closed_mesh).
-void require_no_self_intersection(const TriangleMesh& mesh);
-
-// An axis-aligned box of the given half sizes centred at the origin, flat facets (12 triangles).
-TriangleMesh make_box(const Vec3& half_size);
 
 }  // namespace scatterlab

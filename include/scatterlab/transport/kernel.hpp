@@ -1,6 +1,6 @@
 #pragma once
 // The engine's kernel selection (engine.hpp), open to geometries the transport module does not
-// hold: a triangle mesh traced with Embree (render/mesh_boundary.hpp) brings its geometry and its
+// hold: a triangle mesh traced with Embree (mesh/mesh_boundary.hpp) brings its geometry and its
 // light and runs on the same random walk, batches, statistics and tallies as every other scene.
 //
 // A geometry is a policy of random_walk.hpp; a light provides

@@ -28,7 +28,7 @@
 // its own lights: object_boundary.hpp) under analog absorption and the collision estimator (or
 // none), and for MCML's layered slab, analog or with implicit capture: the engine's choice there
 // (kernel.hpp). The surface is the geometry's own code (half_space.hpp, sphere.hpp, slab.hpp,
-// render/mesh_boundary.hpp), one lane at a time, on the lane's photon stream; an object's plain
+// mesh/mesh_boundary.hpp), one lane at a time, on the lane's photon stream; an object's plain
 // events are read off its grid of clearances for all lanes at once. In the slab each
 // lane also carries its layer (whose Henyey-Greenstein g the vector turn reads per lane) and,
 // under implicit capture, its weight. The track-length estimator keeps RandomWalk.

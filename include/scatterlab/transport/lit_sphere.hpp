@@ -54,7 +54,7 @@ struct LitSphereSpec {
   // geometry.type = "mesh": a closed triangle mesh (in medium.length_unit) in place of the
   // sphere, whose radius and psi-azimuth grid are then unused. Its exitance is per triangle; the
   // directional light still travels along +z, and a beam meets the mesh where its line does.
-  // Run by render/lit_mesh.hpp (Embree); run_lit_sphere refuses it.
+  // Run by mesh/lit_mesh.hpp (Embree); run_lit_sphere refuses it.
   std::shared_ptr<const TriangleMesh> mesh;
   std::string mesh_source;  // what the mesh is: the scene's shape and sizes, or its OBJ file
 

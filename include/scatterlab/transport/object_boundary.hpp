@@ -1,6 +1,6 @@
 #pragma once
 // A convex object whose surface another module traces (a closed triangle mesh:
-// render/mesh_boundary.hpp), as the lane walk (lane_walk.hpp) runs it.
+// mesh/mesh_boundary.hpp), as the lane walk (lane_walk.hpp) runs it.
 //
 // The lanes decide the plain event for all lanes at once: a flight from a point inside a convex
 // object to a point inside it stays inside, and InteriorClearance says which points lie wholly

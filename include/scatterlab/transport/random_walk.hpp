@@ -5,7 +5,7 @@
 // and whatever the geometry does where a flight meets its surface.
 //
 // Specialised at compile time on the geometry (infinite_medium.hpp, half_space.hpp, sphere.hpp,
-// slab.hpp; a triangle mesh, render/mesh_boundary.hpp), the light, the phase function, the volume
+// slab.hpp; a triangle mesh, mesh/mesh_boundary.hpp), the light, the phase function, the volume
 // estimator and the weighting (weighting.hpp), so that the loop holds no isotropic/HG branch, no
 // collision/track-length branch, no boundary code where the geometry has no surface and no weight
 // where absorption is analog. One Philox call per event (free path, absorption or roulette, cos

@@ -25,7 +25,7 @@ enum class GeometryKind {
   sphere,      // |x| < radius behind a smooth interface (sphere.hpp)
   slab,        // layers from z = 0 down, between two ambient media (slab.hpp)
   mesh,        // a closed triangle mesh: its geometry and light come from outside this module
-               // (kernel.hpp; render/lit_mesh.hpp, with Embree)
+               // (kernel.hpp; mesh/lit_mesh.hpp, with Embree)
 };
 
 struct TransportProblem {

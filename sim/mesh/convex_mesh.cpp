@@ -1,4 +1,4 @@
-#include "scatterlab/render/convex_mesh.hpp"
+#include "scatterlab/mesh/convex_mesh.hpp"
 
 #include <algorithm>
 #include <cmath>

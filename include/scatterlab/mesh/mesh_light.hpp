@@ -31,7 +31,7 @@
 #include "scatterlab/core/azimuth.hpp"
 #include "scatterlab/core/frame.hpp"
 #include "scatterlab/core/random.hpp"
-#include "scatterlab/render/mesh_boundary.hpp"
+#include "scatterlab/mesh/mesh_boundary.hpp"
 #include "scatterlab/transport/object_boundary.hpp"
 
 namespace scatterlab {

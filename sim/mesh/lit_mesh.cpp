@@ -1,14 +1,14 @@
-#include "scatterlab/render/lit_mesh.hpp"
+#include "scatterlab/mesh/lit_mesh.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 
 #include "scatterlab/core/error.hpp"
-#include "scatterlab/render/mesh_boundary.hpp"
-#include "scatterlab/render/mesh_light.hpp"
-#include "scatterlab/render/mesh_ray_tracer.hpp"
-#include "scatterlab/render/render_scene.hpp"
+#include "scatterlab/mesh/mesh_boundary.hpp"
+#include "scatterlab/mesh/mesh_checks.hpp"
+#include "scatterlab/mesh/mesh_light.hpp"
+#include "scatterlab/mesh/mesh_ray_tracer.hpp"
 #include "scatterlab/transport/kernel.hpp"
 #include "scatterlab/transport/length_units.hpp"
 

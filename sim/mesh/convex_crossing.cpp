@@ -1,4 +1,4 @@
-#include "scatterlab/render/convex_crossing.hpp"
+#include "scatterlab/mesh/convex_crossing.hpp"
 
 #include <algorithm>
 #include <bit>

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "scatterlab/core/triangle_mesh.hpp"
-#include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/mesh/mesh_ray_tracer.hpp"
 #include "scatterlab/transport/object_boundary.hpp"
 
 namespace scatterlab {

@@ -45,7 +45,7 @@
 #include <vector>
 
 #include "scatterlab/core/triangle_mesh.hpp"
-#include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/mesh/mesh_ray_tracer.hpp"
 
 namespace scatterlab {
 

@@ -1,4 +1,4 @@
-#include "scatterlab/render/mesh_ray_tracer.hpp"
+#include "scatterlab/mesh/mesh_ray_tracer.hpp"
 
 #include <embree3/rtcore.h>
 

@@ -1,4 +1,4 @@
-#include "scatterlab/render/surface_clearance.hpp"
+#include "scatterlab/mesh/surface_clearance.hpp"
 
 #include <algorithm>
 #include <array>

@@ -37,10 +37,10 @@
 #include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/core/random.hpp"
 #include "scatterlab/core/triangle_mesh.hpp"
-#include "scatterlab/render/convex_crossing.hpp"
-#include "scatterlab/render/convex_mesh.hpp"
-#include "scatterlab/render/mesh_ray_tracer.hpp"
-#include "scatterlab/render/surface_clearance.hpp"
+#include "scatterlab/mesh/convex_crossing.hpp"
+#include "scatterlab/mesh/convex_mesh.hpp"
+#include "scatterlab/mesh/mesh_ray_tracer.hpp"
+#include "scatterlab/mesh/surface_clearance.hpp"
 #include "scatterlab/tally/surface_exit.hpp"
 
 namespace scatterlab {
