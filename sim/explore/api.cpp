@@ -51,8 +51,10 @@ constexpr BuiltIn kBuiltIns[] = {
      "the once-scattered exitance of the half-space (refract/half_space_single_scatter.hpp)"},
 };
 
+// The message may quote what the request sent, which need not be UTF-8 (a path or query
+// percent-decoded to any bytes): such bytes are written as U+FFFD, where JSON would throw.
 std::string error_json(const std::string& message) {
-  return json{{"error", message}}.dump();
+  return json{{"error", message}}.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
 // The entry transmittance of a beam at normal incidence, 1 - F_r(0) (core/fresnel.hpp).
@@ -338,7 +340,10 @@ std::string ExploreApi::profiles(std::string_view body) const {
 
 std::string ExploreApi::invert(std::string_view body) const {
   const json request = parse_body(body);
-  const std::string name = request.value("model", std::string("dipole"));
+  // Not a string: refused as an unknown name is (its JSON shown), not as a JSON type error.
+  const json model_value = request.value("model", json("dipole"));
+  const std::string name =
+      model_value.is_string() ? model_value.get<std::string>() : model_value.dump();
   const HalfSpaceModel model = half_space_model_from_string(name, "model");
   const InvertedCoefficients coefficients =
       invert_reflectance(model, number(request, "R_dr", "R_dr"), number(request, "l_d", "l_d"),

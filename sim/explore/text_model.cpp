@@ -134,6 +134,17 @@ TextModel TextModel::parse(std::string_view toml_text, const std::string& origin
       throw InputError(where(node, key), fmt::format("\"{}\" is already defined", name),
                        "a name that no material quantity, parameter or earlier definition has");
     }
+    // muparser refuses some names of the pattern above (longer than its limit, or one of its
+    // constants, _pi and _e): asked here, so that the refusal names the file and the line.
+    try {
+      double value = 0.0;
+      mu::Parser().DefineVar(name, &value);
+    } catch (const mu::Parser::exception_type& error) {
+      throw InputError(where(node, key), fmt::format("got \"{}\": {}", name, error.GetMsg()),
+                       fmt::format("a name of at most {} characters that is not one of "
+                                   "muparser's constants (_pi, _e)",
+                                   mu::MaxLenIdentifier));
+    }
   };
 
   if (const toml::node* list = root.get("parameter")) {
@@ -237,8 +248,9 @@ std::vector<double> TextModel::reflectance(const HalfSpaceMedium& medium,
                                            std::span<const double> r) const {
   medium.validate();
   for (const auto& [name, value] : parameter_values) {
+    // Captured under a name of its own: clang 14 cannot capture a structured binding.
     const auto known = std::find_if(parameters_.begin(), parameters_.end(),
-                                    [&](const auto& p) { return p.name == name; });
+                                    [&wanted = name](const auto& p) { return p.name == wanted; });
     if (known == parameters_.end()) {
       std::string names;
       for (const auto& p : parameters_) names += (names.empty() ? "" : ", ") + p.name;

@@ -116,8 +116,8 @@ std::optional<long long> read_whole(std::string_view word) {
 
 class McmlReader {
  public:
-  McmlReader(const fs::path& path, std::string_view text)
-      : origin_(path.string()), lines_(data_lines(text, line_count_)) {}
+  McmlReader(std::string origin, std::string_view text)
+      : origin_(std::move(origin)), lines_(data_lines(text, line_count_)) {}
 
   std::vector<McmlRun> read_all() {
     // MCML skips the version line unread; checking it here refuses an MCML 2.0 file, whose
@@ -298,7 +298,11 @@ std::vector<McmlRun> read_mcml_input(const fs::path& path) {
                                   : what);
     throw InputError(field, problem, "a regular MCML input file (.mci) of at most 1 MiB");
   }
-  return McmlReader(path, text).read_all();
+  return parse_mcml_input(text, path.string());
+}
+
+std::vector<McmlRun> parse_mcml_input(std::string_view text, const std::string& origin) {
+  return McmlReader(origin, text).read_all();
 }
 
 LayeredSlabSpec layered_slab_spec(const McmlRun& run) {

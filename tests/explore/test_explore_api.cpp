@@ -216,6 +216,25 @@ TEST(TextModel, ABadFileIsOneErrorNamingFileLineAndKey) {
             std::string::npos);
 }
 
+// A name muparser would not take is refused as the file's error, naming its line, not thrown as
+// muparser's own exception when the model is first evaluated (tests/fuzz/corpus/text_model/
+// crash-long-name.toml).
+TEST(TextModel, NamesMuparserRefusesAreTheFilesError) {
+  const std::string long_name(101, 'q');
+  EXPECT_EQ(error_of("name = \"x\"\ndefine = [\"" + long_name + " = 2\"]\nR_d = \"r\"\n")
+                .rfind("bad.toml:2: define: got \"" + long_name + "\"", 0),
+            0u)
+      << error_of("name = \"x\"\ndefine = [\"" + long_name + " = 2\"]\nR_d = \"r\"\n");
+  EXPECT_EQ(error_of("name = \"x\"\nR_d = \"r\"\n[[parameter]]\nname = \"_pi\"\nmin = 0\n"
+                     "max = 1\ndefault = 0\n")
+                .rfind("bad.toml:4: parameter.name: got \"_pi\"", 0),
+            0u);
+  const std::string longest(100, 'q');
+  EXPECT_EQ(
+      error_of("name = \"x\"\ndefine = [\"" + longest + " = 2\"]\nR_d = \"" + longest + " * r\"\n"),
+      "(accepted)");
+}
+
 TEST_F(ExploreApiTest, ABadModelFileIsRefusedAtStartAndOnReload) {
   const ExploreApi good = api();
   write(models_ / "broken.toml", "name = \"broken\"\nR_d = \"exp(-r\"\n");
@@ -280,6 +299,8 @@ TEST_F(ExploreApiTest, BadRequestsGetA4xxAndAMessageNamingTheField) {
   expect("/api/invert", R"({"R_dr": 2.0, "l_d": 1.0})", 400, "R_dr");
   expect("/api/invert", R"({"R_dr": 0.5, "l_d": 0.0})", 400, "l_d");
   expect("/api/invert", R"({"R_dr": 0.5, "l_d": 1.0, "model": "x"})", 400, "model");
+  // tests/fuzz/corpus/explore_request/strict-invert-model-number.txt: 400, not 500.
+  expect("/api/invert", R"({"R_dr": 0.5, "l_d": 1.0, "model": 1.3})", 400, "model");
   expect("/api/lit_sphere", ok.dump(), 200, "");
   bad = ok;
   bad["radius"] = -1;
@@ -317,6 +338,21 @@ TEST_F(ExploreApiTest, NoFileOutsideThePageOrTheOpenFoldersIsServed) {
     EXPECT_NE(response.body.find("path"), std::string::npos);
   }
   EXPECT_EQ(explorer.handle("GET", "/api/file", {}, "").status, 400);
+}
+
+// A path or a query decoded to bytes that are not UTF-8 is refused as any other, in JSON: the
+// message quoting them is not lost to an exception (tests/fuzz/corpus/explore_request/
+// crash-path-not-utf8.txt).
+TEST_F(ExploreApiTest, RequestsThatAreNotUtf8AreRefusedInJson) {
+  const ExploreApi explorer = api();
+  const auto expect = [](const ApiResponse& response, int status, const std::string& named) {
+    EXPECT_EQ(response.status, status) << response.body;
+    const json answer = json::parse(response.body);
+    EXPECT_NE(answer["error"].get<std::string>().find(named), std::string::npos) << response.body;
+  };
+  expect(explorer.handle("GET", "/api/\xffile", {}, ""), 404, "no such API path");
+  expect(explorer.handle("GET", "/\xfe.js", {}, ""), 404, "no such file of the page");
+  expect(explorer.handle("GET", "/api/file", {{"path", "0/\xff.h5"}}, ""), 400, "path");
 }
 
 TEST_F(ExploreApiTest, FoldersThatAreNotThereAreRefusedByName) {

@@ -152,6 +152,36 @@ TEST_F(McmlFilesTest, McmlInputReadsWindowsLineEndsAndNoFinalLineEnd) {
   }
 }
 
+// The text reader (what the fuzz target reads) is the file reader's: the same runs, and the same
+// refusal, word for word, when the origin is the file's path.
+TEST_F(McmlFilesTest, McmlInputFromTextReadsAsFromTheFile) {
+  const fs::path path = write("two.mci", joined(kTwoRuns));
+  const std::vector<McmlRun> from_file = read_mcml_input(path);
+  const std::vector<McmlRun> from_text = parse_mcml_input(joined(kTwoRuns), path.string());
+  ASSERT_EQ(from_text.size(), from_file.size());
+  for (std::size_t i = 0; i < from_file.size(); ++i) {
+    EXPECT_EQ(from_text[i].output_file, from_file[i].output_file);
+    EXPECT_EQ(from_text[i].photons, from_file[i].photons);
+    EXPECT_EQ(from_text[i].nr, from_file[i].nr);
+    EXPECT_EQ(from_text[i].layers.size(), from_file[i].layers.size());
+    EXPECT_EQ(from_text[i].n_below, from_file[i].n_below);
+    EXPECT_EQ(from_text[i].line, from_file[i].line);
+  }
+  std::vector<std::string> lines = kTwoRuns;
+  lines[14] = "1.4 0.5 10 1 1e8";
+  const fs::path bad = write("bad.mci", joined(lines));
+  const auto message_of = [](auto&& read) {
+    try {
+      read();
+    } catch (const InputError& error) {
+      return std::string(error.what());
+    }
+    return std::string("no InputError");
+  };
+  EXPECT_EQ(message_of([&] { parse_mcml_input(joined(lines), bad.string()); }),
+            message_of([&] { read_mcml_input(bad); }));
+}
+
 struct Refusal {
   int line;                 // the line of kTwoRuns replaced
   std::string replacement;  // its new text

@@ -4,13 +4,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <string>
 
+#include "input_error_field.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/fresnel.hpp"
+#include "scatterlab/core/memory_budget.hpp"
 #include "scatterlab/core/phase_function.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
 #include "scatterlab/core/quadrature.hpp"
@@ -271,6 +274,27 @@ TEST(Render, BadScenesGiveOneClearError) {
   pathtrace.method = RenderMethod::pathtrace;
   EXPECT_THROW(render_single_scatter(slab_scene(1.5), pathtrace), InputError);
   EXPECT_THROW(parse_render_method("jensen"), InputError);
+}
+
+// A procedural mesh's memory is checked before it is built: a sphere of 4096 x 4096 (33.5 million
+// triangles) under --memory-limit 64M is refused at once, not built and checked in 10 GB first
+// (tests/fuzz/corpus/scene/oom-mesh-rings-segments.toml).
+TEST(Render, AMeshTooLargeForTheMemoryLimitIsRefusedBeforeItIsBuilt) {
+  set_memory_limit(std::uint64_t{64} << 20, "64M");
+  const std::string message =
+      error_of("[mesh]\nshape = \"sphere\"\nrings = 4096\nsegments = 4096\n");
+  const std::string tile = "[mesh]\nshape = \"rounded_tile\"\nrings = 4096\nsegments = 200\n";
+  const std::string small = "[mesh]\nshape = \"sphere\"\nrings = 24\nsegments = 48\n";
+  const std::string tile_field =
+      test_support::field_of([&] { parse_scene_mesh(tile, "test.toml"); });
+  const std::string small_field =
+      test_support::field_of([&] { parse_scene_mesh(small, "test.toml"); });
+  set_memory_limit(std::nullopt);
+  EXPECT_EQ(message.rfind("mesh.rings x mesh.segments: ", 0), 0u) << message;
+  EXPECT_NE(message.find("33554432 triangles"), std::string::npos) << message;
+  EXPECT_NE(message.find("accepted: fewer rings or segments"), std::string::npos) << message;
+  EXPECT_EQ(tile_field, "mesh.rings x mesh.segments");
+  EXPECT_EQ(small_field, "");
 }
 
 TEST(Render, WorkIsPixelsTimesSamplesTimesLightPoints) {

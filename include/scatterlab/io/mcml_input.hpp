@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "scatterlab/transport/layered_slab.hpp"
@@ -40,6 +41,9 @@ struct McmlRun {
 // naming "<path>:<line> <field>" (field as MCML names it: "photons", "dz", "Nr", "layer 2 mua",
 // ...) and what is accepted, for a missing, malformed or out-of-range value.
 std::vector<McmlRun> read_mcml_input(const std::filesystem::path& path);
+
+// The same from the file's text; `origin` stands for the file in messages (its path).
+std::vector<McmlRun> parse_mcml_input(std::string_view text, const std::string& origin);
 
 // The run as the layered slab's spec (transport/layered_slab.hpp): its layers in cm, its grid
 // (r and z from 0 in Nr x dr and Nz x dz, alpha over [0, pi/2] in Na bins), its photons, and
