@@ -15,6 +15,7 @@ packages=(
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-xarray python3-pytest
   libcpp-httplib-dev nlohmann-json3-dev libmuparser-dev  # scatterlab explore
   chromium chromium-driver python3-selenium  # its page's test in a headless browser
+  clang libclang-rt-14-dev libomp-dev  # scripts/fuzz.sh: libFuzzer, and OpenMP under clang
 )
 # npm installs the page's JavaScript (web/package.json). Debian's npm comes with its nodejs; a
 # nodejs from elsewhere that already brings npm is left as it is.
