@@ -8,7 +8,8 @@
 #   inputs agree on them, and says in one line what it leaves out when they do not;
 #   --resume refuses a damaged checkpoint: numbers that are not finite, negative Welford squares,
 #   counts out of range, another format_version, and any value edited after it was written (its
-#   checksum).
+#   checksum); a damaged global heap, on which HDF5 itself would hang or crash, is refused by info
+#   and merge.
 # Each refusal: exit 2, one line naming FILE, FILES or --resume and the file, nothing touched.
 set -u
 exe=$(realpath "$1")
@@ -117,6 +118,24 @@ damaged edited.ckpt c.h5.checkpoint element / welford_mean 3 0.125
 for bad in nan inf negative many none events version old walltime edited; do
   expect_refused "resume: $bad" "--resume.*$bad.ckpt" \
     "${run[@]}" --out c.h5 --checkpoint "$bad.ckpt" --resume
+done
+
+# Files on which HDF5 1.10.8 itself hangs or crashes (tests/fuzz/libhdf5): a damaged global heap
+# is refused before HDF5 reads it, by every command that reads a file.
+for bad in global-heap-loop global-heap-read-past-end global-heap-wild-walk; do
+  cp "$(dirname "$0")/../fuzz/libhdf5/$bad.h5" "$bad.h5" || fail "setup: $bad.h5"
+  expect_refused "info: $bad" "FILE: .*global heap" info "$bad.h5"
+  expect_refused "merge: $bad" "FILES: .*global heap" merge s1.h5 "$bad.h5" -o m.h5
+done
+# A damaged group of many links, on which HDF5 frees a pointer it never set when it lists them
+# in an order the file does not index; fresh memory filled with a pattern (MALLOC_PERTURB_) makes
+# that a crash every time.
+cp "$(dirname "$0")/../fuzz/libhdf5/dense-link-free.h5" . || fail "setup: dense-link-free.h5"
+for perturb in 85 165; do
+  ENV_SET="MALLOC_PERTURB_=$perturb" expect_refused "info: dense-link-free ($perturb)" "FILE: " \
+    info dense-link-free.h5
+  ENV_SET="MALLOC_PERTURB_=$perturb" expect_refused "merge: dense-link-free ($perturb)" \
+    "FILES: " merge s1.h5 dense-link-free.h5 -o m.h5
 done
 
 report "merge and resume refusals"
