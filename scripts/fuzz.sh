@@ -4,6 +4,8 @@
 # (60 by default), one after the other. Prints each target's executions, executions per second
 # and coverage; fails on any finding (crash, sanitizer report, uncaught exception, timeout, out of
 # memory, leak), whose input is kept in build-fuzz/findings.
+# FUZZ_SEED=N fixes libFuzzer's random seed (CI's short runs use one, so that they explore the same
+# inputs each time); unset, each run draws its own.
 # Usage: scripts/fuzz.sh [SECONDS_PER_TARGET]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -43,6 +45,7 @@ for target in scene mcml_input obj_mesh hdf5_file explore_request text_model; do
   [ -n "${shipped[$target]:-}" ] && seeds+=("$root/${shipped[$target]}")
   options=(-max_total_time="$seconds" -timeout="$timeout_s" -rss_limit_mb=2048
            -print_final_stats=1 -artifact_prefix="$findings/$target-")
+  [ -n "${FUZZ_SEED:-}" ] && options+=(-seed="$FUZZ_SEED")
   [ -f "tests/fuzz/$target.dict" ] && options+=(-dict="$root/tests/fuzz/$target.dict")
   log=$findings/$target.log
   status=0
