@@ -13,6 +13,7 @@ packages=(
   python3-matplotlib  # the figures (sim/io/plot_figure.py) and the notebooks
   python3-h5py python3-h5netcdf python3-nbconvert python3-nbclient python3-ipykernel
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-xarray python3-pytest
+  python3-jsonschema  # scene files against `scatterlab scene --schema` (tests/cli/scene_schema.sh)
   libcpp-httplib-dev nlohmann-json3-dev libmuparser-dev  # scatterlab explore
   chromium chromium-driver python3-selenium  # its page's test in a headless browser
   clang libclang-rt-14-dev libomp-dev  # scripts/fuzz.sh: libFuzzer, and OpenMP under clang

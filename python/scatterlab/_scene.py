@@ -9,10 +9,10 @@ every error names its field the same way. A keyword is either
   ``grid={"r": {"max": 2, "bins": 20}}``, ``layers=[{...}, ...]`` for the slab's ``[[layers]]``;
 * or a key of one table, by its own name: ``albedo=0.9`` is ``medium.albedo``; ``r={"max": 2,
   "bins": 20}`` is ``grid.r``. Which table holds which key is KEY_TABLES below, per geometry,
-  as data/scenes/*.toml document them. Two names are shared by two tables and are resolved as
-  in the command line's flags: ``source="point"`` is ``source.type`` and ``geometry="sphere"``
-  is ``geometry.type``; a sphere's ``length_unit`` is ``medium.length_unit``, a slab's
-  ``geometry.length_unit``.
+  read at import from the program's one table of scene keys (``scatterlab scene --keys``). Two
+  names are shared by two tables and are resolved as in the command line's flags:
+  ``source="point"`` is ``source.type`` and ``geometry="sphere"`` is ``geometry.type``; a
+  sphere's ``length_unit`` is ``medium.length_unit``, a slab's ``geometry.length_unit``.
 
 Dicts merge into what a scene file (``scene="file.toml"``) gives, key by key; anything else
 replaces it.
@@ -30,44 +30,29 @@ from pathlib import Path
 from typing import Any
 
 from ._scatterlab import read_scene_file as read_scene_text
+from ._scatterlab import scene_keys
 
-TABLES = ("geometry", "medium", "source", "grid", "tallies", "run", "output", "layers")
+def _key_tables() -> tuple[tuple[str, ...], dict[str, dict[str, str]]]:
+    """The scene's tables, and per geometry.type {key: table}, from the program's one table of
+    scene keys (io/scene_schema.hpp). A key of two tables of one geometry (a sphere's
+    geometry.radius and source.radius) goes to the first, as the reference lists them; the other
+    is given as a whole table (``source={"radius": 0.5}``)."""
+    tables: list[str] = []
+    key_tables: dict[str, dict[str, str]] = {}
+    for path, geometries in scene_keys():
+        table, key = path.split(".")[:2]
+        if table not in tables:
+            tables.append(table)
+        for geometry in geometries:
+            keys = key_tables.setdefault(geometry, {})
+            # geometry= and source= name their type; [[layers]], [mesh] and [output] are whole
+            # tables (layers=[{...}], out=).
+            if key != "type" and table not in ("layers", "mesh", "output"):
+                keys.setdefault(key, table)
+    return tuple(tables), key_tables
 
-_MEDIUM = ("albedo", "g", "sigma_t", "sigma_a", "sigma_s", "material", "channel", "length_unit")
-_RUN = ("photons", "batches", "seed", "threads", "escape_radius")
 
-# geometry.type -> {key: table}; the keys each scene reader accepts (io/scene.hpp).
-KEY_TABLES: dict[str, dict[str, str]] = {
-    "infinite": {
-        **dict.fromkeys(_MEDIUM, "medium"),
-        **dict.fromkeys(("r", "z", "theta", "phi", "fold_phi", "rho"), "grid"),
-        **dict.fromkeys(("radiance", "fluence", "flux", "fluence_spherical", "split_by_order",
-                         "estimator"), "tallies"),
-        **dict.fromkeys(_RUN, "run"),
-    },
-    "half_space": {
-        "eta": "geometry",
-        **dict.fromkeys(_MEDIUM, "medium"),
-        "incidence_deg": "source",
-        **dict.fromkeys(("r", "z", "theta_o", "x", "y"), "grid"),
-        **dict.fromkeys(("fluence", "exitance_map"), "tallies"),
-        **dict.fromkeys(_RUN, "run"),
-    },
-    "sphere": {
-        **dict.fromkeys(("radius", "eta"), "geometry"),
-        **dict.fromkeys(_MEDIUM, "medium"),
-        **dict.fromkeys(("origin", "direction"), "source"),
-        **dict.fromkeys(("psi", "azimuth"), "grid"),
-        "split_by_order": "tallies",
-        **dict.fromkeys(("photons", "batches", "seed", "threads"), "run"),
-    },
-    "slab": {
-        **dict.fromkeys(("length_unit", "n_above", "n_below"), "geometry"),
-        **dict.fromkeys(("r", "z", "theta_o"), "grid"),
-        "split_by_order": "tallies",
-        **dict.fromkeys(_RUN + ("weighting",), "run"),
-    },
-}
+TABLES, KEY_TABLES = _key_tables()
 
 
 def _merge(into: dict, update: dict) -> None:
@@ -99,6 +84,12 @@ def scene_dict(geometry: str | None, scene: str | Path | None,
                 doc = {}
             else:
                 raise ValueError(f"scene: {scene}: {e}; accepted: a TOML scene file") from None
+    return apply_keys(doc, geometry, keys), doc, origin
+
+
+def apply_keys(doc: dict, geometry: str | None, keys: dict[str, Any]) -> str:
+    """Lays the keywords over the scene dict ``doc``, in place, and returns its geometry (the
+    caller's, else the keywords', else the scene's, else "infinite")."""
     given = keys.get("geometry")
     if isinstance(given, str):
         given = {"type": given}
@@ -128,8 +119,10 @@ def scene_dict(geometry: str | None, scene: str | Path | None,
     # The text names its geometry, so that it reads the same on its own (scatterlab simulate).
     doc.setdefault("geometry", {}).setdefault("type", geometry)
     order = {table: i for i, table in enumerate(TABLES)}
-    doc = dict(sorted(doc.items(), key=lambda item: order.get(item[0], -1)))
-    return geometry, doc, origin
+    ordered = sorted(doc.items(), key=lambda item: order.get(item[0], -1))
+    doc.clear()
+    doc.update(ordered)
+    return geometry
 
 
 def _key(key: str) -> str:

@@ -13,6 +13,10 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
+#include <variant>
+#include <vector>
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/medium.hpp"
@@ -21,6 +25,7 @@
 #include "scatterlab/fit/lobe_model.hpp"
 #endif
 #include "scatterlab/io/scene.hpp"
+#include "scatterlab/io/scene_schema.hpp"
 #include "scatterlab/io/text_file.hpp"
 #include "scatterlab/models/chandrasekhar_h.hpp"
 #include "scatterlab/models/dipole.hpp"
@@ -67,47 +72,51 @@ void without_gil(const py::object& progress, Work&& work) {
   if (failure) throw std::move(*failure);
 }
 
-// Parses `toml` as a scene of `geometry`, runs it and writes its file to `path`, as the command
-// line's simulate and searchlight do for one process.
+// Parses `toml` as a scene (the one reader, io/scene.hpp; `geometry` for a text that names none),
+// runs it and writes its file to `path`, as the command line's simulate does for one process.
 void run_scene(const std::string& toml, const std::string& origin, const std::string& geometry,
                const std::string& path, const std::string& command, bool model_fluence,
                const py::object& progress) {
-  // Runs the spec (the engine checks its memory first, engine.hpp), and writes its file unless
-  // the run was stopped; `extra` are write_run_result's further arguments for this geometry.
-  const std::filesystem::path out_path(path);
-  auto run_and_write = [&](auto& spec, auto&& run, auto... extra) {
-    without_gil(progress, [&](const ProgressCallback& callback, const RunControl& control,
-                              const std::atomic<bool>& stopped) {
-      const TransportOutput out = run(spec, callback, control);
-      if (!stopped) write_run_result(out_path, spec, out, command, extra...);
-    });
-  };
-  if (geometry == "infinite") {
-    Scene scene = parse_scene(toml, origin, Validation::on_read);
-    run_and_write(scene.spec, [](auto& s, auto& p, auto& c) { return simulate(s, p, c); });
-  } else if (geometry == "half_space") {
-    SearchlightScene scene = parse_searchlight_scene(toml, origin, Validation::on_read);
-    if (model_fluence && !scene.spec.tallies.fluence) {
-      throw InputError("model_fluence", "given with tallies.fluence = false",
-                       "model_fluence with the fluence tally on");
-    }
-    run_and_write(
-        scene.spec, [](auto& s, auto& p, auto& c) { return run_searchlight(s, p, c); },
-        model_fluence);
-  } else if (geometry == "sphere") {
-    LitSphereScene scene = parse_lit_sphere_scene(toml, origin, Validation::on_read);
-    if (scene.mesh) {  // meshes are traced with Embree, in the program's render component
-      throw InputError("geometry.type", "\"mesh\" in the Python module",
-                       "a sphere here; a mesh scene runs with scatterlab simulate --scene");
-    }
-    run_and_write(scene.spec, [](auto& s, auto& p, auto& c) { return run_lit_sphere(s, p, c); });
-  } else if (geometry == "slab") {
-    LayeredSlabScene scene = parse_layered_slab_scene(toml, origin, Validation::on_read);
-    run_and_write(scene.spec, [](auto& s, auto& p, auto& c) { return run_layered_slab(s, p, c); });
-  } else {
-    throw InputError("geometry.type", "got \"" + geometry + "\"",
-                     "infinite, half_space, sphere or slab");
+  Scene scene = parse_scene(toml, origin, Validation::on_read, geometry);
+  if (scene.mesh_text) {  // meshes are traced with Embree, in the program's render component
+    throw InputError("geometry.type", "\"mesh\" in the Python module",
+                     "a sphere here; a mesh scene runs with scatterlab simulate --scene");
   }
+  auto* half_space = std::get_if<SearchlightSpec>(&scene.spec);
+  if (model_fluence && (half_space == nullptr || !half_space->tallies.fluence)) {
+    throw InputError("model_fluence",
+                     half_space == nullptr
+                         ? "given for a " + std::string(scene.geometry()) + " scene"
+                         : "given with tallies.fluence = false",
+                     "model_fluence for a half-space with the fluence tally on");
+  }
+  // Runs the spec (the engine checks its memory first, engine.hpp), and writes its file unless
+  // the run was stopped.
+  const std::filesystem::path out_path(path);
+  without_gil(progress, [&](const ProgressCallback& callback, const RunControl& control,
+                            const std::atomic<bool>& stopped) {
+    std::visit(
+        [&](auto& spec) {
+          using Spec = std::decay_t<decltype(spec)>;
+          TransportOutput out;
+          if constexpr (std::is_same_v<Spec, SimulationSpec>) {
+            out = simulate(spec, callback, control);
+          } else if constexpr (std::is_same_v<Spec, SearchlightSpec>) {
+            out = run_searchlight(spec, callback, control);
+          } else if constexpr (std::is_same_v<Spec, LitSphereSpec>) {
+            out = run_lit_sphere(spec, callback, control);
+          } else {
+            out = run_layered_slab(spec, callback, control);
+          }
+          if (stopped) return;
+          if constexpr (std::is_same_v<Spec, SearchlightSpec>) {
+            write_run_result(out_path, spec, out, command, model_fluence);
+          } else {
+            write_run_result(out_path, spec, out, command);
+          }
+        },
+        scene.spec);
+  });
 }
 
 // Fits a file's lobes and writes the fits back (fit::fit_file, as `scatterlab fit FILE`), without
@@ -208,6 +217,18 @@ PYBIND11_MODULE(_scatterlab, m) {
       "read_scene_file",
       [](const std::string& path) { return scatterlab::read_scene_file(path, "scene"); },
       py::arg("path"));
+  // The scene's keys (io/scene_schema.hpp): (dotted path, [geometry.type, ...]) each.
+  m.def("scene_keys", [] {
+    std::vector<std::pair<std::string, std::vector<std::string>>> keys;
+    for (const scatterlab::SceneKey& key : scatterlab::scene_keys()) {
+      std::vector<std::string> geometries;
+      for (const std::string_view geometry : scatterlab::scene_geometries) {
+        if (scatterlab::scene_key_of(key, geometry)) geometries.emplace_back(geometry);
+      }
+      keys.emplace_back(std::string(key.path), std::move(geometries));
+    }
+    return keys;
+  });
   m.def("run_scene", &sp::run_scene, py::arg("toml"), py::arg("origin"), py::arg("geometry"),
         py::arg("path"), py::arg("command"), py::arg("model_fluence"), py::arg("progress"));
   m.def("fit_file", &sp::fit_file, py::arg("path"), py::arg("csv"), py::arg("models"),

@@ -17,6 +17,8 @@ using Action = std::function<int()>;
 // photons spread them over the ranks of `world`; only its root writes files and prints.
 Action add_simulate_command(CLI::App& app, const std::string& command_line, World& world);
 Action add_searchlight_command(CLI::App& app, const std::string& command_line, World& world);
+// scatterlab scene: the scene's keys (io/scene_schema.hpp), as a JSON Schema or a reference.
+Action add_scene_command(CLI::App& app);
 Action add_info_command(CLI::App& app);
 Action add_fit_command(CLI::App& app);
 Action add_validate_command(CLI::App& app);

@@ -11,7 +11,6 @@
 
 #include "checkpointed_run.hpp"
 #include "commands.hpp"
-#include "layered_slab_scene.hpp"
 #include "log_interval_option.hpp"
 #include "memory_limit_option.hpp"
 #include "prepare_outputs.hpp"

@@ -12,6 +12,11 @@
 
 namespace scatterlab::cli {
 
+// The slab's totals, as its summaries print them (simulate, mcml): with analog absorption every
+// photon ends in exactly one of them.
+inline const std::vector<std::string> slab_energy_tallies = {
+    "specular_reflectance", "diffuse_reflectance", "total_transmittance", "absorbed"};
+
 // "  N photons in B batches on T threads: S s (R photons/s, ...)" over the whole run; after a
 // --resume also "  this session: ..." with this process's own figures.
 void print_run_time(const TransportOutput& out);

@@ -10,10 +10,14 @@
 #include <initializer_list>
 #include <iterator>
 #include <limits>
+#include <optional>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/material_presets.hpp"
+#include "scatterlab/io/scene_schema.hpp"
 #include "scatterlab/io/toml_reader.hpp"
 #include "scatterlab/transport/run_settings.hpp"
 
@@ -27,16 +31,46 @@ class SceneReader : public TomlReader {
   SceneReader(const std::string& origin, Validation validation)
       : TomlReader(origin), validation_(validation) {}
 
-  Scene read(const toml::table& root) {
-    check_keys(root, "", {"geometry", "medium", "source", "grid", "tallies", "run", "output"});
+  // The geometry.type the file names (default_geometry when none), then that geometry's tables.
+  Scene read(const toml::table& root, std::string_view default_geometry) {
+    std::string_view geometry = default_geometry;
+    std::optional<std::string> type;
+    if (const auto* table = subtable(root, "geometry", "")) {
+      type = string(*table, "type", "geometry", kGeometriesAccepted);
+      if (type) {
+        if (std::find(scene_geometries.begin(), scene_geometries.end(), *type) ==
+            scene_geometries.end()) {
+          wrong_type(*table->get("type"), "geometry.type", kGeometriesAccepted);
+        }
+        geometry = *type;
+      }
+    }
+    // One of scene_geometries (a string of the file's only as long as `root`).
+    geometry_ = *std::find(scene_geometries.begin(), scene_geometries.end(), geometry);
     Scene scene;
-    SimulationSpec& spec = scene.spec;
+    if (geometry == "half_space") {
+      scene.spec = read_half_space(root, scene);
+    } else if (geometry == "sphere" || geometry == "mesh") {
+      scene.spec = read_lit_object(root, scene, geometry == "mesh");
+    } else if (geometry == "slab") {
+      scene.spec = read_layered_slab(root, scene);
+    } else {
+      scene.spec = read_infinite(root, scene);
+    }
+    return scene;
+  }
+
+ private:
+  static constexpr std::string_view kGeometriesAccepted =
+      "\"infinite\", \"half_space\", \"sphere\", \"mesh\" (with a [mesh] table) or \"slab\" "
+      "(with [[layers]])";
+
+  // The infinite medium (scene.hpp): [medium], [source] type, [grid], [tallies], [run], [output].
+  SimulationSpec read_infinite(const toml::table& root, Scene& scene) const {
+    check_table(root, "");
+    SimulationSpec spec;
     if (const auto* geometry = subtable(root, "geometry", "")) {
-      check_keys(*geometry, "geometry", {"type"});
-      read_geometry_type(
-          *geometry, "infinite",
-          "\"infinite\", \"sphere\", \"mesh\" or \"slab\" (a half-space scene runs with "
-          "scatterlab searchlight)");
+      check_table(*geometry, "geometry");
     }
     if (const auto* medium = subtable(root, "medium", "")) {
       scene.material = read_medium(*medium, spec.medium, spec.material, nullptr);
@@ -48,25 +82,21 @@ class SceneReader : public TomlReader {
     if (const auto* run = subtable(root, "run", "")) read_run(*run, spec.run);
     scene.output_path = read_output(root);
     if (validation_ == Validation::on_read) spec.validate();
-    return scene;
+    return spec;
   }
 
   // The searchlight's scene (scene.hpp): the same tables where they mean the same, plus
   // [geometry] eta (or [surface] eta) and [source] incidence_deg.
-  SearchlightScene read_searchlight(const toml::table& root) {
-    check_keys(root, "",
-               {"geometry", "medium", "surface", "source", "grid", "tallies", "run", "output"});
-    SearchlightScene scene;
-    SearchlightSpec& spec = scene.spec;
+  SearchlightSpec read_half_space(const toml::table& root, Scene& scene) const {
+    check_table(root, "");
+    SearchlightSpec spec;
     if (const auto* medium = subtable(root, "medium", "")) {
       scene.material = read_medium(*medium, spec.medium, spec.material, &spec.eta);
     }
     const std::string_view eta_accepted = "a finite number > 0";
     const toml::table* geometry = subtable(root, "geometry", "");
     if (geometry != nullptr) {
-      check_keys(*geometry, "geometry", {"type", "eta"});
-      read_geometry_type(*geometry, "half_space",
-                         "\"half_space\" (an infinite-medium scene runs with scatterlab simulate)");
+      check_table(*geometry, "geometry");
       if (const auto eta = number(*geometry, "eta", "geometry", eta_accepted)) {
         if (!(*eta > 0.0)) {
           throw InputError("geometry.eta", fmt::format("got {}", *eta) + at(*geometry->get("eta")),
@@ -77,7 +107,7 @@ class SceneReader : public TomlReader {
       }
     }
     if (const auto* surface = subtable(root, "surface", "")) {
-      check_keys(*surface, "surface", {"eta"});
+      check_table(*surface, "surface");
       if (const auto eta = number(*surface, "eta", "surface", eta_accepted)) {
         if (geometry != nullptr && geometry->get("eta") != nullptr) {
           throw InputError("surface.eta",
@@ -89,20 +119,20 @@ class SceneReader : public TomlReader {
       }
     }
     if (const auto* source = subtable(root, "source", "")) {
-      check_keys(*source, "source", {"incidence_deg"});
+      check_table(*source, "source");
       const auto angle = number(*source, "incidence_deg", "source", "an angle in [0, 90) degrees");
       if (angle) spec.incidence_deg = *angle;
     }
     if (const auto* grid = subtable(root, "grid", "")) {
-      check_keys(*grid, "grid", {"r", "z", "theta_o", "x", "y"});
-      read_axis(*grid, "r", {"max", "bins"}, spec.grid.r);
-      read_axis(*grid, "z", {"max", "bins"}, spec.grid.z);
-      read_axis(*grid, "theta_o", {"bins"}, spec.grid.theta_o);
-      read_axis(*grid, "x", {"min", "max", "bins"}, spec.grid.x);
-      read_axis(*grid, "y", {"min", "max", "bins"}, spec.grid.y);
+      check_table(*grid, "grid");
+      read_axis(*grid, "r", spec.grid.r);
+      read_axis(*grid, "z", spec.grid.z);
+      read_axis(*grid, "theta_o", spec.grid.theta_o);
+      read_axis(*grid, "x", spec.grid.x);
+      read_axis(*grid, "y", spec.grid.y);
     }
     if (const auto* tallies = subtable(root, "tallies", "")) {
-      check_keys(*tallies, "tallies", {"fluence", "exitance_map"});
+      check_table(*tallies, "tallies");
       if (const auto on = boolean(*tallies, "fluence", "tallies")) spec.tallies.fluence = *on;
       if (const auto on = boolean(*tallies, "exitance_map", "tallies")) {
         spec.tallies.exitance_map = *on;
@@ -111,28 +141,20 @@ class SceneReader : public TomlReader {
     if (const auto* run = subtable(root, "run", "")) read_run(*run, spec.run);
     scene.output_path = read_output(root);
     if (validation_ == Validation::on_read) spec.validate();
-    return scene;
+    return spec;
   }
 
   // The lit sphere's scene (scene.hpp): [geometry] type = "sphere", radius, eta; [source] type;
   // [grid] psi, azimuth; [tallies] split_by_order; the medium, run and output as above.
-  LitSphereScene read_lit_sphere(const toml::table& root) {
-    check_keys(root, "",
-               {"geometry", "mesh", "medium", "source", "grid", "tallies", "run", "output"});
-    LitSphereScene scene;
-    LitSphereSpec& spec = scene.spec;
+  LitSphereSpec read_lit_object(const toml::table& root, Scene& scene, bool mesh) const {
+    check_table(root, "");
+    LitSphereSpec spec;
     if (const auto* medium = subtable(root, "medium", "")) {
       scene.material = read_medium(*medium, spec.medium, spec.material, &spec.eta);
     }
     if (const toml::table* geometry = subtable(root, "geometry", "")) {
-      check_keys(*geometry, "geometry", {"type", "radius", "eta"});
-      const std::string_view types = "\"sphere\" or \"mesh\" (with a [mesh] table)";
-      const auto type = string(*geometry, "type", "geometry", types);
-      if (type && *type != "sphere" && *type != "mesh") {
-        wrong_type(*geometry->get("type"), "geometry.type", types);
-      }
-      scene.mesh = type == "mesh";
-      if (scene.mesh && geometry->get("radius") != nullptr) {
+      check_table(*geometry, "geometry");
+      if (mesh && geometry->get("radius") != nullptr) {
         throw InputError("geometry.radius", "given for a mesh" + at(*geometry->get("radius")),
                          "the mesh's size in its [mesh] table");
       }
@@ -146,7 +168,7 @@ class SceneReader : public TomlReader {
       }
     }
     if (const auto* source = subtable(root, "source", "")) {
-      check_keys(*source, "source", {"type", "origin", "direction", "position", "radius"});
+      check_table(*source, "source");
       const std::string_view accepted =
           "\"directional\", \"pole_beam\", \"beam\" or \"sphere\" (a sphere of light, on a "
           "mesh)";
@@ -192,41 +214,39 @@ class SceneReader : public TomlReader {
         }
       }
     }
-    if (root.get("mesh") != nullptr && !scene.mesh) {
+    if (root.get("mesh") != nullptr && !mesh) {
       throw InputError("mesh", "given for a sphere" + at(*root.get("mesh")),
                        "a [mesh] table with geometry.type = \"mesh\"");
     }
-    if (root.get("mesh") == nullptr && scene.mesh) {
+    if (root.get("mesh") == nullptr && mesh) {
       throw InputError("mesh", "missing", "a [mesh] table with geometry.type = \"mesh\"");
     }
     if (const auto* grid = subtable(root, "grid", "")) {
-      if (scene.mesh) {
+      if (mesh) {
         throw InputError("grid", "given for a mesh" + at(*root.get("grid")),
                          "no [grid]: a mesh's exitance is per triangle");
       }
-      check_keys(*grid, "grid", {"psi", "azimuth"});
-      read_axis(*grid, "psi", {"bins"}, spec.psi);
-      read_axis(*grid, "azimuth", {"bins"}, spec.azimuth);
+      check_table(*grid, "grid");
+      read_axis(*grid, "psi", spec.psi);
+      read_axis(*grid, "azimuth", spec.azimuth);
     }
     if (const auto* tallies = subtable(root, "tallies", "")) {
-      check_keys(*tallies, "tallies", {"split_by_order"});
+      check_table(*tallies, "tallies");
       if (const auto on = boolean(*tallies, "split_by_order", "tallies")) spec.split_by_order = *on;
     }
     if (const auto* run = subtable(root, "run", "")) read_run(*run, spec.run);
     scene.output_path = read_output(root);
-    if (validation_ == Validation::on_read && !scene.mesh) spec.validate();
-    return scene;
+    if (validation_ == Validation::on_read && !mesh) spec.validate();
+    return spec;
   }
 
   // The layered slab's scene (scene.hpp): [geometry] with the ambient indices and the length
   // unit, an array [[layers]] top down, the grid, the tallies and the run with its weighting.
-  LayeredSlabScene read_layered_slab(const toml::table& root) {
-    check_keys(root, "", {"geometry", "layers", "grid", "tallies", "run", "output"});
-    LayeredSlabScene scene;
-    LayeredSlabSpec& spec = scene.spec;
+  LayeredSlabSpec read_layered_slab(const toml::table& root, Scene& scene) const {
+    check_table(root, "");
+    LayeredSlabSpec spec;
     if (const toml::table* geometry = subtable(root, "geometry", "")) {
-      check_keys(*geometry, "geometry", {"type", "length_unit", "n_above", "n_below"});
-      read_geometry_type(*geometry, "slab", "\"slab\"");
+      check_table(*geometry, "geometry");
       if (const auto unit = string(*geometry, "length_unit", "geometry",
                                    "one of \"mfp\", \"um\", \"mm\", \"cm\", \"m\"")) {
         spec.length_unit = *unit;
@@ -249,27 +269,26 @@ class SceneReader : public TomlReader {
       spec.layers.push_back(read_layer(*table, fmt::format("layers[{}]", i + 1), spec));
     }
     if (const auto* grid = subtable(root, "grid", "")) {
-      check_keys(*grid, "grid", {"r", "z", "theta_o"});
-      read_axis(*grid, "r", {"max", "bins"}, spec.r);
-      read_axis(*grid, "z", {"max", "bins"}, spec.z);
-      read_axis(*grid, "theta_o", {"bins"}, spec.theta_o);
+      check_table(*grid, "grid");
+      read_axis(*grid, "r", spec.r);
+      read_axis(*grid, "z", spec.z);
+      read_axis(*grid, "theta_o", spec.theta_o);
     }
     if (const auto* tallies = subtable(root, "tallies", "")) {
-      check_keys(*tallies, "tallies", {"split_by_order"});
+      check_table(*tallies, "tallies");
       if (const auto on = boolean(*tallies, "split_by_order", "tallies")) spec.split_by_order = *on;
     }
     if (const auto* run = subtable(root, "run", "")) read_run(*run, spec.run, &spec.weighting);
     scene.output_path = read_output(root);
     if (validation_ == Validation::on_read) spec.validate();
-    return scene;
+    return spec;
   }
 
- private:
   // One layer of the slab: its coefficients in the slab's length unit, or a measured material
   // (io/material_presets.hpp) converted to it, whose table's index is the layer's n unless given.
   SlabLayerSpec read_layer(const toml::table& table, const std::string& path,
                            const LayeredSlabSpec& spec) const {
-    check_keys(table, path, {"mu_a", "mu_s", "g", "n", "thickness", "material", "channel"});
+    check_table(table, path);
     SlabLayerSpec layer;
     const auto coefficient = [&](const char* key) {
       return number(table, key, path, "a finite number >= 0, in 1/geometry.length_unit");
@@ -329,19 +348,19 @@ class SceneReader : public TomlReader {
     return layer;
   }
 
-  // [geometry] type: each command runs one geometry; a scene for the other is named as such.
-  void read_geometry_type(const toml::table& geometry, std::string_view expected,
-                          std::string_view accepted) const {
-    const auto type = string(geometry, "type", "geometry", accepted);
-    if (type && *type != expected) wrong_type(*geometry.get("type"), "geometry.type", accepted);
+  // A table's keys, checked against the schema's for this geometry (io/scene_schema.hpp); a
+  // layer's ("layers[2]") are those of every layer.
+  void check_table(const toml::table& table, const std::string& path) const {
+    check_names(table, path, scene_table_keys(geometry_, path.substr(0, path.find('['))));
   }
 
   Validation validation_;
+  std::string_view geometry_ = "infinite";
 
   std::optional<std::string> read_output(const toml::table& root) const {
     const auto* output = subtable(root, "output", "");
     if (output == nullptr) return std::nullopt;
-    check_keys(*output, "output", {"path"});
+    check_table(*output, "output");
     auto path = string(*output, "path", "output", "a non-empty file name");
     if (path && path->empty()) {
       throw InputError("output.path", "is empty" + at(*output->get("path")),
@@ -358,9 +377,7 @@ class SceneReader : public TomlReader {
                                              std::optional<MaterialOrigin>& origin,
                                              double* eta) const {
     const std::string path = "medium";
-    check_keys(
-        table, path,
-        {"albedo", "sigma_t", "g", "sigma_a", "sigma_s", "length_unit", "material", "channel"});
+    check_table(table, path);
     const auto albedo = number(table, "albedo", path, "a number in [0, 1]");
     const auto sigma_t = number(table, "sigma_t", path, "a finite number > 0, in 1/length_unit");
     const auto g = number(table, "g", path, "a number with |g| < 1");
@@ -422,7 +439,7 @@ class SceneReader : public TomlReader {
   }
 
   void read_source(const toml::table& table, SourceKind& source) const {
-    check_keys(table, "source", {"type"});
+    check_table(table, "source");
     const std::string_view accepted = "\"beam\" or \"point\"";
     const auto type = string(table, "type", "source", accepted);
     if (!type) return;
@@ -435,12 +452,11 @@ class SceneReader : public TomlReader {
     }
   }
 
-  void read_axis(const toml::table& grid, std::string_view name, Keys keys,
-                 UniformAxis& axis) const {
+  void read_axis(const toml::table& grid, std::string_view name, UniformAxis& axis) const {
     const toml::table* table = subtable(grid, name, "grid");
     if (table == nullptr) return;
     const std::string path = dotted("grid", name);
-    check_keys(*table, path, keys);
+    check_table(*table, path);
     if (const auto min = number(*table, "min", path, "a finite number (in medium.length_unit)"))
       axis.min = *min;
     if (const auto max = number(*table, "max", path, "a finite number (in medium.length_unit)"))
@@ -451,12 +467,12 @@ class SceneReader : public TomlReader {
   }
 
   void read_grid(const toml::table& table, Grid& grid) const {
-    check_keys(table, "grid", {"r", "z", "theta", "phi", "fold_phi", "rho"});
-    read_axis(table, "r", {"max", "bins"}, grid.r);
-    read_axis(table, "z", {"min", "max", "bins"}, grid.z);
-    read_axis(table, "theta", {"bins"}, grid.theta);
-    read_axis(table, "phi", {"bins"}, grid.phi);
-    read_axis(table, "rho", {"max", "bins"}, grid.rho);
+    check_table(table, "grid");
+    read_axis(table, "r", grid.r);
+    read_axis(table, "z", grid.z);
+    read_axis(table, "theta", grid.theta);
+    read_axis(table, "phi", grid.phi);
+    read_axis(table, "rho", grid.rho);
     if (const auto fold = boolean(table, "fold_phi", "grid")) {
       grid.set_fold_phi(*fold);
     }
@@ -464,8 +480,7 @@ class SceneReader : public TomlReader {
 
   void read_tallies(const toml::table& table, TallyRequest& tallies) const {
     const std::string path = "tallies";
-    check_keys(table, path,
-               {"radiance", "fluence", "flux", "fluence_spherical", "split_by_order", "estimator"});
+    check_table(table, path);
     if (const auto on = boolean(table, "radiance", path)) tallies.radiance = *on;
     if (const auto on = boolean(table, "fluence", path)) tallies.fluence = *on;
     if (const auto on = boolean(table, "flux", path)) tallies.flux = *on;
@@ -486,9 +501,8 @@ class SceneReader : public TomlReader {
   // `weighting`: where the scene's run may choose it (a slab), else null and refused.
   void read_run(const toml::table& table, RunSettings& run, Weighting* weighting = nullptr) const {
     const std::string path = "run";
+    check_table(table, path);
     if (weighting != nullptr) {
-      check_keys(table, path,
-                 {"photons", "batches", "seed", "threads", "escape_radius", "weighting"});
       const std::string_view accepted = "\"analog\" or \"implicit\"";
       if (const auto w = string(table, "weighting", path, accepted)) {
         if (*w == "analog") {
@@ -499,8 +513,6 @@ class SceneReader : public TomlReader {
           wrong_type(*table.get("weighting"), "run.weighting", accepted);
         }
       }
-    } else {
-      check_keys(table, path, {"photons", "batches", "seed", "threads", "escape_radius"});
     }
     if (const auto photons =
             integer_as<std::uint64_t>(table, "photons", path, 0, "an integer >= 1")) {
@@ -525,40 +537,88 @@ class SceneReader : public TomlReader {
   }
 };
 
+// The keys whose one value is a list of numbers, [x, y, z]: a list of such lists sweeps them.
+constexpr std::array<std::string_view, 4> kVectorKeys = {"source.origin", "source.direction",
+                                                         "source.position", "mesh.half_size"};
+
+// One step down from a table: a key, or (after a key holding an array of tables, [[layers]]) the
+// index of one of its tables.
+struct Step {
+  std::string key;
+  std::optional<std::size_t> index;
+};
+
 // A key of the scene that holds a list of values to sweep over.
 struct SweptKey {
-  std::vector<std::string> path;  // tables down to the key, then the key
+  std::vector<Step> path;  // tables down to the key, then the key
   const toml::array* values;
 };
 
-std::string join_path(const std::vector<std::string>& path) {
+// "layers[2].thickness" (indices from 1, as the reader names layers); with `indices` false,
+// "layers.thickness" (to compare with kVectorKeys).
+std::string join_path(const std::vector<Step>& path, bool indices = true) {
   std::string joined;
-  for (const std::string& part : path) {
+  for (const Step& step : path) {
+    if (step.index) {
+      if (indices) joined += fmt::format("[{}]", *step.index + 1);
+      continue;
+    }
     if (!joined.empty()) joined += '.';
-    joined += part;
+    joined += step.key;
   }
   return joined;
 }
 
-// Every array in the document, in file order (toml++ keeps insertion order).
-void find_lists(const toml::table& table, std::vector<std::string>& path,
-                std::vector<SweptKey>& found, const std::string& origin) {
+bool plain(const toml::node& node) {
+  return !node.is_array() && !node.is_table();
+}
+
+bool is_vector(const toml::node& node) {
+  const auto* list = node.as_array();
+  return list != nullptr && !list->empty() &&
+         std::all_of(list->begin(), list->end(), [](const toml::node& v) { return plain(v); });
+}
+
+// Every list to sweep over, in file order (toml++ keeps insertion order), down tables and arrays
+// of tables.
+void find_lists(const toml::table& table, std::vector<Step>& path, std::vector<SweptKey>& found,
+                const std::string& origin) {
   for (auto&& [key, node] : table) {
-    path.emplace_back(key.str());
+    path.push_back({std::string(key.str()), std::nullopt});
+    const auto* list = node.as_array();
     if (const auto* sub = node.as_table()) {
       find_lists(*sub, path, found, origin);
-    } else if (const auto* list = node.as_array()) {
+    } else if (list != nullptr && !list->empty() && list->is_array_of_tables()) {
+      for (std::size_t i = 0; i < list->size(); ++i) {
+        path.push_back({"", i});
+        find_lists(*(*list)[i].as_table(), path, found, origin);
+        path.pop_back();
+      }
+    } else if (list != nullptr) {
       const auto& begin = node.source().begin;
       const std::string where = fmt::format(" ({}:{}:{})", origin, begin.line, begin.column);
+      const std::string name = join_path(path);
+      const bool vector_key = std::find(kVectorKeys.begin(), kVectorKeys.end(),
+                                        join_path(path, false)) != kVectorKeys.end();
       if (list->empty()) {
-        throw InputError(join_path(path), "is an empty list" + where,
+        throw InputError(name, "is an empty list" + where,
                          "a value, or a non-empty list of values to sweep over");
       }
-      for (const toml::node& value : *list) {
-        if (value.is_array() || value.is_table()) {
-          throw InputError(join_path(path), "is a list holding a list or table" + where,
-                           "a value, or a list of plain values to sweep over");
+      if (vector_key) {
+        // One vector is the key's value; a list of vectors sweeps it.
+        if (is_vector(node)) {
+          path.pop_back();
+          continue;
         }
+        if (!std::all_of(list->begin(), list->end(),
+                         [](const toml::node& v) { return is_vector(v); })) {
+          throw InputError(name, "is a list mixing vectors and other values" + where,
+                           "one list [x, y, z], or a list of such lists to sweep over");
+        }
+      } else if (!std::all_of(list->begin(), list->end(),
+                              [](const toml::node& v) { return plain(v); })) {
+        throw InputError(name, "is a list holding a list or table" + where,
+                         "a value, or a list of plain values to sweep over");
       }
       found.push_back({path, list});
     }
@@ -571,25 +631,32 @@ std::string value_label(const toml::node& node) {
   if (const auto* v = node.as_integer()) return fmt::format("{}", v->get());
   if (const auto* v = node.as_boolean()) return v->get() ? "true" : "false";
   if (const auto* v = node.as_string()) return v->get();
+  if (const auto* v = node.as_array()) {
+    std::string joined;
+    for (const toml::node& element : *v)
+      joined += (joined.empty() ? "" : ",") + value_label(element);
+    return joined;
+  }
   return "value";
 }
 
 // "albedo" unless another swept key also ends in "albedo"; then the dotted path.
 std::string key_label(const std::vector<SweptKey>& swept, std::size_t index) {
-  const std::string& last = swept[index].path.back();
+  const std::string& last = swept[index].path.back().key;
   for (std::size_t j = 0; j < swept.size(); ++j) {
-    if (j != index && swept[j].path.back() == last) return join_path(swept[index].path);
+    if (j != index && swept[j].path.back().key == last) return join_path(swept[index].path);
   }
   return last;
 }
 
-// The table of `document` that holds `key` (find_lists found it there, so every table exists).
+// The table of `document` that holds `key` (find_lists found it there, so every step exists).
 toml::table& holder(toml::table& document, const SweptKey& key) {
-  toml::table* table = &document;
+  toml::node* node = &document;
   for (std::size_t depth = 0; depth + 1 < key.path.size(); ++depth) {
-    table = table->get(key.path[depth])->as_table();
+    const Step& step = key.path[depth];
+    node = step.index ? node->as_array()->get(*step.index) : node->as_table()->get(step.key);
   }
-  return *table;
+  return *node->as_table();
 }
 
 // From the lengths of the lists, before any point is made.
@@ -609,27 +676,62 @@ void check_sweep_size(const std::vector<SweptKey>& swept, const std::string& ori
                   max_sweep_points));
 }
 
-}  // namespace
-
-Scene parse_scene(std::string_view toml_text, const std::string& origin, Validation validation) {
-  return SceneReader(origin, validation).read(parse_toml(toml_text, origin));
+// One point of a file: `text` is the document's own text when it is the file as written (a mesh's
+// [mesh] table is then read from it with the file's lines), else the point is written out.
+Scene read_scene(const toml::table& root, std::optional<std::string_view> text,
+                 const std::string& origin, Validation validation,
+                 std::string_view default_geometry) {
+  Scene scene = SceneReader(origin, validation).read(root, default_geometry);
+  if (root.get("mesh") != nullptr) {
+    if (text) {
+      scene.mesh_text = std::string(*text);
+    } else {
+      std::ostringstream written;
+      written << toml::toml_formatter(root);
+      scene.mesh_text = written.str();
+    }
+  }
+  return scene;
 }
 
-Scene load_scene(const std::filesystem::path& path, Validation validation) {
-  return parse_scene(read_text(path), path.string(), validation);
+}  // namespace
+
+std::string_view Scene::geometry() const {
+  switch (spec.index()) {
+    case 1:
+      return "half_space";
+    case 2:
+      return mesh_text ? "mesh" : "sphere";
+    case 3:
+      return "slab";
+    default:
+      return "infinite";
+  }
+}
+
+Scene parse_scene(std::string_view toml_text, const std::string& origin, Validation validation,
+                  std::string_view default_geometry) {
+  return read_scene(parse_toml(toml_text, origin), toml_text, origin, validation, default_geometry);
+}
+
+Scene load_scene(const std::filesystem::path& path, Validation validation,
+                 std::string_view default_geometry) {
+  return parse_scene(read_text(path), path.string(), validation, default_geometry);
 }
 
 std::vector<SweepPoint> parse_sweep(std::string_view toml_text, const std::string& origin,
-                                    Validation validation) {
+                                    Validation validation, std::string_view default_geometry) {
   const toml::table root = parse_toml(toml_text, origin);
   std::vector<SweptKey> swept;
-  std::vector<std::string> path;
+  std::vector<Step> path;
   find_lists(root, path, swept, origin);
+  if (swept.empty())
+    return {{"", read_scene(root, toml_text, origin, validation, default_geometry)}};
   check_sweep_size(swept, origin);
   // Each point copies the scene with one value in place of each list, not the lists themselves,
   // so that a sweep costs its points times the size of one scene.
   toml::table scene = root;
-  for (const SweptKey& key : swept) holder(scene, key).insert_or_assign(key.path.back(), 0);
+  for (const SweptKey& key : swept) holder(scene, key).insert_or_assign(key.path.back().key, 0);
   std::vector<SweepPoint> points;
   // Odometer over the lists, the last fastest.
   std::vector<std::size_t> index(swept.size(), 0);
@@ -638,11 +740,12 @@ std::vector<SweepPoint> parse_sweep(std::string_view toml_text, const std::strin
     std::string label;
     for (std::size_t k = 0; k < swept.size(); ++k) {
       const toml::node& value = *swept[k].values->get(index[k]);
-      holder(point, swept[k]).insert_or_assign(swept[k].path.back(), value);
+      holder(point, swept[k]).insert_or_assign(swept[k].path.back().key, value);
       label +=
           fmt::format("{}{}={}", label.empty() ? "" : "_", key_label(swept, k), value_label(value));
     }
-    points.push_back({label, SceneReader(origin, validation).read(point)});
+    points.push_back(
+        {label, read_scene(point, std::nullopt, origin, validation, default_geometry)});
     std::size_t k = swept.size();
     while (k > 0 && ++index[k - 1] == swept[k - 1].values->size()) index[--k] = 0;
     if (k == 0) break;
@@ -650,43 +753,9 @@ std::vector<SweepPoint> parse_sweep(std::string_view toml_text, const std::strin
   return points;
 }
 
-std::vector<SweepPoint> load_sweep(const std::filesystem::path& path, Validation validation) {
-  return parse_sweep(read_text(path), path.string(), validation);
-}
-
-SearchlightScene parse_searchlight_scene(std::string_view toml_text, const std::string& origin,
-                                         Validation validation) {
-  return SceneReader(origin, validation).read_searchlight(parse_toml(toml_text, origin));
-}
-
-SearchlightScene load_searchlight_scene(const std::filesystem::path& path, Validation validation) {
-  return parse_searchlight_scene(read_text(path), path.string(), validation);
-}
-
-LitSphereScene parse_lit_sphere_scene(std::string_view toml_text, const std::string& origin,
-                                      Validation validation) {
-  return SceneReader(origin, validation).read_lit_sphere(parse_toml(toml_text, origin));
-}
-
-LitSphereScene load_lit_sphere_scene(const std::filesystem::path& path, Validation validation) {
-  return parse_lit_sphere_scene(read_text(path), path.string(), validation);
-}
-
-LayeredSlabScene parse_layered_slab_scene(std::string_view toml_text, const std::string& origin,
-                                          Validation validation) {
-  return SceneReader(origin, validation).read_layered_slab(parse_toml(toml_text, origin));
-}
-
-LayeredSlabScene load_layered_slab_scene(const std::filesystem::path& path, Validation validation) {
-  return parse_layered_slab_scene(read_text(path), path.string(), validation);
-}
-
-std::string scene_geometry(const std::filesystem::path& path) {
-  const toml::table root = parse_toml(read_text(path), path.string());
-  if (const toml::table* geometry = root["geometry"].as_table()) {
-    if (const auto type = (*geometry)["type"].value<std::string>()) return *type;
-  }
-  return "infinite";
+std::vector<SweepPoint> load_sweep(const std::filesystem::path& path, Validation validation,
+                                   std::string_view default_geometry) {
+  return parse_sweep(read_text(path), path.string(), validation, default_geometry);
 }
 
 }  // namespace scatterlab

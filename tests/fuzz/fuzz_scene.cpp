@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <variant>
 
 #include "fuzz_support.hpp"
 #include "scatterlab/io/scene.hpp"
@@ -80,30 +81,24 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!runs_here(text)) return -1;  // kept out of the corpus
   const std::filesystem::path& base = fuzz::work_folder();
 
-  // simulate on the infinite medium, and its sweeps (a file without lists is one point).
-  fuzz::expect_clean([&] {
-    for (const SweepPoint& point : parse_sweep(text, kOrigin)) {
-      check_memory(transport_problem(point.scene.spec));
-    }
-  });
-  // searchlight, and simulate on a half-space.
-  fuzz::expect_clean(
-      [&] { check_memory(transport_problem(parse_searchlight_scene(text, kOrigin).spec)); });
-  // simulate on a sphere or a mesh, as sim/cli/lit_sphere_scene.cpp reads it.
-  fuzz::expect_clean([&] {
-    LitSphereScene scene = parse_lit_sphere_scene(text, kOrigin);
-    if (scene.mesh) {
-      SceneMesh mesh = parse_scene_mesh(text, kOrigin, base);
-      scene.spec.mesh_source = std::move(mesh.source);
-      scene.spec.mesh = std::make_shared<const TriangleMesh>(std::move(mesh.mesh));
-      scene.spec.validate();
-      check_lit_mesh(scene.spec);
-    }
-    check_memory(transport_problem(scene.spec));
-  });
-  // simulate on a layered slab.
-  fuzz::expect_clean(
-      [&] { check_memory(transport_problem(parse_layered_slab_scene(text, kOrigin).spec)); });
+  // simulate and searchlight: every geometry and its sweeps (a file without lists is one
+  // point), built and checked as sim/cli/scene_command.cpp does before a run.
+  for (const std::string_view geometry : {"infinite", "half_space"}) {
+    fuzz::expect_clean([&] {
+      for (SweepPoint& point : parse_sweep(text, kOrigin, Validation::on_read, geometry)) {
+        Scene& scene = point.scene;
+        if (scene.mesh_text) {
+          auto& spec = std::get<LitSphereSpec>(scene.spec);
+          SceneMesh mesh = parse_scene_mesh(*scene.mesh_text, kOrigin, base);
+          spec.mesh_source = std::move(mesh.source);
+          spec.mesh = std::make_shared<const TriangleMesh>(std::move(mesh.mesh));
+          spec.validate();
+          check_lit_mesh(spec);
+        }
+        std::visit([](const auto& spec) { check_memory(transport_problem(spec)); }, scene.spec);
+      }
+    });
+  }
   // render.
   fuzz::expect_clean([&] { (void)parse_render_scene(text, kOrigin, base); });
   return 0;

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "scatterlab/core/error.hpp"
@@ -133,16 +134,17 @@ TEST(LengthUnits, SearchlightAcceptsSigmaTInCentimetres) {
 
 // A scene in mm reads its grid keys in mm; the material's unit is the table's.
 TEST(LengthUnits, SceneGridKeysAreInTheMediumsUnit) {
-  const Scene scene = parse_scene(
-      "[medium]\nmaterial = \"skimmilk\"\nchannel = \"green\"\n[grid]\nr = { max = 4, bins = 8 "
-      "}\n",
-      "t");
-  EXPECT_EQ(scene.spec.medium.length_unit, "mm");
-  EXPECT_EQ(scene.spec.grid.r.max, 4.0);
-  ASSERT_TRUE(scene.spec.material.has_value());
-  EXPECT_EQ(scene.spec.material->name, "skimmilk");
-  EXPECT_EQ(scene.spec.material->channel, "green");
-  EXPECT_NEAR(scene.spec.medium.sigma_a(), 0.0025, 1e-12);
+  const SimulationSpec spec = std::get<SimulationSpec>(
+      parse_scene("[medium]\nmaterial = \"skimmilk\"\nchannel = \"green\"\n[grid]\nr = { max = 4, "
+                  "bins = 8 }\n",
+                  "t")
+          .spec);
+  EXPECT_EQ(spec.medium.length_unit, "mm");
+  EXPECT_EQ(spec.grid.r.max, 4.0);
+  ASSERT_TRUE(spec.material.has_value());
+  EXPECT_EQ(spec.material->name, "skimmilk");
+  EXPECT_EQ(spec.material->channel, "green");
+  EXPECT_NEAR(spec.medium.sigma_a(), 0.0025, 1e-12);
 }
 
 }  // namespace

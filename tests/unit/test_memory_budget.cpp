@@ -236,7 +236,7 @@ TEST(SweepSize, TheLimitItselfIsAccepted) {
   const std::vector<SweepPoint> points =
       parse_sweep("[run]\nseed = " + seeds + "]\n", "seeds.toml");
   ASSERT_EQ(points.size(), max_sweep_points);
-  EXPECT_EQ(points.back().scene.spec.run.seed, max_sweep_points);
+  EXPECT_EQ(std::get<SimulationSpec>(points.back().scene.spec).run.seed, max_sweep_points);
   EXPECT_EQ(field_of([&] { parse_sweep("[run]\nseed = " + seeds + ",0]\n", "seeds.toml"); }),
             "run.seed");
 }

@@ -12,9 +12,14 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/transport/simulation.hpp"
+#include "scene_of.hpp"
 
 namespace scatterlab {
 namespace {
+
+using testing::load_as;
+using testing::read_as;
+using testing::SceneOf;
 
 const std::filesystem::path scenes_dir =
     std::filesystem::path(SCATTERLAB_SOURCE_DIR) / "data" / "scenes";
@@ -44,8 +49,8 @@ void expect_same_spec(const SimulationSpec& a, const SimulationSpec& b) {
   EXPECT_EQ(a.run.escape_radius, b.run.escape_radius);
 }
 
-Scene parse(std::string_view text) {
-  return parse_scene(text, "test.toml");
+SceneOf<SimulationSpec> parse(std::string_view text) {
+  return read_as<SimulationSpec>(text, "test.toml");
 }
 
 // The error parsing `text` raises; fails the test when there is none.
@@ -135,13 +140,13 @@ TEST(SimulationSpec, ValidateNamesTheFirstBadField) {
 }
 
 TEST(Scene, EmptyFileGivesTheDefaults) {
-  const Scene scene = parse("");
+  const auto scene = parse("");
   expect_same_spec(scene.spec, SimulationSpec{});
   EXPECT_FALSE(scene.output_path.has_value());
 }
 
 TEST(Scene, EveryTableParses) {
-  const Scene scene = parse(R"(
+  const auto scene = parse(R"(
     [medium]
     albedo = 0.8
     sigma_t = 2.5
@@ -205,7 +210,7 @@ TEST(Scene, EveryTableParses) {
 }
 
 TEST(Scene, DottedKeysAndSubTablesAreTheSameAsInlineTables) {
-  const Scene scene = parse("[grid.r]\nmax = 3.0\nbins = 30\n[grid]\nz.bins = 8\n");
+  const auto scene = parse("[grid.r]\nmax = 3.0\nbins = 30\n[grid]\nz.bins = 8\n");
   EXPECT_EQ(scene.spec.grid.r, (UniformAxis{0.0, 3.0, 30}));
   EXPECT_EQ(scene.spec.grid.z.bins, 8);
 }
@@ -261,7 +266,7 @@ TEST(Scene, AlbedoOneNeedsAnEscapeRadius) {
   EXPECT_NE(std::string(error.what()).find("never absorbs"), std::string::npos) << error.what();
   EXPECT_EQ(field_of("[medium]\nalbedo = 1.0\n[run]\nescape_radius = inf\n"), "run.escape_radius");
 
-  const Scene scene = parse("[medium]\nalbedo = 1\n[run]\nescape_radius = 50.0\n");
+  const auto scene = parse("[medium]\nalbedo = 1\n[run]\nescape_radius = 50.0\n");
   EXPECT_EQ(scene.spec.medium.albedo, 1.0);
   EXPECT_EQ(scene.spec.run.escape_radius, 50.0);
 }
@@ -343,11 +348,11 @@ TEST(Scene, SyntaxErrorGivesTheLine) {
 }
 
 TEST(Scene, ShippedScenesParse) {
-  const Scene paper = load_scene(scenes_dir / "paper-beam.toml");
+  const auto paper = load_as<SimulationSpec>(scenes_dir / "paper-beam.toml");
   expect_same_spec(paper.spec, SimulationSpec{});
   EXPECT_EQ(paper.output_path, "paper-beam.h5");
 
-  const Scene point = load_scene(scenes_dir / "point-source.toml");
+  const auto point = load_as<SimulationSpec>(scenes_dir / "point-source.toml");
   EXPECT_EQ(point.spec.source, SourceKind::point);
   EXPECT_EQ(point.spec.medium.g, 0.0);
   EXPECT_EQ(point.spec.medium.albedo, 0.9);
@@ -390,7 +395,7 @@ TEST(Scene, SyntaxErrorInAFileNamesTheFile) {
 
 std::string searchlight_field_of(std::string_view text) {
   try {
-    parse_searchlight_scene(text, "half.toml");
+    read_as<SearchlightSpec>(text, "half.toml");
   } catch (const InputError& error) {
     return error.field();
   }
@@ -399,7 +404,7 @@ std::string searchlight_field_of(std::string_view text) {
 }
 
 TEST(SearchlightScene, ShippedFileSpellsOutTheDefaults) {
-  const SearchlightScene scene = load_searchlight_scene(scenes_dir / "searchlight.toml");
+  const SceneOf<SearchlightSpec> scene = load_as<SearchlightSpec>(scenes_dir / "searchlight.toml");
   const SearchlightSpec defaults;
   EXPECT_EQ(scene.spec.medium.albedo, defaults.medium.albedo);
   EXPECT_EQ(scene.spec.medium.g, defaults.medium.g);
@@ -416,7 +421,7 @@ TEST(SearchlightScene, ShippedFileSpellsOutTheDefaults) {
 }
 
 TEST(SearchlightScene, ReadsEveryTable) {
-  const SearchlightScene scene = parse_searchlight_scene(
+  const SceneOf<SearchlightSpec> scene = read_as<SearchlightSpec>(
       "[medium]\nalbedo = 0.8\ng = -0.3\n[surface]\neta = 2.5\n[source]\nincidence_deg = 40\n"
       "[grid]\nr = { max = 4, bins = 8 }\nz = { max = 2, bins = 4 }\ntheta_o = { bins = 9 }\n"
       "[tallies]\nfluence = false\n[run]\nphotons = 1e4\nbatches = 8\n",
@@ -445,7 +450,7 @@ TEST(SearchlightScene, BadInputNamesTheField) {
 
 // [medium] material: a measured medium (io/material_presets.hpp), in its table's unit.
 TEST(Scene, MaterialSetsTheMediumInItsUnit) {
-  const Scene scene = parse("[medium]\nmaterial = \"marble\"\nchannel = \"blue\"\n");
+  const auto scene = parse("[medium]\nmaterial = \"marble\"\nchannel = \"blue\"\n");
   EXPECT_EQ(scene.spec.medium.length_unit, "mm");
   EXPECT_NEAR(scene.spec.medium.sigma_a(), 0.0071, 1e-12);
   EXPECT_NEAR(scene.spec.medium.sigma_s(), 3.00, 1e-12);
@@ -455,7 +460,7 @@ TEST(Scene, MaterialSetsTheMediumInItsUnit) {
   ASSERT_TRUE(scene.spec.material.has_value());
   EXPECT_EQ(scene.spec.material->library, "jensen2001");
   // g and length_unit apply to the material; channels sweep like any other key.
-  const Scene cm = parse(
+  const auto cm = parse(
       "[medium]\nmaterial = \"espresso\"\nchannel = \"red\"\ng = 0.5\nlength_unit = \"cm\"\n");
   EXPECT_EQ(cm.spec.medium.length_unit, "cm");
   EXPECT_EQ(cm.spec.medium.g, 0.5);
@@ -464,7 +469,7 @@ TEST(Scene, MaterialSetsTheMediumInItsUnit) {
       "[medium]\nmaterial = \"apple\"\nchannel = [\"red\", \"green\", \"blue\"]\n", "t");
   ASSERT_EQ(sweep.size(), 3u);
   EXPECT_EQ(sweep[2].label, "channel=blue");
-  EXPECT_NEAR(sweep[2].scene.spec.medium.sigma_a(), 0.046, 1e-12);
+  EXPECT_NEAR(std::get<SimulationSpec>(sweep[2].scene.spec).medium.sigma_a(), 0.046, 1e-12);
 }
 
 TEST(Scene, MaterialBadInputNamesTheField) {
@@ -482,14 +487,14 @@ TEST(Scene, MaterialBadInputNamesTheField) {
 
 // The searchlight takes the material's eta unless the scene gives one.
 TEST(SearchlightScene, MaterialBringsItsEtaAndUnit) {
-  const SearchlightScene milk = parse_searchlight_scene(
+  const SceneOf<SearchlightSpec> milk = read_as<SearchlightSpec>(
       "[medium]\nmaterial = \"regular_milk\"\nchannel = \"red\"\n[grid]\nr = { max = 20 }\n", "t");
   EXPECT_DOUBLE_EQ(milk.spec.eta, 1.33);
   EXPECT_FALSE(milk.eta_given);
   EXPECT_EQ(milk.spec.medium.length_unit, "mm");
   EXPECT_DOUBLE_EQ(milk.spec.medium.g, 0.75);
   EXPECT_EQ(milk.spec.grid.r.max, 20.0);
-  const SearchlightScene matched = parse_searchlight_scene(
+  const SceneOf<SearchlightSpec> matched = read_as<SearchlightSpec>(
       "[medium]\nmaterial = \"apple\"\nchannel = \"red\"\n[geometry]\neta = 1.0\n", "t");
   EXPECT_DOUBLE_EQ(matched.spec.eta, 1.0);
   EXPECT_TRUE(matched.eta_given);
@@ -497,15 +502,25 @@ TEST(SearchlightScene, MaterialBringsItsEtaAndUnit) {
             "medium.length_unit");
 }
 
-TEST(GeometryTable, NamesTheGeometryEachCommandRuns) {
-  EXPECT_NO_THROW(parse("[geometry]\ntype = \"infinite\"\n"));
-  EXPECT_EQ(field_of("[geometry]\ntype = \"half_space\"\n"), "geometry.type");
-  EXPECT_EQ(field_of("[geometry]\neta = 1.3\n"), "geometry.eta");
+// geometry.type chooses the geometry once; a file that names none has the caller's default.
+TEST(GeometryTable, ChoosesTheGeometryOnce) {
+  const auto spec_of = [](std::string_view text, std::string_view default_geometry) {
+    return parse_scene(text, "test.toml", Validation::on_read, default_geometry).spec;
+  };
+  EXPECT_TRUE(std::holds_alternative<SimulationSpec>(spec_of("", "infinite")));
+  EXPECT_TRUE(std::holds_alternative<SearchlightSpec>(spec_of("", "half_space")));
+  EXPECT_TRUE(std::holds_alternative<SimulationSpec>(
+      spec_of("[geometry]\ntype = \"infinite\"\n", "half_space")));
+  EXPECT_TRUE(std::holds_alternative<SearchlightSpec>(
+      spec_of("[geometry]\ntype = \"half_space\"\n", "infinite")));
+  EXPECT_TRUE(std::holds_alternative<LitSphereSpec>(
+      spec_of("[geometry]\ntype = \"sphere\"\n", "half_space")));
+  EXPECT_EQ(field_of("[geometry]\ntype = \"cube\"\n"), "geometry.type");
+  EXPECT_EQ(field_of("[geometry]\neta = 1.3\n"), "geometry.eta");  // no surface to have an index
 
-  const SearchlightScene half =
-      parse_searchlight_scene("[geometry]\ntype = \"half_space\"\neta = 1.45\n", "half.toml");
+  const SceneOf<SearchlightSpec> half =
+      read_as<SearchlightSpec>("[geometry]\ntype = \"half_space\"\neta = 1.45\n", "half.toml");
   EXPECT_EQ(half.spec.eta, 1.45);
-  EXPECT_EQ(searchlight_field_of("[geometry]\ntype = \"infinite\"\n"), "geometry.type");
   EXPECT_EQ(searchlight_field_of("[geometry]\neta = 0\n"), "geometry.eta");
   EXPECT_EQ(searchlight_field_of("[geometry]\neta = 1.3\n[surface]\neta = 1.4\n"), "surface.eta");
 }
@@ -514,13 +529,14 @@ TEST(SceneValidation, ByTheCallerLeavesAPartialSpecToBeFilledIn) {
   // Albedo 1 needs an escape radius, which code reading a partial scene may set after reading
   // (the command line reads with on_read: its scene files must be valid on their own).
   EXPECT_EQ(field_of("[medium]\nalbedo = 1\n"), "run.escape_radius");
-  Scene scene = parse_scene("[medium]\nalbedo = 1\n", "scene.toml", Validation::by_caller);
+  auto scene =
+      read_as<SimulationSpec>("[medium]\nalbedo = 1\n", "scene.toml", Validation::by_caller);
   EXPECT_THROW(scene.spec.validate(), InputError);
   scene.spec.run.escape_radius = 5.0;
   EXPECT_NO_THROW(scene.spec.validate());
 
-  SearchlightScene half =
-      parse_searchlight_scene("[medium]\nalbedo = 1\n", "half.toml", Validation::by_caller);
+  SceneOf<SearchlightSpec> half =
+      read_as<SearchlightSpec>("[medium]\nalbedo = 1\n", "half.toml", Validation::by_caller);
   half.spec.run.escape_radius = 5.0;
   EXPECT_NO_THROW(half.spec.validate());
   // Reading errors are not validation: they stop the read either way.

@@ -30,7 +30,8 @@ namespace scatterlab::toml_reading {
 
 using Keys = std::initializer_list<std::string_view>;
 
-inline std::string join(Keys keys, std::string_view before = "", std::string_view after = "") {
+template <class Names = Keys>
+std::string join(const Names& keys, std::string_view before = "", std::string_view after = "") {
   std::string joined;
   for (const auto key : keys) {
     if (!joined.empty()) joined += ", ";
@@ -43,7 +44,8 @@ inline std::string dotted(const std::string& path, std::string_view key) {
   return path.empty() ? std::string(key) : path + "." + std::string(key);
 }
 
-inline std::string suggestion(std::string_view key, Keys accepted) {
+template <class Names = Keys>
+std::string suggestion(std::string_view key, const Names& accepted) {
   const auto nearest = nearest_name(key, accepted);
   return nearest ? fmt::format(", did you mean \"{}\"?", *nearest) : "";
 }
@@ -93,6 +95,12 @@ class TomlReader {
   }
 
   void check_keys(const toml::table& table, const std::string& path, Keys accepted) const {
+    check_names(table, path, accepted);
+  }
+
+  // The same for any range of names (a schema's: io/scene_schema.hpp).
+  template <class Names>
+  void check_names(const toml::table& table, const std::string& path, const Names& accepted) const {
     for (auto&& [key, node] : table) {
       const std::string_view name = key.str();
       if (std::find(accepted.begin(), accepted.end(), name) != accepted.end()) continue;
