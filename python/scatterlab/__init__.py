@@ -6,6 +6,7 @@
     r.grid["r"].edges                  # bin edges; Tally.edges["r"] the same for one tally
     r.tallies["fluence"].to_xarray()   # named dimensions, bin centres as coordinates
     scatterlab.open("run.h5")          # any file scatterlab wrote, read the same way
+    scene = scatterlab.Scene(geometry="sphere", radius=2.0)  # build, print, change and run
 
 Keywords are the scene's keys (data/scenes/*.toml; _scene.py says how a keyword finds its
 table); the scene is checked by the same reader as the command line's, and bad input raises
@@ -14,6 +15,7 @@ ValueError (scatterlab.InputError) with the same message, naming the field.
 
 from __future__ import annotations
 
+import copy
 import os
 import sys
 import tempfile
@@ -22,10 +24,10 @@ from typing import Any, Callable
 
 from . import _scatterlab, models
 from ._result import Axis, Fit, Result, Tally, read
-from ._scene import KEY_TABLES, scene_dict, to_toml
+from ._scene import KEY_TABLES, apply_keys, scene_dict, to_toml
 
-__all__ = ["simulate", "searchlight", "open", "fit", "models", "scene_text", "Result", "Tally",
-           "Axis", "Fit", "InputError", "KEY_TABLES", "__version__"]
+__all__ = ["simulate", "searchlight", "open", "fit", "models", "Scene", "scene_text", "Result",
+           "Tally", "Axis", "Fit", "InputError", "KEY_TABLES", "__version__"]
 __version__ = _scatterlab.version
 InputError = _scatterlab.InputError
 
@@ -72,6 +74,14 @@ def _run(geometry: str | None, scene, out, progress, model_fluence: bool, keys: 
     # A file without keywords is read as written, so that its messages point into it.
     text = _scatterlab.read_scene_file(os.fspath(scene)) if scene is not None and not keys \
         else to_toml(doc)
+    command = f"python: scatterlab.{call}(" + ", ".join(
+        [f"scene={str(scene)!r}"] * (scene is not None)
+        + [f"{k}={v!r}" for k, v in keys.items()]) + ")"
+    return _run_text(text, origin, geometry, doc, out, progress, model_fluence, command)
+
+
+def _run_text(text: str, origin: str, geometry: str, doc: dict, out, progress,
+              model_fluence: bool, command: str) -> Result:
     progress = _progress_of(progress, "batches")
     # The file goes to out=, else to the scene's output.path, else to a temporary file that is
     # read back whole and removed.
@@ -81,9 +91,6 @@ def _run(geometry: str | None, scene, out, progress, model_fluence: bool, keys: 
     if temporary:
         fd, out = tempfile.mkstemp(suffix=".h5", prefix="scatterlab-")
         os.close(fd)
-    command = f"python: scatterlab.{call}(" + ", ".join(
-        [f"scene={str(scene)!r}"] * (scene is not None)
-        + [f"{k}={v!r}" for k, v in keys.items()]) + ")"
     try:
         _scatterlab.run_scene(text, origin, geometry, os.fspath(out), command, model_fluence,
                               progress)
@@ -96,6 +103,46 @@ def _run(geometry: str | None, scene, out, progress, model_fluence: bool, keys: 
     if temporary:
         result.path = None
     return result
+
+
+class Scene:
+    """A scene to build, print, change and run, of any geometry::
+
+        scene = scatterlab.Scene(geometry="slab", layers=[{"thickness": 1, "albedo": 0.9}])
+        print(scene)                       # its TOML, as `scatterlab simulate FILE` reads it
+        scene.set(photons=1e6, seed=7)     # keywords as simulate's; returns the scene
+        result = scene.run(out="slab.h5")  # as simulate(scene=FILE) would
+
+    ``Scene("file.toml", **keys)`` starts from a scene file. Every change is checked at once by
+    the program's reader, and a refused one leaves the scene as it was; ``tables`` is the scene
+    as a dict of its tables, ``geometry`` its geometry.type."""
+
+    def __init__(self, scene: str | Path | None = None, **keys: Any):
+        geometry, tables, origin = scene_dict(None, scene, keys)
+        _scatterlab.check_scene(to_toml(tables), origin, geometry)
+        self.geometry, self.tables = geometry, tables
+
+    def set(self, **keys: Any) -> "Scene":
+        """Lays keywords over the scene (a dict merges into its table key by key)."""
+        tables = copy.deepcopy(self.tables)
+        geometry = apply_keys(tables, None, keys)
+        _scatterlab.check_scene(to_toml(tables), "keywords", geometry)
+        self.geometry, self.tables = geometry, tables
+        return self
+
+    def run(self, *, out: str | Path | None = None,
+            progress: bool | Callable[[int, int], None] | None = None,
+            model_fluence: bool = False) -> Result:
+        """Runs the scene in this process; ``out`` and ``progress`` as for ``simulate``,
+        ``model_fluence`` as for ``searchlight`` (a half-space only)."""
+        return _run_text(str(self), "scatterlab.Scene", self.geometry, self.tables, out,
+                         progress, model_fluence, "python: scatterlab.Scene(...).run()")
+
+    def __str__(self) -> str:
+        return to_toml(self.tables)
+
+    def __repr__(self) -> str:
+        return f"scatterlab.Scene of a {self.geometry} geometry:\n{self}"
 
 
 def simulate(scene: str | Path | None = None, *, out: str | Path | None = None,

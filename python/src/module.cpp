@@ -229,6 +229,13 @@ PYBIND11_MODULE(_scatterlab, m) {
     }
     return keys;
   });
+  // Checks a scene's text as run_scene would read it, and runs nothing (scatterlab.Scene).
+  m.def(
+      "check_scene",
+      [](const std::string& toml, const std::string& origin, const std::string& geometry) {
+        (void)scatterlab::parse_scene(toml, origin, scatterlab::Validation::on_read, geometry);
+      },
+      py::arg("toml"), py::arg("origin"), py::arg("geometry"));
   m.def("run_scene", &sp::run_scene, py::arg("toml"), py::arg("origin"), py::arg("geometry"),
         py::arg("path"), py::arg("command"), py::arg("model_fluence"), py::arg("progress"));
   m.def("fit_file", &sp::fit_file, py::arg("path"), py::arg("csv"), py::arg("models"),

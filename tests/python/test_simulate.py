@@ -2,6 +2,7 @@
 errors, and the physics against the exact references."""
 
 import math
+import tomllib
 
 import numpy as np
 import pytest
@@ -79,6 +80,33 @@ def test_keywords_run_the_sphere_and_the_slab(tmp_path, run_program):
                                            n_below=1.0, photons=4000, batches=4, seed=1))
     run_program("simulate", scene, "--out", tmp_path / "cli.h5")
     assert_same_tallies(slab, scatterlab.open(tmp_path / "cli.h5"))
+
+
+def test_a_scene_is_built_printed_changed_and_run(tmp_path, run_program):
+    layers = [{"mu_a": 0.1, "mu_s": 10.0, "g": 0.8, "n": 1.4, "thickness": 0.1},
+              {"mu_a": 0.5, "mu_s": 20.0, "g": 0.9, "n": 1.4, "thickness": math.inf}]
+    scene = scatterlab.Scene(geometry="slab", layers=layers, photons=4000, batches=4)
+    assert scene.geometry == "slab" and "[[layers]]" in str(scene)
+    assert scene.set(seed=1, n_above=1.0) is scene
+    assert scene.tables["run"] == {"photons": 4000, "batches": 4, "seed": 1}
+    assert tomllib.loads(str(scene)) == scene.tables
+    # A refused change names its field and leaves the scene as it was.
+    before = str(scene)
+    with pytest.raises(ValueError, match=r"^layers\[1\]\.g: "):
+        scene.set(layers=[{**layers[0], "g": 1.5}])
+    with pytest.raises(ValueError, match=r"^radius: unknown keyword for a slab scene"):
+        scene.set(radius=2.0)
+    assert str(scene) == before
+    # Its text is the file the program runs, to the same bits.
+    (tmp_path / "slab.toml").write_text(str(scene))
+    run_program("simulate", tmp_path / "slab.toml", "--out", tmp_path / "cli.h5")
+    result = scene.run(out=tmp_path / "py.h5")
+    assert_same_tallies(result, scatterlab.open(tmp_path / "cli.h5"))
+    # Any geometry: a sphere from keywords alone.
+    sphere = scatterlab.Scene(geometry="sphere", radius=2.0, albedo=0.8, photons=2000,
+                              batches=2, seed=4)
+    assert sphere.run().parameters["radius"] == 2.0
+    assert scatterlab.Scene(tmp_path / "slab.toml").tables == scene.tables
 
 
 def test_bad_input_is_a_value_error_naming_the_field(tmp_path, run_program):
