@@ -95,27 +95,21 @@ void run_scene(const std::string& toml, const std::string& origin, const std::st
   const std::filesystem::path out_path(path);
   without_gil(progress, [&](const ProgressCallback& callback, const RunControl& control,
                             const std::atomic<bool>& stopped) {
-    std::visit(
-        [&](auto& spec) {
+    const TransportOutput out = std::visit(
+        [&](const auto& spec) {
           using Spec = std::decay_t<decltype(spec)>;
-          TransportOutput out;
           if constexpr (std::is_same_v<Spec, SimulationSpec>) {
-            out = simulate(spec, callback, control);
+            return simulate(spec, callback, control);
           } else if constexpr (std::is_same_v<Spec, SearchlightSpec>) {
-            out = run_searchlight(spec, callback, control);
+            return run_searchlight(spec, callback, control);
           } else if constexpr (std::is_same_v<Spec, LitSphereSpec>) {
-            out = run_lit_sphere(spec, callback, control);
+            return run_lit_sphere(spec, callback, control);
           } else {
-            out = run_layered_slab(spec, callback, control);
-          }
-          if (stopped) return;
-          if constexpr (std::is_same_v<Spec, SearchlightSpec>) {
-            write_run_result(out_path, spec, out, command, model_fluence);
-          } else {
-            write_run_result(out_path, spec, out, command);
+            return run_layered_slab(spec, callback, control);
           }
         },
         scene.spec);
+    if (!stopped) write_run_result(out_path, scene.spec, out, command, model_fluence);
   });
 }
 

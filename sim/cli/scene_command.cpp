@@ -111,12 +111,12 @@ void refuse_other_flags(const CLI::App& command, const Scene& scene, const std::
     }
     const std::string where =
         file.empty() ? "the built-in scene's geometry" : fmt::format("{}'s geometry.type", file);
-    throw InputError(name,
-                     fmt::format("given, but {} is \"{}\", which does not take it", where,
-                                 scene.geometry()),
-                     fmt::format("for the geometry \"{}\": {}, and the outputs, checkpoint, "
-                                 "--log-interval and --memory-limit flags",
-                                 scene.geometry(), fmt::join(taken, ", ")));
+    throw InputError(
+        name,
+        fmt::format("given, but {} is \"{}\", which does not take it", where, scene.geometry()),
+        fmt::format("for the geometry \"{}\": {}, and the outputs, checkpoint, "
+                    "--log-interval and --memory-limit flags",
+                    scene.geometry(), fmt::join(taken, ", ")));
   }
 }
 
@@ -510,17 +510,10 @@ int run_one(PlannedRun run, const std::string& command, const SceneOptions& o,
         return run_spec(run.spec, progress, control);
       },
       [&](const std::filesystem::path& path, const TransportOutput& out) {
-        std::visit(
-            [&](auto& s) {
-              std::vector<ModelResult> models;
-              if constexpr (std::is_same_v<std::decay_t<decltype(s)>, SearchlightSpec>) {
-                models = write_run_result(path, s, out, command_line, o.model_fluence);
-              } else {
-                models = write_run_result(path, s, out, command_line);
-              }
-              print_summary(command, s, out, models, path.string());
-            },
-            run.spec);
+        const std::vector<ModelResult> models =
+            write_run_result(path, run.spec, out, command_line, o.model_fluence);
+        std::visit([&](const auto& s) { print_summary(command, s, out, models, path.string()); },
+                   run.spec);
       });
 }
 

@@ -1,5 +1,8 @@
 #include "scatterlab/validate/run_file.hpp"
 
+#include <type_traits>
+#include <variant>
+
 #include "scatterlab/tally/scalar_estimate.hpp"
 #include "scatterlab/validate/point_source_models.hpp"
 #include "scatterlab/validate/searchlight_models.hpp"
@@ -36,6 +39,20 @@ std::vector<ModelResult> write_run_result(const std::filesystem::path& path, Lay
   spec.run.threads = out.threads;
   write_layered_slab_file(path, spec, out.tallies, run_provenance(out, command));
   return {};
+}
+
+std::vector<ModelResult> write_run_result(const std::filesystem::path& path, SceneSpec& spec,
+                                          const TransportOutput& out, const std::string& command,
+                                          bool model_fluence) {
+  return std::visit(
+      [&](auto& s) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(s)>, SearchlightSpec>) {
+          return write_run_result(path, s, out, command, model_fluence);
+        } else {
+          return write_run_result(path, s, out, command);
+        }
+      },
+      spec);
 }
 
 }  // namespace scatterlab

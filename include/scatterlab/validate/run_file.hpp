@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/transport/engine.hpp"
 #include "scatterlab/transport/layered_slab.hpp"
@@ -31,5 +32,11 @@ std::vector<ModelResult> write_run_result(const std::filesystem::path& path, Lit
 
 std::vector<ModelResult> write_run_result(const std::filesystem::path& path, LayeredSlabSpec& spec,
                                           const TransportOutput& out, const std::string& command);
+
+// A scene's run of any geometry, by the overload of its geometry (`model_fluence`: the
+// half-space's; refused by the caller elsewhere).
+std::vector<ModelResult> write_run_result(const std::filesystem::path& path, SceneSpec& spec,
+                                          const TransportOutput& out, const std::string& command,
+                                          bool model_fluence);
 
 }  // namespace scatterlab
