@@ -33,6 +33,10 @@ class Axis:
     edges: np.ndarray
     units: str
 
+    def __repr__(self) -> str:
+        return (f"<scatterlab.Axis {self.name}: {self.edges.size - 1} bins over "
+                f"[{self.edges[0]:g}, {self.edges[-1]:g}] {self.units}>")
+
     @property
     def centres(self) -> np.ndarray:
         """The bins' midpoints."""
@@ -58,6 +62,11 @@ class Tally:
             e = self.edges[dim]
             return 0.5 * (e[:-1] + e[1:])
         return np.arange(self.mean.shape[self.dims.index(dim)])
+
+    def __repr__(self) -> str:
+        shape = " x ".join(map(str, self.mean.shape)) or "scalar"
+        dims = f" over ({', '.join(self.dims)})" if self.dims else ""
+        return f"<scatterlab.Tally {self.name} [{shape}]{dims} in {self.units}: {self.description}>"
 
     def to_xarray(self):
         """An ``xarray.Dataset`` with ``mean`` and ``stderr`` over the named dimensions, bin
@@ -125,7 +134,9 @@ class Result:
             ds = tally.to_xarray().rename({"mean": name, "stderr": f"{name}_stderr"})
             ds.attrs = {}
             parts.append(ds)
-        merged = xr.merge(parts, combine_attrs="drop") if parts else xr.Dataset()
+        # Attributes that agree are kept (each variable's units and description, a shared
+        # coordinate's units and edges); the tallies' own dataset attributes were cleared above.
+        merged = xr.merge(parts, combine_attrs="drop_conflicts") if parts else xr.Dataset()
         merged.attrs.update({k: v for k, v in self.attrs.items() if _plain(v)})
         merged.attrs.update({f"parameters.{k}": v for k, v in self.parameters.items()
                              if _plain(v)})

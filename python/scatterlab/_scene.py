@@ -20,6 +20,7 @@ replaces it.
 
 from __future__ import annotations
 
+import difflib
 import json
 import math
 import numbers
@@ -113,9 +114,11 @@ def apply_keys(doc: dict, geometry: str | None, keys: dict[str, Any]) -> str:
         elif key in tables:
             _merge(doc, {tables[key]: {key: value}})
         else:
-            accepted = ", ".join(sorted(set(tables) | set(TABLES) | {"scene", "out"}))
-            raise ValueError(f"{key}: unknown keyword for a {geometry} scene; accepted: "
-                             f"{accepted}")
+            names = sorted(set(tables) | set(TABLES) | {"scene", "out"})
+            nearest = difflib.get_close_matches(key, names, n=1)
+            hint = f', did you mean "{nearest[0]}"?' if nearest else ""
+            raise ValueError(f"{key}: unknown keyword for the geometry {geometry!r}{hint}; "
+                             f"accepted: {', '.join(names)}")
     # The text names its geometry, so that it reads the same on its own (scatterlab simulate).
     doc.setdefault("geometry", {}).setdefault("type", geometry)
     order = {table: i for i, table in enumerate(TABLES)}

@@ -94,7 +94,7 @@ def test_a_scene_is_built_printed_changed_and_run(tmp_path, run_program):
     before = str(scene)
     with pytest.raises(ValueError, match=r"^layers\[1\]\.g: "):
         scene.set(layers=[{**layers[0], "g": 1.5}])
-    with pytest.raises(ValueError, match=r"^radius: unknown keyword for a slab scene"):
+    with pytest.raises(ValueError, match=r"^radius: unknown keyword for the geometry 'slab'"):
         scene.set(radius=2.0)
     assert str(scene) == before
     # Its text is the file the program runs, to the same bits.
@@ -130,7 +130,7 @@ def test_bad_input_is_a_value_error_naming_the_field(tmp_path, run_program):
         scatterlab.simulate(medium={"albdo": 0.9})
     with pytest.raises(ValueError, match=r"^grid\.r\.bins: "):
         scatterlab.simulate(r={"max": 2, "bins": -3})
-    with pytest.raises(ValueError, match=r"^albdo: unknown keyword .*albedo"):
+    with pytest.raises(ValueError, match=r'^albdo: unknown keyword .*did you mean "albedo"\?'):
         scatterlab.simulate(albdo=0.9)
     # The half-space's reader names the index surface.eta, whichever table gave it.
     with pytest.raises(ValueError, match=r"^surface\.eta: got 50"):
@@ -199,6 +199,16 @@ def test_xarray_has_named_dimensions_and_bin_centres():
     assert np.array_equal(whole["radiance"].values, r.tallies["radiance"].mean)
     assert whole["radiance"].dims == ("r", "z", "theta", "phi")
     assert whole.attrs["parameters.albedo"] == r.parameters["albedo"]
+    assert repr(r.tallies["fluence"]) == (
+        f"<scatterlab.Tally fluence [15 x 40] over (r, z) in {r.tallies['fluence'].units}: "
+        f"{r.tallies['fluence'].description}>")
+    assert repr(r.grid["z"]).startswith("<scatterlab.Axis z: 40 bins over [")
+    # Each variable keeps its units and description, each coordinate its units and edges.
+    for name, tally in r.tallies.items():
+        assert whole[name].attrs["units"] == tally.units, name
+        assert whole[name].attrs["description"] == tally.description, name
+    assert whole["z"].attrs["units"] == r.grid["z"].units
+    assert np.array_equal(whole["z"].attrs["edges"], edges)
 
 
 def test_the_run_releases_the_gil():
