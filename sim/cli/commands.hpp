@@ -19,6 +19,8 @@ Action add_simulate_command(CLI::App& app, const std::string& command_line, Worl
 Action add_searchlight_command(CLI::App& app, const std::string& command_line, World& world);
 // scatterlab scene: the scene's keys (io/scene_schema.hpp), as a JSON Schema or a reference.
 Action add_scene_command(CLI::App& app);
+// scatterlab materials [NAME]: the measured media of data/materials, compiled in.
+Action add_materials_command(CLI::App& app);
 Action add_info_command(CLI::App& app);
 Action add_fit_command(CLI::App& app);
 Action add_validate_command(CLI::App& app);

@@ -20,6 +20,7 @@ std::vector<Command> core_commands(CLI::App& app, const std::string& command_lin
   commands.push_back({"simulate", add_simulate_command(app, command_line, world)});
   commands.push_back({"searchlight", add_searchlight_command(app, command_line, world)});
   commands.push_back({"scene", add_scene_command(app)});
+  commands.push_back({"materials", add_materials_command(app)});
   commands.push_back({"info", add_info_command(app)});
   commands.push_back({"validate", add_validate_command(app)});
   commands.push_back({"merge", add_merge_command(app, command_line)});

@@ -64,12 +64,15 @@ std::vector<double> numbers_at(const toml::table& table, const std::string& path
   return values;
 }
 
-// Lower case, with spaces and hyphens as underscores: "Regular Milk" -> "regular_milk".
+// Lower case, without spaces, hyphens or underscores, so that a name matches however its words
+// are joined: "Regular Milk", "regular-milk" and "regular_milk" are "regularmilk", and "skim milk"
+// is Jensen's "skimmilk".
 std::string normalised(std::string_view name) {
   std::string key;
   for (const char c : name) {
-    key += (c == ' ' || c == '-') ? '_'
-                                  : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (c != ' ' && c != '-' && c != '_') {
+      key += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    }
   }
   return key;
 }
@@ -201,7 +204,8 @@ ResolvedMaterial resolve_material(const MaterialRequest& request, const Material
       names.push_back(preset.name);
       candidates.push_back(preset.name);
       candidates.push_back(library.id + "/" + preset.name);
-      if ((library_part.empty() || library_part == library.id) && preset.name == name_part) {
+      if ((library_part.empty() || library_part == normalised(library.id)) &&
+          normalised(preset.name) == name_part) {
         found.emplace_back(&library, &preset);
       }
     }

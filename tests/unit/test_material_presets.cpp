@@ -187,6 +187,11 @@ TEST(MaterialPresets, GChoiceAndUnits) {
   EXPECT_DOUBLE_EQ(milk.medium.g, 0.2);
   EXPECT_NEAR(milk.medium.sigma_s(), 1.4589, 1e-12);
   EXPECT_EQ(milk.origin.name, "regular_milk");
+  // However its words are joined: Jensen writes "skimmilk", a user "skim milk" or "Skim-Milk".
+  for (const char* name : {"skim milk", "Skim-Milk", "skim_milk", "jensen2001/skim milk"}) {
+    EXPECT_EQ(resolve_material({name, "red", {}, {}}, scene_fields).origin.name, "skimmilk")
+        << name;
+  }
   // 1/mm -> 1/cm: ten times larger.
   const ResolvedMaterial in_cm = resolve_material({"apple", "red", "cm", {}}, scene_fields);
   EXPECT_EQ(in_cm.medium.length_unit, "cm");

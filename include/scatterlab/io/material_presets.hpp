@@ -71,8 +71,8 @@ struct ResolvedMaterial {
   double eta = 1.0;  // the table's relative index of refraction
 };
 
-// The medium of one channel of a named material. Names are matched ignoring case, with spaces
-// and hyphens read as underscores ("Regular Milk" is regular_milk). Every library is searched: a
+// The medium of one channel of a named material. Names are matched ignoring case, spaces, hyphens
+// and underscores ("Regular Milk" is regular_milk, "skim milk" skimmilk). Every library is searched: a
 // name in two libraries must be qualified, an unknown name is one InputError naming
 // fields.material that lists the accepted names and the nearest one ("did you mean").
 //   sigma_s and g given (Narasimhan): sigma_s and sigma_a as tabulated; g from the table unless
