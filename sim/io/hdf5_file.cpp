@@ -11,7 +11,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -203,15 +202,20 @@ struct ListedName {
   std::int64_t order = 0;
 };
 
-// Lists names in creation order where the file recorded it (every file the program writes), and
-// by name where it did not (files from other writers). `iterate` walks them in HDF5's own
-// ("native") order: in any other, HDF5 1.10 first builds a table of every link or attribute, and
-// frees entries it never set when a damaged file stops it half way (a crash:
+// Collects each name HDF5 lists, of links (H5L_info_t) and attributes (H5A_info_t) alike.
+template <class Info>
+herr_t collect_listed(hid_t, const char* name, const Info* info, void* data) {
+  static_cast<std::vector<ListedName>*>(data)->push_back(
+      {name, info->corder_valid != 0, static_cast<std::int64_t>(info->corder)});
+  return 0;
+}
+
+// The names in creation order where the file recorded it (every file the program writes), and by
+// name where it did not (files from other writers). They are listed in HDF5's own ("native")
+// order: in any other, HDF5 1.10 first builds a table of every link or attribute, and frees
+// entries it never set when a damaged file stops it half way (a crash:
 // tests/fuzz/libhdf5/dense-link-free.h5). So the order is the program's sort, not HDF5's.
-std::vector<std::string> list_names(const std::function<herr_t(std::vector<ListedName>*)>& iterate,
-                                    std::string_view what, const std::string& where) {
-  std::vector<ListedName> listed;
-  check_status(iterate(&listed), what, where);
+std::vector<std::string> sorted_names(std::vector<ListedName> listed) {
   const bool ordered =
       std::all_of(listed.begin(), listed.end(), [](const ListedName& n) { return n.has_order; });
   std::sort(listed.begin(), listed.end(), [ordered](const ListedName& a, const ListedName& b) {
@@ -320,15 +324,11 @@ bool Object::has_attribute(std::string_view name) const {
 }
 
 std::vector<std::string> Object::attribute_names() const {
-  auto iterate = [this](std::vector<ListedName>* names) {
-    auto callback = [](hid_t, const char* name, const H5A_info_t* info, void* data) -> herr_t {
-      static_cast<std::vector<ListedName>*>(data)->push_back(
-          {name, info->corder_valid != 0, static_cast<std::int64_t>(info->corder)});
-      return 0;
-    };
-    return H5Aiterate2(id(), H5_INDEX_NAME, H5_ITER_NATIVE, nullptr, callback, names);
-  };
-  return list_names(iterate, "list attributes", location());
+  std::vector<ListedName> listed;
+  check_status(H5Aiterate2(id(), H5_INDEX_NAME, H5_ITER_NATIVE, nullptr, collect_listed<H5A_info_t>,
+                           &listed),
+               "list attributes", location());
+  return sorted_names(std::move(listed));
 }
 
 AttributeType Object::attribute_type(std::string_view name) const {
@@ -598,15 +598,11 @@ void Group::remove_member(std::string_view name) {
 }
 
 std::vector<std::string> Group::member_names() const {
-  auto iterate = [this](std::vector<ListedName>* names) {
-    auto callback = [](hid_t, const char* name, const H5L_info_t* info, void* data) -> herr_t {
-      static_cast<std::vector<ListedName>*>(data)->push_back(
-          {name, info->corder_valid != 0, static_cast<std::int64_t>(info->corder)});
-      return 0;
-    };
-    return H5Literate(id(), H5_INDEX_NAME, H5_ITER_NATIVE, nullptr, callback, names);
-  };
-  return list_names(iterate, "list members", location());
+  std::vector<ListedName> listed;
+  check_status(
+      H5Literate(id(), H5_INDEX_NAME, H5_ITER_NATIVE, nullptr, collect_listed<H5L_info_t>, &listed),
+      "list members", location());
+  return sorted_names(std::move(listed));
 }
 
 // ---------------------------------------------------------------------------------------------
