@@ -28,7 +28,7 @@ namespace {
 using bench::lit_sphere;
 
 template <class Phase, bool fresnel>
-void run_walk(benchmark::State& state, const Phase& phase, const LitSphereSpec& spec) {
+void run_walk(benchmark::State& state, const Phase& phase, const LitObjectSpec& spec) {
   const TransportProblem problem = transport_problem(spec);
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
@@ -39,12 +39,12 @@ void run_walk(benchmark::State& state, const Phase& phase, const LitSphereSpec& 
 }
 
 template <class Phase>
-void Sphere(benchmark::State& state, Phase phase, LitSphereSpec spec) {
+void Sphere(benchmark::State& state, Phase phase, LitObjectSpec spec) {
   if (spec.eta != 1.0) return run_walk<Phase, true>(state, phase, spec);
   run_walk<Phase, false>(state, phase, spec);
 }
 
-void SphereLanes(benchmark::State& state, LitSphereSpec spec) {
+void SphereLanes(benchmark::State& state, LitObjectSpec spec) {
   const TransportProblem problem = transport_problem(spec);
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
@@ -61,17 +61,17 @@ const HenyeyGreenstein hg075{0.75};
 
 // Benchmark names are not numbers: the formatter would split hg_g0.75 into hg_g0 .75.
 // clang-format off
-BENCHMARK_CAPTURE(Sphere, pole_R10_iso_albedo0.99_eta1, iso, lit_sphere(0.99, 0.0, 1.0, 10.0, SphereLight::pole_beam));
-BENCHMARK_CAPTURE(Sphere, pole_R10_iso_albedo0.99_eta1.33, iso, lit_sphere(0.99, 0.0, 1.33, 10.0, SphereLight::pole_beam));
-BENCHMARK_CAPTURE(Sphere, pole_R10_hg_g0.75_albedo0.9_eta1.33, hg075, lit_sphere(0.9, 0.75, 1.33, 10.0, SphereLight::pole_beam));
-BENCHMARK_CAPTURE(Sphere, directional_R1_iso_albedo0.99_eta1.33, iso, lit_sphere(0.99, 0.0, 1.33, 1.0, SphereLight::directional));
-BENCHMARK_CAPTURE(Sphere, directional_R10_iso_albedo0.99_eta1.33, iso, lit_sphere(0.99, 0.0, 1.33, 10.0, SphereLight::directional));
-BENCHMARK_CAPTURE(SphereLanes, pole_R10_iso_albedo0.99_eta1, lit_sphere(0.99, 0.0, 1.0, 10.0, SphereLight::pole_beam));
-BENCHMARK_CAPTURE(SphereLanes, pole_R10_iso_albedo0.99_eta1.33, lit_sphere(0.99, 0.0, 1.33, 10.0, SphereLight::pole_beam));
-BENCHMARK_CAPTURE(SphereLanes, pole_R10_hg_g0.75_albedo0.9_eta1.33, lit_sphere(0.9, 0.75, 1.33, 10.0, SphereLight::pole_beam));
-BENCHMARK_CAPTURE(SphereLanes, directional_R1_iso_albedo0.99_eta1.33, lit_sphere(0.99, 0.0, 1.33, 1.0, SphereLight::directional));
-BENCHMARK_CAPTURE(SphereLanes, directional_R10_iso_albedo0.99_eta1.33, lit_sphere(0.99, 0.0, 1.33, 10.0, SphereLight::directional));
-BENCHMARK_CAPTURE(SphereLanes, directional_R100_iso_albedo0.99_eta1.33, lit_sphere(0.99, 0.0, 1.33, 100.0, SphereLight::directional));
+BENCHMARK_CAPTURE(Sphere, pole_R10_iso_albedo0.99_eta1, iso, lit_sphere(0.99, 0.0, 1.0, 10.0, ObjectLight::pole_beam));
+BENCHMARK_CAPTURE(Sphere, pole_R10_iso_albedo0.99_eta1.33, iso, lit_sphere(0.99, 0.0, 1.33, 10.0, ObjectLight::pole_beam));
+BENCHMARK_CAPTURE(Sphere, pole_R10_hg_g0.75_albedo0.9_eta1.33, hg075, lit_sphere(0.9, 0.75, 1.33, 10.0, ObjectLight::pole_beam));
+BENCHMARK_CAPTURE(Sphere, directional_R1_iso_albedo0.99_eta1.33, iso, lit_sphere(0.99, 0.0, 1.33, 1.0, ObjectLight::directional));
+BENCHMARK_CAPTURE(Sphere, directional_R10_iso_albedo0.99_eta1.33, iso, lit_sphere(0.99, 0.0, 1.33, 10.0, ObjectLight::directional));
+BENCHMARK_CAPTURE(SphereLanes, pole_R10_iso_albedo0.99_eta1, lit_sphere(0.99, 0.0, 1.0, 10.0, ObjectLight::pole_beam));
+BENCHMARK_CAPTURE(SphereLanes, pole_R10_iso_albedo0.99_eta1.33, lit_sphere(0.99, 0.0, 1.33, 10.0, ObjectLight::pole_beam));
+BENCHMARK_CAPTURE(SphereLanes, pole_R10_hg_g0.75_albedo0.9_eta1.33, lit_sphere(0.9, 0.75, 1.33, 10.0, ObjectLight::pole_beam));
+BENCHMARK_CAPTURE(SphereLanes, directional_R1_iso_albedo0.99_eta1.33, lit_sphere(0.99, 0.0, 1.33, 1.0, ObjectLight::directional));
+BENCHMARK_CAPTURE(SphereLanes, directional_R10_iso_albedo0.99_eta1.33, lit_sphere(0.99, 0.0, 1.33, 10.0, ObjectLight::directional));
+BENCHMARK_CAPTURE(SphereLanes, directional_R100_iso_albedo0.99_eta1.33, lit_sphere(0.99, 0.0, 1.33, 100.0, ObjectLight::directional));
 // clang-format on
 
 }  // namespace

@@ -38,9 +38,9 @@ namespace scatterlab {
 namespace {
 
 // The lit sphere's problem on `mesh`, which lies within `radius` of the origin.
-LitSphereSpec mesh_spec(TriangleMesh mesh, double albedo, double g, double eta, SphereLight light,
+LitObjectSpec mesh_spec(TriangleMesh mesh, double albedo, double g, double eta, ObjectLight light,
                         double radius = 10.0) {
-  LitSphereSpec spec = bench::lit_sphere(albedo, g, eta, radius, light);
+  LitObjectSpec spec = bench::lit_sphere(albedo, g, eta, radius, light);
   spec.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
   return spec;
 }
@@ -49,8 +49,8 @@ LitSphereSpec mesh_spec(TriangleMesh mesh, double albedo, double g, double eta, 
 enum class Walker { one_photon, lanes };
 
 template <class Phase, bool fresnel>
-void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitSphereSpec& spec,
-                   SphereLight kind, Walker walker) {
+void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitObjectSpec& spec,
+                   ObjectLight kind, Walker walker) {
   const TransportProblem problem = transport_problem(spec);
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
@@ -60,7 +60,7 @@ void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitSphereS
   // The beam aims at the pole a hair off the axis; the directional light covers the sphere
   // that holds the mesh.
   const MeshLight<fresnel> light(
-      boundary, kind == SphereLight::directional ? Kind::directional : Kind::beam,
+      boundary, kind == ObjectLight::directional ? Kind::directional : Kind::beam,
       Vec3(1e-3, 2e-3, -2.0 * spec.radius), Vec3::UnitZ(), Vec3::Zero(), spec.radius);
   if (walker == Walker::lanes) {
     const LaneWalk walk(*object_boundary(boundary, light), scorer, problem.albedo,
@@ -80,8 +80,8 @@ void run_mesh_walk(benchmark::State& state, const Phase& phase, const LitSphereS
 // The lit sphere's problem on `mesh`, within `radius` of the origin, with either walk.
 template <class Phase>
 void mesh_walk(benchmark::State& state, const Phase& phase, TriangleMesh mesh, double radius,
-               double albedo, double g, double eta, SphereLight kind, Walker walker) {
-  const LitSphereSpec spec = mesh_spec(std::move(mesh), albedo, g, eta, kind, radius);
+               double albedo, double g, double eta, ObjectLight kind, Walker walker) {
+  const LitObjectSpec spec = mesh_spec(std::move(mesh), albedo, g, eta, kind, radius);
   if (eta != 1.0) return run_mesh_walk<Phase, true>(state, phase, spec, kind, walker);
   run_mesh_walk<Phase, false>(state, phase, spec, kind, walker);
 }
@@ -104,7 +104,7 @@ TriangleMesh bumpy_mesh(double radius) {
 // the two rows differ by the mesh's boundary test and its light alone.
 template <class Phase>
 void BlockLanes(benchmark::State& state, Phase phase, double albedo, double g, double eta,
-                SphereLight kind) {
+                ObjectLight kind) {
   TriangleMesh block = make_box(Vec3(100.0, 100.0, 100.0));
   for (Vec3& p : block.positions) p.z() += 90.0;
   mesh_walk(state, phase, std::move(block), 10.0, albedo, g, eta, kind, Walker::lanes);
@@ -112,19 +112,19 @@ void BlockLanes(benchmark::State& state, Phase phase, double albedo, double g, d
 
 template <class Phase>
 void Mesh(benchmark::State& state, Phase phase, double albedo, double g, double eta,
-          SphereLight kind) {
+          ObjectLight kind) {
   mesh_walk(state, phase, sphere_mesh(10.0), 10.0, albedo, g, eta, kind, Walker::one_photon);
 }
 
 template <class Phase>
 void MeshLanes(benchmark::State& state, Phase phase, double albedo, double g, double eta,
-               SphereLight kind, double radius = 10.0) {
+               ObjectLight kind, double radius = 10.0) {
   mesh_walk(state, phase, sphere_mesh(radius), radius, albedo, g, eta, kind, Walker::lanes);
 }
 
 template <class Phase>
 void BumpyMesh(benchmark::State& state, Phase phase, double albedo, double g, double eta,
-               SphereLight kind) {
+               ObjectLight kind) {
   mesh_walk(state, phase, bumpy_mesh(10.0), 10.0, albedo, g, eta, kind, Walker::one_photon);
 }
 
@@ -133,20 +133,20 @@ const HenyeyGreenstein hg075{0.75};
 
 // Benchmark names are not numbers: the formatter would split hg_g0.75 into hg_g0 .75.
 // clang-format off
-BENCHMARK_CAPTURE(Mesh, beam_R10_iso_albedo0.99_eta1, iso, 0.99, 0.0, 1.0, SphereLight::beam);
-BENCHMARK_CAPTURE(Mesh, beam_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::beam);
-BENCHMARK_CAPTURE(Mesh, beam_R10_hg_g0.75_albedo0.9_eta1.33, hg075, 0.9, 0.75, 1.33, SphereLight::beam);
-BENCHMARK_CAPTURE(Mesh, directional_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional);
-BENCHMARK_CAPTURE(MeshLanes, beam_R10_iso_albedo0.99_eta1, iso, 0.99, 0.0, 1.0, SphereLight::beam);
-BENCHMARK_CAPTURE(MeshLanes, beam_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::beam);
-BENCHMARK_CAPTURE(MeshLanes, beam_R10_hg_g0.75_albedo0.9_eta1.33, hg075, 0.9, 0.75, 1.33, SphereLight::beam);
-BENCHMARK_CAPTURE(MeshLanes, directional_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional);
-BENCHMARK_CAPTURE(MeshLanes, directional_R100_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional, 100.0);
-BENCHMARK_CAPTURE(BlockLanes, beam_iso_albedo0.99_eta1, iso, 0.99, 0.0, 1.0, SphereLight::beam);
-BENCHMARK_CAPTURE(BlockLanes, beam_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::beam);
-BENCHMARK_CAPTURE(BlockLanes, beam_hg_g0.75_albedo0.9_eta1.33, hg075, 0.9, 0.75, 1.33, SphereLight::beam);
-BENCHMARK_CAPTURE(BlockLanes, directional_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional);
-BENCHMARK_CAPTURE(BumpyMesh, directional_R9_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, SphereLight::directional);
+BENCHMARK_CAPTURE(Mesh, beam_R10_iso_albedo0.99_eta1, iso, 0.99, 0.0, 1.0, ObjectLight::beam);
+BENCHMARK_CAPTURE(Mesh, beam_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, ObjectLight::beam);
+BENCHMARK_CAPTURE(Mesh, beam_R10_hg_g0.75_albedo0.9_eta1.33, hg075, 0.9, 0.75, 1.33, ObjectLight::beam);
+BENCHMARK_CAPTURE(Mesh, directional_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, ObjectLight::directional);
+BENCHMARK_CAPTURE(MeshLanes, beam_R10_iso_albedo0.99_eta1, iso, 0.99, 0.0, 1.0, ObjectLight::beam);
+BENCHMARK_CAPTURE(MeshLanes, beam_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, ObjectLight::beam);
+BENCHMARK_CAPTURE(MeshLanes, beam_R10_hg_g0.75_albedo0.9_eta1.33, hg075, 0.9, 0.75, 1.33, ObjectLight::beam);
+BENCHMARK_CAPTURE(MeshLanes, directional_R10_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, ObjectLight::directional);
+BENCHMARK_CAPTURE(MeshLanes, directional_R100_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, ObjectLight::directional, 100.0);
+BENCHMARK_CAPTURE(BlockLanes, beam_iso_albedo0.99_eta1, iso, 0.99, 0.0, 1.0, ObjectLight::beam);
+BENCHMARK_CAPTURE(BlockLanes, beam_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, ObjectLight::beam);
+BENCHMARK_CAPTURE(BlockLanes, beam_hg_g0.75_albedo0.9_eta1.33, hg075, 0.9, 0.75, 1.33, ObjectLight::beam);
+BENCHMARK_CAPTURE(BlockLanes, directional_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, ObjectLight::directional);
+BENCHMARK_CAPTURE(BumpyMesh, directional_R9_iso_albedo0.99_eta1.33, iso, 0.99, 0.0, 1.33, ObjectLight::directional);
 // clang-format on
 
 }  // namespace

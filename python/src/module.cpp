@@ -34,7 +34,7 @@
 #include "scatterlab/refract/half_space_single_scatter.hpp"
 #include "scatterlab/transport/engine.hpp"
 #include "scatterlab/transport/layered_slab.hpp"
-#include "scatterlab/transport/lit_sphere.hpp"
+#include "scatterlab/transport/lit_object.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/transport/simulate.hpp"
 #include "scatterlab/validate/run_file.hpp"
@@ -102,7 +102,7 @@ void run_scene(const std::string& toml, const std::string& origin, const std::st
             return simulate(spec, callback, control);
           } else if constexpr (std::is_same_v<Spec, SearchlightSpec>) {
             return run_searchlight(spec, callback, control);
-          } else if constexpr (std::is_same_v<Spec, LitSphereSpec>) {
+          } else if constexpr (std::is_same_v<Spec, LitObjectSpec>) {
             return run_lit_sphere(spec, callback, control);
           } else {
             return run_layered_slab(spec, callback, control);

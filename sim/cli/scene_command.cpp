@@ -257,7 +257,7 @@ void apply_flags(const CLI::App& command, const SceneOptions& o, const Scene& sc
                                "--model-fluence with the fluence tally on (--tallies fluence)");
             }
           },
-          [&](LitSphereSpec& s) {
+          [&](LitObjectSpec& s) {
             medium_flags(s.medium, s.material, &s.eta);
             if (given("--split-orders")) s.split_by_order = o.split_orders;
             apply_run_options(command, o.run, s.run);
@@ -274,7 +274,7 @@ void apply_flags(const CLI::App& command, const SceneOptions& o, const Scene& sc
 // A mesh scene's object, read as render reads its [mesh] table, and checked as a lit object
 // (closed, not passing through itself, clear of its light); without the renderer's libraries
 // (Embree, tinyobjloader) there is no mesh to run.
-void build_mesh(const Scene& scene, const std::string& file, LitSphereSpec& spec) {
+void build_mesh(const Scene& scene, const std::string& file, LitObjectSpec& spec) {
 #ifdef SCATTERLAB_WITH_RENDER
   const std::filesystem::path path(file);
   SceneMesh mesh = parse_scene_mesh(*scene.mesh_text, file, path.parent_path());
@@ -350,10 +350,10 @@ RunPlan plan_runs(const CLI::App& command, const SceneOptions& o, std::string_vi
   for (SweepPoint& point : points) {
     Scene& scene = point.scene;
     refuse_other_flags(command, scene, file);
-    if (scene.mesh_text) build_mesh(scene, file, std::get<LitSphereSpec>(scene.spec));
+    if (scene.mesh_text) build_mesh(scene, file, std::get<LitObjectSpec>(scene.spec));
     apply_flags(command, o, scene, scene.spec);
 #ifdef SCATTERLAB_WITH_RENDER
-    if (scene.mesh_text) check_lit_mesh(std::get<LitSphereSpec>(scene.spec));
+    if (scene.mesh_text) check_lit_mesh(std::get<LitObjectSpec>(scene.spec));
 #endif
     const std::string fallback(default_output(scene.geometry()));
     std::filesystem::path output;
@@ -443,7 +443,7 @@ void print_summary(const std::string& command, const SearchlightSpec& spec,
   fmt::print("  wrote {}\n", path);
 }
 
-void print_summary(const std::string& command, const LitSphereSpec& spec,
+void print_summary(const std::string& command, const LitObjectSpec& spec,
                    const TransportOutput& out, const std::vector<ModelResult>&,
                    const std::string& path) {
   const std::string object =
@@ -485,7 +485,7 @@ TransportOutput run_spec(const SceneSpec& spec, const ProgressCallback& progress
   return std::visit(
       Overloaded{[&](const SimulationSpec& s) { return simulate(s, progress, control); },
                  [&](const SearchlightSpec& s) { return run_searchlight(s, progress, control); },
-                 [&](const LitSphereSpec& s) {
+                 [&](const LitObjectSpec& s) {
 #ifdef SCATTERLAB_WITH_RENDER
                    if (s.mesh) return run_lit_mesh(s, progress, control);
 #endif

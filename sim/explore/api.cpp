@@ -393,7 +393,7 @@ std::string ExploreApi::files() const {
 
 namespace {
 
-// A path-traced lit sphere (transport/lit_sphere.hpp, simulate on a sphere scene) under the
+// A path-traced lit sphere (transport/lit_object.hpp, simulate on a sphere scene) under the
 // directional light, for the lit sphere panel (Bitterli §3.1.3: the path tracer beside the
 // BSSRDF integrated over the sphere): M(psi) of every order and by order, as the file holds
 // them, per unit power meeting the sphere, and the medium, index and radius to compare with.

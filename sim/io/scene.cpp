@@ -146,9 +146,9 @@ class SceneReader : public TomlReader {
 
   // The lit sphere's scene (scene.hpp): [geometry] type = "sphere", radius, eta; [source] type;
   // [grid] psi, azimuth; [tallies] split_by_order; the medium, run and output as above.
-  LitSphereSpec read_lit_object(const toml::table& root, Scene& scene, bool mesh) const {
+  LitObjectSpec read_lit_object(const toml::table& root, Scene& scene, bool mesh) const {
     check_table(root, "");
-    LitSphereSpec spec;
+    LitObjectSpec spec;
     if (const auto* medium = subtable(root, "medium", "")) {
       scene.material = read_medium(*medium, spec.medium, spec.material, &spec.eta);
     }
@@ -174,13 +174,13 @@ class SceneReader : public TomlReader {
           "mesh)";
       if (const auto type = string(*source, "type", "source", accepted)) {
         if (*type == "directional") {
-          spec.light = SphereLight::directional;
+          spec.light = ObjectLight::directional;
         } else if (*type == "pole_beam") {
-          spec.light = SphereLight::pole_beam;
+          spec.light = ObjectLight::pole_beam;
         } else if (*type == "beam") {
-          spec.light = SphereLight::beam;
+          spec.light = ObjectLight::beam;
         } else if (*type == "sphere") {
-          spec.light = SphereLight::sphere;
+          spec.light = ObjectLight::sphere;
         } else {
           wrong_type(*source->get("type"), "source.type", accepted);
         }
@@ -193,7 +193,7 @@ class SceneReader : public TomlReader {
         spec.beam_direction = *direction;
       }
       for (const char* key : {"origin", "direction"}) {
-        if (source->get(key) != nullptr && spec.light != SphereLight::beam) {
+        if (source->get(key) != nullptr && spec.light != ObjectLight::beam) {
           throw InputError(std::string("source.") + key,
                            "given for a light that is not a beam" + at(*source->get(key)),
                            "source.origin and source.direction with source.type = \"beam\"");
@@ -207,7 +207,7 @@ class SceneReader : public TomlReader {
         spec.light_radius = *radius;
       }
       for (const char* key : {"position", "radius"}) {
-        if (source->get(key) != nullptr && spec.light != SphereLight::sphere) {
+        if (source->get(key) != nullptr && spec.light != ObjectLight::sphere) {
           throw InputError(std::string("source.") + key,
                            "given for a light that is not a sphere" + at(*source->get(key)),
                            "source.position and source.radius with source.type = \"sphere\"");

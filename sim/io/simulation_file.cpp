@@ -160,7 +160,7 @@ void write_searchlight_parameters(hdf5::Group& root, const SearchlightSpec& spec
 
 // A mesh's vertices (in the length unit), its triangles (vertex indices, counter-clockwise seen
 // from outside) and their areas: what the exitance per triangle is drawn on.
-void write_mesh(hdf5::Group& parameters, const LitSphereSpec& spec) {
+void write_mesh(hdf5::Group& parameters, const LitObjectSpec& spec) {
   const TriangleMesh& mesh = *spec.mesh;
   hdf5::Group group = parameters.create_group("mesh");
   group.write_string_attribute("source", spec.mesh_source);
@@ -179,7 +179,7 @@ void write_mesh(hdf5::Group& parameters, const LitSphereSpec& spec) {
       .write_string_attribute("units", spec.medium.length_unit + "^2");
 }
 
-void write_lit_sphere_parameters(hdf5::Group& root, const LitSphereSpec& spec) {
+void write_lit_sphere_parameters(hdf5::Group& root, const LitObjectSpec& spec) {
   hdf5::Group parameters = root.create_group("parameters");
   parameters.write_string_attribute("geometry", spec.mesh ? "mesh" : "sphere");
   parameters.write_string_attribute("source", to_string(spec.light));
@@ -188,13 +188,13 @@ void write_lit_sphere_parameters(hdf5::Group& root, const LitSphereSpec& spec) {
   } else {
     parameters.write_double_attribute("radius", spec.radius);
   }
-  if (spec.light == SphereLight::sphere) {
+  if (spec.light == ObjectLight::sphere) {
     parameters.write_string_attribute(
         "light_sphere",
         fmt::format("radius {} about ({}, {}, {})", spec.light_radius, spec.light_center[0],
                     spec.light_center[1], spec.light_center[2]));
   }
-  if (spec.light == SphereLight::beam) {
+  if (spec.light == ObjectLight::beam) {
     parameters.write_string_attribute(
         "beam", fmt::format("from ({}, {}, {}) along ({}, {}, {})", spec.beam_origin[0],
                             spec.beam_origin[1], spec.beam_origin[2], spec.beam_direction[0],
@@ -401,14 +401,16 @@ void check_edges(const std::string& name, const std::vector<double>& edges) {
   }
   for (std::size_t i = 0; i < edges.size(); ++i) {
     const bool last = i + 1 == edges.size();
-    if (!(std::isfinite(edges[i]) || (last && edges[i] == std::numeric_limits<double>::infinity()))) {
+    if (!(std::isfinite(edges[i]) ||
+          (last && edges[i] == std::numeric_limits<double>::infinity()))) {
       throw std::runtime_error(
           fmt::format("is damaged: /grid/{}[{}] is {}, not a finite edge", name, i, edges[i]));
     }
     if (i > 0 && !(edges[i] > edges[i - 1])) {
-      throw std::runtime_error(fmt::format("is damaged: /grid/{}[{}] is {}, not above the edge "
-                                           "before it ({})",
-                                           name, i, edges[i], edges[i - 1]));
+      throw std::runtime_error(
+          fmt::format("is damaged: /grid/{}[{}] is {}, not above the edge "
+                      "before it ({})",
+                      name, i, edges[i], edges[i - 1]));
     }
   }
 }
@@ -425,18 +427,20 @@ void check_tally_shapes(const hdf5::Group& root, const hdf5::Group& grid) {
       const hdf5::Dataset dataset = node.open_dataset(part);
       const std::vector<std::size_t> shape = dataset.shape();
       if (shape.size() != dims.size()) {
-        throw std::runtime_error(fmt::format("is damaged: /tallies/{}/{} has {} dimensions but "
-                                             "its dims name {}",
-                                             name, part, shape.size(), dims.size()));
+        throw std::runtime_error(
+            fmt::format("is damaged: /tallies/{}/{} has {} dimensions but "
+                        "its dims name {}",
+                        name, part, shape.size(), dims.size()));
       }
       for (std::size_t d = 0; d < dims.size(); ++d) {
         if (!grid.has_member(dims[d])) continue;
         const std::vector<std::size_t> axis = grid.open_dataset(dims[d]).shape();
         const std::size_t edges = axis.size() == 1 ? axis[0] : 0;
         if (shape[d] + 1 != edges) {
-          throw std::runtime_error(fmt::format("is damaged: /tallies/{}/{} has {} bins along {} "
-                                               "but /grid/{} has {} edges",
-                                               name, part, shape[d], dims[d], dims[d], edges));
+          throw std::runtime_error(
+              fmt::format("is damaged: /tallies/{}/{} has {} bins along {} "
+                          "but /grid/{} has {} edges",
+                          name, part, shape[d], dims[d], dims[d], edges));
         }
       }
     }
@@ -644,7 +648,7 @@ void write_searchlight_file(const std::filesystem::path& path, const Searchlight
   });
 }
 
-void write_lit_sphere_file(const std::filesystem::path& path, const LitSphereSpec& spec,
+void write_lit_object_file(const std::filesystem::path& path, const LitObjectSpec& spec,
                            const std::vector<TallyResult>& tallies, const Provenance& provenance) {
   write_run_file(path, spec, tallies, provenance, {}, [&spec](hdf5::Group& root) {
     write_lit_sphere_parameters(root, spec);

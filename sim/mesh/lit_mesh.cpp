@@ -48,14 +48,14 @@ double distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const V
 
 }  // namespace
 
-void check_lit_mesh(const LitSphereSpec& spec) {
+void check_lit_mesh(const LitObjectSpec& spec) {
   const TriangleMesh& mesh = *spec.mesh;
   require_closed_mesh(mesh);
   require_enclosed_volume(mesh);
   require_no_self_intersection(mesh);
-  if (spec.light != SphereLight::beam && spec.light != SphereLight::sphere) return;
+  if (spec.light != ObjectLight::beam && spec.light != ObjectLight::sphere) return;
   const MeshRayTracer tracer(mesh);
-  if (spec.light == SphereLight::sphere) {
+  if (spec.light == ObjectLight::sphere) {
     const Vec3 center = vec3(spec.light_center);
     if (tracer.count_crossings(center, kProbe) % 2 == 1) {
       throw InputError("source.position", "is inside the mesh", "a point outside the object");
@@ -85,7 +85,7 @@ void check_lit_mesh(const LitSphereSpec& spec) {
   }
 }
 
-TransportOutput run_lit_mesh(const LitSphereSpec& spec, const ProgressCallback& progress,
+TransportOutput run_lit_mesh(const LitObjectSpec& spec, const ProgressCallback& progress,
                              const RunControl& control) {
   spec.validate();
   check_lit_mesh(spec);
@@ -98,8 +98,8 @@ TransportOutput run_lit_mesh(const LitSphereSpec& spec, const ProgressCallback& 
   double radius = 0.0;
   for (const Vec3& p : mesh.positions) radius = std::max(radius, (p - center).norm());
   radius *= 1.0 + 1e-6;  // the disc's rim clears every vertex
-  const bool beam = spec.light == SphereLight::beam;
-  const bool sphere = spec.light == SphereLight::sphere;
+  const bool beam = spec.light == ObjectLight::beam;
+  const bool sphere = spec.light == ObjectLight::sphere;
   Vec3 origin = Vec3::Zero(), direction = Vec3::UnitZ();
   if (beam) {
     origin = vec3(spec.beam_origin) * scale;

@@ -72,11 +72,11 @@ std::vector<LitSphereCase> lit_sphere_cases() {
 LitSphereComparison compare_lit_sphere(const LitSphereCase& lit_case,
                                        const LitSphereSettings& settings,
                                        const ProgressCallback& progress) {
-  LitSphereSpec spec;
+  LitObjectSpec spec;
   spec.medium = lit_case.medium;
   spec.radius = lit_case.radius;
   spec.eta = lit_case.eta;
-  spec.light = SphereLight::directional;
+  spec.light = ObjectLight::directional;
   spec.psi = UniformAxis{0.0, std::numbers::pi, settings.psi_bins};
   spec.split_by_order = true;
   spec.run.photons = settings.photons;

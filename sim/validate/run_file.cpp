@@ -27,10 +27,10 @@ std::vector<ModelResult> write_run_result(const std::filesystem::path& path, Sea
   return models;
 }
 
-std::vector<ModelResult> write_run_result(const std::filesystem::path& path, LitSphereSpec& spec,
+std::vector<ModelResult> write_run_result(const std::filesystem::path& path, LitObjectSpec& spec,
                                           const TransportOutput& out, const std::string& command) {
   spec.run.threads = out.threads;
-  write_lit_sphere_file(path, spec, out.tallies, run_provenance(out, command));
+  write_lit_object_file(path, spec, out.tallies, run_provenance(out, command));
   return {};
 }
 

@@ -19,7 +19,7 @@
 #include "scatterlab/models/parameter_inversion.hpp"
 #include "scatterlab/refract/half_space_single_scatter.hpp"
 #include "scatterlab/tally/tally_result.hpp"
-#include "scatterlab/transport/lit_sphere.hpp"
+#include "scatterlab/transport/lit_object.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #if SCATTERLAB_EXPLORE_MESH
 #include "scatterlab/render/point_cloud.hpp"
@@ -407,12 +407,12 @@ TEST_F(ExploreApiTest, ASearchlightFileIsReadWithItsErrorBars) {
 }
 
 TEST_F(ExploreApiTest, APathTracedLitSphereIsReadForTheLitSpherePanel) {
-  LitSphereSpec spec;
+  LitObjectSpec spec;
   spec.radius = 2.0;
   spec.run = RunSettings{2000, 4, 1, 1};
   const TransportOutput out = run_lit_sphere(spec);
   fs::create_directories(open_ / "runs");
-  write_lit_sphere_file(open_ / "runs/sphere.h5", spec, out.tallies, run_provenance(out, "test"));
+  write_lit_object_file(open_ / "runs/sphere.h5", spec, out.tallies, run_provenance(out, "test"));
   const ExploreApi explorer = api();
   const ApiResponse response =
       explorer.handle("GET", "/api/file", {{"path", "0/runs/sphere.h5"}}, "");
@@ -436,10 +436,10 @@ TEST_F(ExploreApiTest, APathTracedLitSphereIsReadForTheLitSpherePanel) {
   EXPECT_TRUE(found);
 
   // A beam's sphere is not azimuthally symmetric: the panel's curves are not for it.
-  spec.light = SphereLight::pole_beam;
+  spec.light = ObjectLight::pole_beam;
   spec.azimuth = UniformAxis{0.0, 2.0 * std::numbers::pi, 4};
   const TransportOutput beam = run_lit_sphere(spec);
-  write_lit_sphere_file(open_ / "runs/beam.h5", spec, beam.tallies, run_provenance(beam, "test"));
+  write_lit_object_file(open_ / "runs/beam.h5", spec, beam.tallies, run_provenance(beam, "test"));
   const ApiResponse refused = explorer.handle("GET", "/api/file", {{"path", "0/runs/beam.h5"}}, "");
   EXPECT_EQ(refused.status, 400);
   EXPECT_NE(refused.body.find("path"), std::string::npos) << refused.body;

@@ -18,7 +18,7 @@
 #include "scatterlab/render/render_scene.hpp"
 #include "scatterlab/transport/engine.hpp"
 #include "scatterlab/transport/layered_slab.hpp"
-#include "scatterlab/transport/lit_sphere.hpp"
+#include "scatterlab/transport/lit_object.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/transport/simulate.hpp"
 
@@ -88,7 +88,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       for (SweepPoint& point : parse_sweep(text, kOrigin, Validation::on_read, geometry)) {
         Scene& scene = point.scene;
         if (scene.mesh_text) {
-          auto& spec = std::get<LitSphereSpec>(scene.spec);
+          auto& spec = std::get<LitObjectSpec>(scene.spec);
           SceneMesh mesh = parse_scene_mesh(*scene.mesh_text, kOrigin, base);
           spec.mesh_source = std::move(mesh.source);
           spec.mesh = std::make_shared<const TriangleMesh>(std::move(mesh.mesh));

@@ -16,9 +16,9 @@
 
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
-#include "scatterlab/refract/half_space_single_scatter.hpp"
 #include "scatterlab/mesh/lit_mesh.hpp"
 #include "scatterlab/mesh/mesh_ray_tracer.hpp"
+#include "scatterlab/refract/half_space_single_scatter.hpp"
 #include "scatterlab/render/render_scene.hpp"
 #include "simulation_fixtures.hpp"
 
@@ -29,9 +29,9 @@ using testing::find_tally;
 using testing::scalar;
 using testing::scalar_error;
 
-LitSphereSpec lit_mesh(TriangleMesh mesh, double albedo, double g, double eta,
+LitObjectSpec lit_mesh(TriangleMesh mesh, double albedo, double g, double eta,
                        std::uint64_t photons) {
-  LitSphereSpec spec;
+  LitObjectSpec spec;
   spec.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
   spec.mesh_source = "test";
   spec.medium.albedo = albedo;
@@ -132,8 +132,8 @@ TEST(LitMesh, ASphereOfLightSeesTheChordsItsRaysCross) {
   // from the same emission (uniform over the light's surface, Lambert about its normal), the
   // chords summed from the line's crossings, the rays that miss left out.
   const double h1 = 0.5, h2 = 0.8;
-  LitSphereSpec spec = lit_mesh(two_boxes(h1, h2), 0.0, 0.0, 1.0, 200'000);
-  spec.light = SphereLight::sphere;
+  LitObjectSpec spec = lit_mesh(two_boxes(h1, h2), 0.0, 0.0, 1.0, 200'000);
+  spec.light = ObjectLight::sphere;
   spec.light_center = {0.6, 0.3, -3.0};
   spec.light_radius = 0.5;
   const TransportOutput out = run_lit_mesh(spec);
@@ -189,7 +189,7 @@ TEST(LitMesh, FineSphereMeshIsTheAnalyticSphere) {
   // ~1e-3 at most, under these runs' errors; each of the 12 zones of psi (8 rings of the mesh
   // each) must hold the same power within 4 combined sigma plus that allowance.
   const double radius = 2.0, eta = 1.3;
-  LitSphereSpec analytic;
+  LitObjectSpec analytic;
   analytic.medium.albedo = 0.9;
   analytic.medium.g = 0.5;
   analytic.eta = eta;
@@ -199,7 +199,7 @@ TEST(LitMesh, FineSphereMeshIsTheAnalyticSphere) {
   analytic.run.batches = 32;
   analytic.run.threads = 2;
   const TransportOutput sphere = run_lit_sphere(analytic);
-  LitSphereSpec spec =
+  LitObjectSpec spec =
       lit_mesh(make_sphere(radius, 96, 192, false), 0.9, 0.5, eta, analytic.run.photons);
   spec.run.seed = 7;
   const TransportOutput mesh = run_lit_mesh(spec);
@@ -284,9 +284,9 @@ TEST(LitMesh, OnceScatteredLightOfABlockIsTheRefractiveSingleScatterSolution) {
   // squares of 0.1 mfp), each within 4 sigma plus 0.5 % for the quadrature over a triangle.
   const int n = 100;
   const double half_width = 5.0;
-  LitSphereSpec spec =
+  LitObjectSpec spec =
       lit_mesh(block_with_fine_face(half_width, 10.0, n), 0.9, 0.5, 1.33, 1'000'000);
-  spec.light = SphereLight::beam;
+  spec.light = ObjectLight::beam;
   const Vec3 entry(0.0123, 0.0071, 0.0);  // inside a square, off its edges
   spec.beam_origin = {entry.x(), entry.y(), -3.0};
   spec.beam_direction = {0.0, 0.0, 1.0};
@@ -329,9 +329,9 @@ TEST(LitMesh, OnceScatteredLightOfABlockIsTheRefractiveSingleScatterSolution) {
 
 TEST(LitMesh, EnergyBalancesPhotonByPhotonOnAShapeThatIsNotConvex) {
   const TriangleMesh bumpy = make_bumpy_sphere(3.0, 0.25, 5, 31, 40);
-  for (const SphereLight light : {SphereLight::directional, SphereLight::beam}) {
+  for (const ObjectLight light : {ObjectLight::directional, ObjectLight::beam}) {
     for (const double eta : {1.0, 1.4, 0.7}) {
-      LitSphereSpec spec = lit_mesh(bumpy, 0.95, 0.6, eta, 20'000);
+      LitObjectSpec spec = lit_mesh(bumpy, 0.95, 0.6, eta, 20'000);
       spec.light = light;
       spec.beam_origin = {0.3, 0.2, -6.0};
       spec.beam_direction = {0.1, 0.0, 1.0};
@@ -349,7 +349,7 @@ TEST(LitMesh, EnergyBalancesPhotonByPhotonOnAShapeThatIsNotConvex) {
 }
 
 TEST(LitMesh, BadScenesNameTheField) {
-  const auto field_of = [](const LitSphereSpec& spec) {
+  const auto field_of = [](const LitObjectSpec& spec) {
     try {
       run_lit_mesh(spec);
     } catch (const InputError& e) {
@@ -358,10 +358,10 @@ TEST(LitMesh, BadScenesNameTheField) {
     return std::string("(accepted)");
   };
   EXPECT_EQ(field_of(lit_mesh(make_flat_square(1.0, 1), 0.9, 0.0, 1.3, 100)), "mesh");
-  LitSphereSpec spec = lit_mesh(make_sphere(1.0, 12, 24, false), 0.9, 0.0, 1.3, 100);
-  spec.light = SphereLight::pole_beam;
+  LitObjectSpec spec = lit_mesh(make_sphere(1.0, 12, 24, false), 0.9, 0.0, 1.3, 100);
+  spec.light = ObjectLight::pole_beam;
   EXPECT_EQ(field_of(spec), "source.type");
-  spec.light = SphereLight::beam;
+  spec.light = ObjectLight::beam;
   spec.beam_origin = {0.0, 0.1, 0.2};  // inside
   EXPECT_EQ(field_of(spec), "source.origin");
   spec.beam_origin = {0.0, 0.0, -3.0};
@@ -369,7 +369,7 @@ TEST(LitMesh, BadScenesNameTheField) {
   EXPECT_EQ(field_of(spec), "source.direction");
   spec.beam_direction = {0.0, 0.0, 1.0};
   EXPECT_EQ(field_of(spec), "(accepted)");
-  spec.light = SphereLight::sphere;
+  spec.light = ObjectLight::sphere;
   spec.light_center = {0.0, 0.0, 0.0};  // inside
   EXPECT_EQ(field_of(spec), "source.position");
   spec.light_center = {0.0, 0.0, -1.5};

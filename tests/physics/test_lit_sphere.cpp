@@ -1,4 +1,4 @@
-// The lit sphere (transport/lit_sphere.hpp, transport/sphere.hpp): an absorbing sphere against
+// The lit sphere (transport/lit_object.hpp, transport/sphere.hpp): an absorbing sphere against
 // the closed-form attenuation of its chords, index-matched and behind a Fresnel interface; the
 // energy balance photon by photon; and a large sphere under a beam at its pole against the
 // half-space's searchlight (fixed seeds; k sigma tolerances).
@@ -12,7 +12,7 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/core/quadrature.hpp"
-#include "scatterlab/transport/lit_sphere.hpp"
+#include "scatterlab/transport/lit_object.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "simulation_fixtures.hpp"
 
@@ -25,8 +25,8 @@ using testing::find_tally;
 using testing::scalar;
 using testing::scalar_error;
 
-LitSphereSpec sphere(double albedo, double g, double eta, double radius, std::uint64_t photons) {
-  LitSphereSpec spec;
+LitObjectSpec sphere(double albedo, double g, double eta, double radius, std::uint64_t photons) {
+  LitObjectSpec spec;
   spec.medium.albedo = albedo;
   spec.medium.g = g;
   spec.eta = eta;
@@ -68,7 +68,7 @@ TEST(LitSphere, IndexMatchedAbsorbingSphereTransmitsItsChords) {
   // b^2/R^2), and leaves at the far point with cos psi = -mu. The power leaving the zone
   // mu in [m0, m1] is int 2 mu e^{-2 R mu} d mu = [-(1 + c mu) e^{-c mu} 2 / c^2], c = 2 R.
   const double radius = 0.7;
-  LitSphereSpec spec = sphere(0.0, 0.0, 1.0, radius, 400'000);
+  LitObjectSpec spec = sphere(0.0, 0.0, 1.0, radius, 400'000);
   spec.psi.bins = 12;
   const TransportOutput out = run_lit_sphere(spec);
   const double c = 2.0 * radius;
@@ -119,7 +119,7 @@ TEST(LitSphere, AbsorbingSphereBehindFresnelPutsItsChordsWhereSnellSays) {
   // is integrated over the shadow disk (uniform in b^2 / R^2 = 1 - mu^2) by the midpoint rule
   // on 2e5 points: an independent evaluation of where Snell's law puts the light.
   const double radius = 0.5, eta = 1.5;
-  LitSphereSpec spec = sphere(0.0, 0.0, eta, radius, 400'000);
+  LitObjectSpec spec = sphere(0.0, 0.0, eta, radius, 400'000);
   spec.psi.bins = 36;
   const TransportOutput out = run_lit_sphere(spec);
   std::vector<double> power(static_cast<std::size_t>(spec.psi.bins), 0.0);
@@ -153,9 +153,9 @@ TEST(LitSphere, AbsorbingSphereBehindFresnelPutsItsChordsWhereSnellSays) {
 }
 
 TEST(LitSphere, EnergyBalancesPhotonByPhotonAndOrdersSum) {
-  for (const SphereLight light : {SphereLight::directional, SphereLight::pole_beam}) {
+  for (const ObjectLight light : {ObjectLight::directional, ObjectLight::pole_beam}) {
     for (const double eta : {1.0, 1.4, 0.7, 3.0}) {  // 3: most of the sphere totally reflects
-      LitSphereSpec spec = sphere(0.9, 0.7, eta, 2.0, 50'000);
+      LitObjectSpec spec = sphere(0.9, 0.7, eta, 2.0, 50'000);
       spec.light = light;
       const TransportOutput out = run_lit_sphere(spec);
       const std::string label = to_string(light) + " eta " + std::to_string(eta);
@@ -180,8 +180,8 @@ TEST(LitSphere, LargeSphereUnderAPoleBeamIsTheHalfSpace) {
   // the half-space's R_d(r) rings, and the totals must agree, within the combined errors. (The
   // sphere's zones and the plane's rings differ in area by (sin x / x) factors of (r/R)^2.)
   const double radius = 1e4;
-  LitSphereSpec spec = sphere(0.9, 0.0, 1.3, radius, 300'000);
-  spec.light = SphereLight::pole_beam;
+  LitObjectSpec spec = sphere(0.9, 0.0, 1.3, radius, 300'000);
+  spec.light = ObjectLight::pole_beam;
   spec.psi.bins = 100'000;
   const double width = kPi * radius / spec.psi.bins;
   const TransportOutput curved = run_lit_sphere(spec);
@@ -210,10 +210,10 @@ TEST(LitSphere, LargeSphereUnderAPoleBeamIsTheHalfSpace) {
 
 TEST(LitSphere, ABeamFromOutsideIsRefractedWhereItMeetsTheSphere) {
   // Aimed at the lit pole along the normal it is the pole beam, bit for bit.
-  LitSphereSpec pole = sphere(0.9, 0.5, 1.3, 1.5, 20'000);
-  pole.light = SphereLight::pole_beam;
-  LitSphereSpec aimed = pole;
-  aimed.light = SphereLight::beam;
+  LitObjectSpec pole = sphere(0.9, 0.5, 1.3, 1.5, 20'000);
+  pole.light = ObjectLight::pole_beam;
+  LitObjectSpec aimed = pole;
+  aimed.light = ObjectLight::beam;
   aimed.beam_origin = {0.0, 0.0, -4.0};
   aimed.beam_direction = {0.0, 0.0, 2.0};
   const TransportOutput a = run_lit_sphere(pole), b = run_lit_sphere(aimed);
@@ -224,7 +224,7 @@ TEST(LitSphere, ABeamFromOutsideIsRefractedWhereItMeetsTheSphere) {
   }
   // Off the axis it meets the surface at cos theta_i = sqrt(1 - (x / R)^2): F of that angle is
   // reflected, exactly, and every photon that entered ends exited or absorbed.
-  LitSphereSpec oblique = aimed;
+  LitObjectSpec oblique = aimed;
   oblique.beam_origin = {0.9, 0.0, -4.0};
   oblique.beam_direction = {0.0, 0.0, 1.0};
   const TransportOutput out = run_lit_sphere(oblique);
@@ -238,8 +238,8 @@ TEST(LitSphere, ABeamFromOutsideIsRefractedWhereItMeetsTheSphere) {
 TEST(LitSphere, ExitanceByAzimuthSumsToTheZonesAndMirrorsAnOffAxisBeam) {
   // Binning draws no random number: the same photons with 8 azimuth bins sum, patch by patch
   // times area, to the zones of one bin.
-  LitSphereSpec spec = sphere(0.9, 0.5, 1.3, 1.0, 100'000);
-  spec.light = SphereLight::beam;
+  LitObjectSpec spec = sphere(0.9, 0.5, 1.3, 1.0, 100'000);
+  spec.light = ObjectLight::beam;
   spec.beam_origin = {0.6, 0.0, -3.0};
   spec.beam_direction = {0.0, 0.0, 1.0};
   spec.psi.bins = 12;
@@ -264,17 +264,17 @@ TEST(LitSphere, ExitanceByAzimuthSumsToTheZonesAndMirrorsAnOffAxisBeam) {
 }
 
 TEST(LitSphere, BadSpecsNameTheField) {
-  LitSphereSpec spec;
+  LitObjectSpec spec;
   spec.radius = -1.0;
   EXPECT_THROW(spec.validate(), InputError);
-  spec = LitSphereSpec{};
+  spec = LitObjectSpec{};
   spec.eta = 0.0;
   EXPECT_THROW(spec.validate(), InputError);
-  spec = LitSphereSpec{};
+  spec = LitObjectSpec{};
   spec.psi.max = 1.0;
   EXPECT_THROW(spec.validate(), InputError);
-  spec = LitSphereSpec{};
-  spec.light = SphereLight::beam;
+  spec = LitObjectSpec{};
+  spec.light = ObjectLight::beam;
   spec.beam_direction = {1.0, 0.0, 0.0};  // from (0, 0, -2): passes the sphere by
   EXPECT_THROW(spec.validate(), InputError);
   spec.beam_direction = {0.0, 0.0, 1.0};

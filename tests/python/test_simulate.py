@@ -63,7 +63,7 @@ def test_keywords_run_the_sphere_and_the_slab(tmp_path, run_program):
                                  source="directional", psi={"bins": 12}, photons=8000,
                                  batches=4, seed=2)
     assert sphere.parameters["geometry"] == "sphere" and sphere.parameters["radius"] == 2.0
-    # Each photon ends reflected at entry, exited or absorbed (lit_sphere.hpp).
+    # Each photon ends reflected at entry, exited or absorbed (transport/lit_object.hpp).
     total = sum(float(sphere.tallies[n].mean)
                 for n in ("reflected_at_entry", "exited", "absorbed"))
     assert total == pytest.approx(1.0, abs=1e-12)

@@ -26,7 +26,7 @@ struct SceneOf {
 template <class Spec>
 constexpr std::string_view geometry_of() {
   if constexpr (std::is_same_v<Spec, SearchlightSpec>) return "half_space";
-  if constexpr (std::is_same_v<Spec, LitSphereSpec>) return "sphere";
+  if constexpr (std::is_same_v<Spec, LitObjectSpec>) return "sphere";
   if constexpr (std::is_same_v<Spec, LayeredSlabSpec>) return "slab";
   return "infinite";
 }

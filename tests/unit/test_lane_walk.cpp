@@ -20,7 +20,7 @@
 #include "scatterlab/transport/infinite_medium.hpp"
 #include "scatterlab/transport/lane_walk.hpp"
 #include "scatterlab/transport/layered_slab.hpp"
-#include "scatterlab/transport/lit_sphere.hpp"
+#include "scatterlab/transport/lit_object.hpp"
 #include "scatterlab/transport/random_walk.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/transport/simulate.hpp"
@@ -76,8 +76,7 @@ void expect_same_paths(const TransportProblem& problem, const Geometry& geometry
       problem.run.seed);
   on_every_target([&] {
     const LaneWalk lanes(kind, problem.eta, scorer, problem.source, problem.albedo, problem.g,
-                         Estimator::collision, problem.run.escape_radius, problem.run.seed,
-                         radius);
+                         Estimator::collision, problem.run.escape_radius, problem.run.seed, radius);
     expect_same_sums(one, lanes, book.size(), first, last);
   });
 }
@@ -112,8 +111,8 @@ void expect_same_paths_in_half_space(double albedo, double g, double eta, double
 // internal reflection, and 0.8).
 template <class Phase>
 void expect_same_paths_in_the_sphere(double albedo, double g, double eta, double radius,
-                                     SphereLight light, const Phase& phase) {
-  LitSphereSpec spec;
+                                     ObjectLight light, const Phase& phase) {
+  LitObjectSpec spec;
   spec.medium.albedo = albedo;
   spec.medium.g = g;
   spec.eta = eta;
@@ -170,12 +169,12 @@ TEST(LaneWalk, FollowsTheOnePhotonWalkInTheHalfSpace) {
 }
 
 TEST(LaneWalk, FollowsTheOnePhotonWalkInTheSphere) {
-  expect_same_paths_in_the_sphere(0.99, 0.0, 1.0, 3.0, SphereLight::directional, IsotropicPhase{});
-  expect_same_paths_in_the_sphere(0.9, 0.75, 1.4, 5.0, SphereLight::directional,
+  expect_same_paths_in_the_sphere(0.99, 0.0, 1.0, 3.0, ObjectLight::directional, IsotropicPhase{});
+  expect_same_paths_in_the_sphere(0.9, 0.75, 1.4, 5.0, ObjectLight::directional,
                                   HenyeyGreenstein{0.75});
-  expect_same_paths_in_the_sphere(0.95, -0.3, 1.4, 2.0, SphereLight::pole_beam,
+  expect_same_paths_in_the_sphere(0.95, -0.3, 1.4, 2.0, ObjectLight::pole_beam,
                                   HenyeyGreenstein{-0.3});
-  expect_same_paths_in_the_sphere(0.99, 0.5, 0.8, 1.0, SphereLight::directional,
+  expect_same_paths_in_the_sphere(0.99, 0.5, 0.8, 1.0, ObjectLight::directional,
                                   HenyeyGreenstein{0.5});
 }
 

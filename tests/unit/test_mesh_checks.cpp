@@ -47,16 +47,14 @@ TEST(MeshChecks, SurfacesThatDoNotCrossAreAccepted) {
   append_mesh(nested, make_box(Vec3(0.5, 0.5, 0.5)), Vec3(0.3, -0.2, 0.1));
   EXPECT_EQ(refusal([&] { require_no_self_intersection(nested); }), "");
   // Not convex, with many short edges meeting at shallow angles.
-  EXPECT_EQ(refusal([] {
-              require_no_self_intersection(make_bumpy_sphere(4.0, 0.15, 5, 41, 48));
-            }),
+  EXPECT_EQ(refusal([] { require_no_self_intersection(make_bumpy_sphere(4.0, 0.15, 5, 41, 48)); }),
             "");
 }
 
 TEST(MeshChecks, ASphereOfLightThatCutsAFaceBetweenItsVerticesIsRefused) {
-  LitSphereSpec spec;
+  LitObjectSpec spec;
   spec.mesh = std::make_shared<const TriangleMesh>(make_box(Vec3(10.0, 10.0, 10.0)));
-  spec.light = SphereLight::sphere;
+  spec.light = ObjectLight::sphere;
   spec.light_center = {0.0, 0.0, -11.0};  // 1 below the bottom face's centre, 14 from a corner
   spec.light_radius = 2.0;
   EXPECT_NE(refusal([&] { check_lit_mesh(spec); }).find("source.radius"), std::string::npos);
@@ -66,11 +64,13 @@ TEST(MeshChecks, ASphereOfLightThatCutsAFaceBetweenItsVerticesIsRefused) {
 
 TEST(MeshChecks, OBJFaceIndicesOutsideTheFileAreRefused) {
   const std::string square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\n";
-  EXPECT_NE(refusal([&] { parse_obj_mesh(square + "f 1 2 9\n", "far.obj", false); })
-                .find("a face names vertex 9 but the file has 4"),
+  EXPECT_NE(refusal([&] {
+              parse_obj_mesh(square + "f 1 2 9\n", "far.obj", false);
+            }).find("a face names vertex 9 but the file has 4"),
             std::string::npos);
-  EXPECT_NE(refusal([&] { parse_obj_mesh(square + "f 1//1 2//1 3//2\n", "n.obj", true); })
-                .find("a face names normal 2 but the file has 1"),
+  EXPECT_NE(refusal([&] {
+              parse_obj_mesh(square + "f 1//1 2//1 3//2\n", "n.obj", true);
+            }).find("a face names normal 2 but the file has 1"),
             std::string::npos);
   // A material library is never opened: the mesh reads the same with or without it.
   const TriangleMesh with_library =

@@ -24,7 +24,7 @@
 #include "scatterlab/tally/scorer.hpp"
 #include "scatterlab/tally/tally_book.hpp"
 #include "scatterlab/transport/lane_walk.hpp"
-#include "scatterlab/transport/lit_sphere.hpp"
+#include "scatterlab/transport/lit_object.hpp"
 #include "scatterlab/transport/random_walk.hpp"
 
 namespace scatterlab {
@@ -36,7 +36,7 @@ template <bool fresnel, class Phase>
 void expect_same_paths(const TriangleMesh& mesh, double albedo, const Phase& phase, double eta,
                        typename MeshLight<fresnel>::Kind kind) {
   SCOPED_TRACE(::testing::Message() << "light " << static_cast<int>(kind) << ", eta " << eta);
-  LitSphereSpec spec;
+  LitObjectSpec spec;
   spec.mesh = std::make_shared<const TriangleMesh>(mesh);
   spec.mesh_source = "test";
   spec.medium.albedo = albedo;
@@ -102,7 +102,7 @@ TEST(ObjectLanes, AreNotGivenAMeshThatIsNotConvex) {
 
 TEST(ObjectLanes, RefuseTheTrackLengthEstimator) {
   const TriangleMesh sphere = make_sphere(1.0, 8, 16, false);
-  LitSphereSpec spec;
+  LitObjectSpec spec;
   spec.mesh = std::make_shared<const TriangleMesh>(sphere);
   const TransportProblem problem = transport_problem(spec);
   const TallyBook book(problem.tallies, problem.split_by_order);

@@ -513,7 +513,7 @@ TEST(GeometryTable, ChoosesTheGeometryOnce) {
       spec_of("[geometry]\ntype = \"infinite\"\n", "half_space")));
   EXPECT_TRUE(std::holds_alternative<SearchlightSpec>(
       spec_of("[geometry]\ntype = \"half_space\"\n", "infinite")));
-  EXPECT_TRUE(std::holds_alternative<LitSphereSpec>(
+  EXPECT_TRUE(std::holds_alternative<LitObjectSpec>(
       spec_of("[geometry]\ntype = \"sphere\"\n", "half_space")));
   EXPECT_EQ(field_of("[geometry]\ntype = \"cube\"\n"), "geometry.type");
   EXPECT_EQ(field_of("[geometry]\neta = 1.3\n"), "geometry.eta");  // no surface to have an index

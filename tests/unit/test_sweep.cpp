@@ -95,7 +95,7 @@ TEST(Sweep, EveryGeometrySweepsItsOwnKeys) {
   const auto sphere =
       parse_sweep("[geometry]\ntype = \"sphere\"\nradius = [0.5, 1, 2]\n", "sphere.toml");
   ASSERT_EQ(sphere.size(), 3u);
-  EXPECT_EQ(std::get<LitSphereSpec>(sphere[2].scene.spec).radius, 2.0);
+  EXPECT_EQ(std::get<LitObjectSpec>(sphere[2].scene.spec).radius, 2.0);
   EXPECT_EQ(sphere[2].label, "radius=2");
 
   const auto half = parse_sweep("[geometry]\neta = [1, 1.3]\n[source]\nincidence_deg = [0, 60]\n",
@@ -116,7 +116,7 @@ TEST(Sweep, VectorsAndMeshKeys) {
   const auto two = parse_sweep(beam + "origin = [[0, 0, -3], [0.5, 0, -3]]\n", "beam.toml");
   ASSERT_EQ(two.size(), 2u);
   EXPECT_EQ(two[1].label, "origin=0.5,0,-3");
-  EXPECT_EQ(std::get<LitSphereSpec>(two[1].scene.spec).beam_origin[0], 0.5);
+  EXPECT_EQ(std::get<LitObjectSpec>(two[1].scene.spec).beam_origin[0], 0.5);
   EXPECT_THROW(parse_sweep(beam + "origin = [[0, 0, -3], 1]\n", "beam.toml"), InputError);
 
   const auto mesh = parse_sweep(

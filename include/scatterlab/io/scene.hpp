@@ -36,7 +36,7 @@
 //   [tallies]  fluence = bool, exitance_map = bool
 //   [run]      as above;  [output] path
 //
-// geometry.type = "sphere" or "mesh" (a lit object, transport/lit_sphere.hpp;
+// geometry.type = "sphere" or "mesh" (a lit object, transport/lit_object.hpp;
 // data/scenes/lit-sphere.toml, lit-mesh.toml):
 //   [geometry] radius (a sphere's, in medium.length_unit), eta = n_medium / n_outside
 //   [mesh]     a mesh's object, as a render scene's [mesh] table (render/render_scene.hpp)
@@ -69,7 +69,7 @@
 
 #include "scatterlab/io/material_presets.hpp"
 #include "scatterlab/transport/layered_slab.hpp"
-#include "scatterlab/transport/lit_sphere.hpp"
+#include "scatterlab/transport/lit_object.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/transport/simulation.hpp"
 
@@ -84,9 +84,9 @@ enum class Validation { on_read, by_caller };
 
 // One geometry's spec, the alternative geometry.type chose: the infinite medium, the half-space,
 // a lit object (a sphere, or a mesh) or a layered slab.
-using SceneSpec = std::variant<SimulationSpec, SearchlightSpec, LitSphereSpec, LayeredSlabSpec>;
+using SceneSpec = std::variant<SimulationSpec, SearchlightSpec, LitObjectSpec, LayeredSlabSpec>;
 
-// The geometry.type values ("sphere" and "mesh" are both a LitSphereSpec).
+// The geometry.type values ("sphere" and "mesh" are both a LitObjectSpec).
 inline constexpr std::array<std::string_view, 5> scene_geometries = {"infinite", "half_space",
                                                                      "sphere", "mesh", "slab"};
 

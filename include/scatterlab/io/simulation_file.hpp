@@ -36,7 +36,7 @@
 #include "scatterlab/tally/tally_result.hpp"
 #include "scatterlab/transport/engine.hpp"
 #include "scatterlab/transport/layered_slab.hpp"
-#include "scatterlab/transport/lit_sphere.hpp"
+#include "scatterlab/transport/lit_object.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/transport/simulation.hpp"
 
@@ -105,14 +105,14 @@ void write_searchlight_file(const std::filesystem::path& path, const Searchlight
                             const std::vector<TallyResult>& tallies, const Provenance& provenance,
                             const std::vector<ModelResult>& models = {});
 
-// The same file for the lit sphere (transport/lit_sphere.hpp): /parameters adds geometry =
+// The same file for the lit sphere (transport/lit_object.hpp): /parameters adds geometry =
 // "sphere", source (directional, pole_beam, beam), radius and eta; /grid holds psi, the angle of
 // a point of the surface from the lit pole, and azimuth; the tallies are those declared in
-// sim/transport/lit_sphere.cpp. For a mesh, geometry = "mesh" and /parameters/mesh holds
+// sim/transport/lit_object.cpp. For a mesh, geometry = "mesh" and /parameters/mesh holds
 // positions (n x 3, in the length unit), triangles (m x 3 vertex indices, int32), area (m) and
 // the attribute source; /grid is empty (the exitance is per triangle); a sphere of light's
 // radius and centre are the attribute light_sphere.
-void write_lit_sphere_file(const std::filesystem::path& path, const LitSphereSpec& spec,
+void write_lit_object_file(const std::filesystem::path& path, const LitObjectSpec& spec,
                            const std::vector<TallyResult>& tallies, const Provenance& provenance);
 
 // The same file for the layered slab (transport/layered_slab.hpp): /parameters adds geometry =

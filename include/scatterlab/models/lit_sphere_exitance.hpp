@@ -2,7 +2,7 @@
 // A diffusion BSSRDF on the lit sphere (Bitterli §3.5): the radiant exitance it gives on a sphere
 // of radius R under a directional light along +z, integrated over the lit surface by Monte Carlo,
 // so that it converges to the exact double integral (Bitterli eq. 2.14) and can be held against
-// the path-traced lit sphere (transport/lit_sphere.hpp) in the same geometry, light and units.
+// the path-traced lit sphere (transport/lit_object.hpp) in the same geometry, light and units.
 //
 // With the light's irradiance E_0 normal to its direction, the power entering at x_i per unit
 // area is E_0 cos(theta_i) F_t(eta, theta_i); integrating eq. 2.14 with eq. 2.16 (bssrdf.hpp) over

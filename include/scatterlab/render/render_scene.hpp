@@ -95,7 +95,7 @@ struct RenderScene {
 // refuses them (InputError naming the table) rather than leave them out of its image.
 void refuse_volumetric_only(const RenderScene& scene, const std::string& method);
 
-// The [mesh] table of any scene file (a lit object's, transport/lit_sphere.hpp), read as a render
+// The [mesh] table of any scene file (a lit object's, transport/lit_object.hpp), read as a render
 // scene's is, and what it is in words: the shape and its triangle count, or the OBJ file. Other
 // tables are left to the scene's own reader.
 struct SceneMesh {
@@ -112,6 +112,5 @@ SceneMesh parse_scene_mesh(std::string_view toml_text, const std::string& origin
 RenderScene parse_render_scene(std::string_view toml_text, const std::string& origin,
                                const std::filesystem::path& base = {});
 RenderScene load_render_scene(const std::filesystem::path& path);
-
 
 }  // namespace scatterlab

@@ -1,7 +1,7 @@
 #pragma once
 // The lit sphere, like with like (Bitterli §3.5, §3.1.2): each diffusion BSSRDF integrated over a
 // sphere under a directional light (models/lit_sphere_exitance.hpp) against the path-traced
-// sphere of the same medium, radius, index and light (transport/lit_sphere.hpp), exitance
+// sphere of the same medium, radius, index and light (transport/lit_object.hpp), exitance
 // M(psi) against the angle psi from the lit pole. The diffusion models describe the light
 // scattered at least twice (validate/half_space_comparison.hpp), so each is held against the
 // Monte Carlo's _multiple part; the total (every order) is kept beside it, to show what the
@@ -22,7 +22,7 @@
 
 #include "scatterlab/models/diffusion_profile.hpp"
 #include "scatterlab/models/lit_sphere_exitance.hpp"
-#include "scatterlab/transport/lit_sphere.hpp"
+#include "scatterlab/transport/lit_object.hpp"
 #include "scatterlab/validate/half_space_comparison.hpp"
 
 namespace scatterlab {

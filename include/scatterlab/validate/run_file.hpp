@@ -13,7 +13,7 @@
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/transport/engine.hpp"
 #include "scatterlab/transport/layered_slab.hpp"
-#include "scatterlab/transport/lit_sphere.hpp"
+#include "scatterlab/transport/lit_object.hpp"
 #include "scatterlab/transport/searchlight.hpp"
 #include "scatterlab/transport/simulation.hpp"
 
@@ -27,7 +27,7 @@ std::vector<ModelResult> write_run_result(const std::filesystem::path& path, Sea
                                           const TransportOutput& out, const std::string& command,
                                           bool model_fluence);
 
-std::vector<ModelResult> write_run_result(const std::filesystem::path& path, LitSphereSpec& spec,
+std::vector<ModelResult> write_run_result(const std::filesystem::path& path, LitObjectSpec& spec,
                                           const TransportOutput& out, const std::string& command);
 
 std::vector<ModelResult> write_run_result(const std::filesystem::path& path, LayeredSlabSpec& spec,

@@ -1,9 +1,10 @@
 #pragma once
-// The lit sphere (Bitterli 2013, §3.2; Vavassori §4.3): a sphere of radius R filled with the
-// medium, behind a smooth interface of relative index eta, lit by a directional light travelling
-// along +z (the reference Bitterli holds analytic BSSRDFs against) or by a pencil beam entering at
-// the lit pole along the inward normal (the searchlight on a curved surface). What the run is
-// asked to do, as plain structs validated once, and the run itself.
+// A lit object: the analytic sphere, run here, or a triangle mesh (the spec's `mesh`, run by
+// mesh/lit_mesh.hpp). The lit sphere (Bitterli 2013, §3.2; Vavassori §4.3): a sphere of radius R
+// filled with the medium, behind a smooth interface of relative index eta, lit by a directional
+// light travelling along +z (the reference Bitterli holds analytic BSSRDFs against) or by a
+// pencil beam entering at the lit pole along the inward normal (the searchlight on a curved
+// surface). What the run is asked to do, as plain structs validated once, and the run itself.
 //
 // Tallies, per unit power that meets the sphere: the radiant exitance M(psi) on the surface
 // against the angle psi from the lit pole (0, 0, -R), the total power that leaves, the power
@@ -25,18 +26,18 @@
 
 namespace scatterlab {
 
-enum class SphereLight {
+enum class ObjectLight {
   directional,  // uniform over the sphere's shadow disk, along +z (Bitterli §3.2)
   pole_beam,    // a pencil beam at the lit pole, along the inward normal +z
   beam,         // a pencil beam from beam_origin along beam_direction, outside the sphere
   sphere,       // a sphere of light (uniform radiance) about light_center: on a mesh only
 };
 
-struct LitSphereSpec {
+struct LitObjectSpec {
   Medium medium{0.99, 1.0, 0.0, "mfp"};
   double radius = 1.0;  // in medium.length_unit
   double eta = 1.3;     // n_medium / n_outside, in [min_eta, max_eta] (searchlight.hpp)
-  SphereLight light = SphereLight::directional;
+  ObjectLight light = ObjectLight::directional;
   // The beam (light = beam): from a point outside the sphere (in medium.length_unit) along a
   // direction that meets it; refracted where it meets the surface, its Fresnel reflection exact.
   std::array<double, 3> beam_origin{0.0, 0.0, -2.0};
@@ -63,16 +64,16 @@ struct LitSphereSpec {
 };
 
 // What shapes the tallies: equal for a run and its resumption (run_settings.hpp).
-std::string fingerprint(const LitSphereSpec& spec);
+std::string fingerprint(const LitObjectSpec& spec);
 
 // The engine's problem for this spec: the sphere geometry, the light, the declared tallies. For a
 // mesh, the tallies and the run (GeometryKind::mesh): its geometry and light are render's.
-TransportProblem transport_problem(const LitSphereSpec& spec);
+TransportProblem transport_problem(const LitObjectSpec& spec);
 
 // Runs the spec on the transport engine; only the root rank gets tallies.
-TransportOutput run_lit_sphere(const LitSphereSpec& spec, const ProgressCallback& progress = {},
+TransportOutput run_lit_sphere(const LitObjectSpec& spec, const ProgressCallback& progress = {},
                                const RunControl& control = {});
 
-std::string to_string(SphereLight light);
+std::string to_string(ObjectLight light);
 
 }  // namespace scatterlab

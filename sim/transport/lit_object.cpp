@@ -1,4 +1,4 @@
-#include "scatterlab/transport/lit_sphere.hpp"
+#include "scatterlab/transport/lit_object.hpp"
 
 #include <fmt/format.h>
 
@@ -29,8 +29,8 @@ struct BeamEntry {
 // Where a beam from outside meets the sphere of radius R about the origin, and at what cosine of
 // incidence; nullopt when it misses (or only grazes) it. The pole beam meets (0, 0, -R) along
 // the normal.
-std::optional<BeamEntry> beam_entry(const LitSphereSpec& spec, double radius_mfp) {
-  if (spec.light == SphereLight::pole_beam) {
+std::optional<BeamEntry> beam_entry(const LitObjectSpec& spec, double radius_mfp) {
+  if (spec.light == ObjectLight::pole_beam) {
     return BeamEntry{Vec3(0.0, 0.0, -radius_mfp), Vec3::UnitZ(), 1.0};
   }
   const double mfp_per_unit = mfp_per_length_unit(spec.medium);
@@ -47,7 +47,7 @@ std::optional<BeamEntry> beam_entry(const LitSphereSpec& spec, double radius_mfp
 }
 
 // The sphere's tallies, each declared once; all but the light reflected at entry by order.
-std::vector<TallyDeclaration> declare_tallies(const LitSphereSpec& spec, double radius_mfp,
+std::vector<TallyDeclaration> declare_tallies(const LitObjectSpec& spec, double radius_mfp,
                                               double beam_reflectance) {
   std::vector<TallyDeclaration> tallies;
   if (spec.mesh) {
@@ -89,7 +89,7 @@ std::vector<TallyDeclaration> declare_tallies(const LitSphereSpec& spec, double 
                      true});
   // On a mesh even a beam's reflection is counted photon by photon: light reflected off one part
   // of a shape that is not convex can enter another.
-  if (spec.light == SphereLight::directional || spec.mesh) {
+  if (spec.light == ObjectLight::directional || spec.mesh) {
     tallies.push_back({"reflected_at_entry",
                        Score::reflected_at_entry,
                        {},
@@ -112,15 +112,15 @@ std::vector<TallyDeclaration> declare_tallies(const LitSphereSpec& spec, double 
 
 }  // namespace
 
-std::string to_string(SphereLight light) {
+std::string to_string(ObjectLight light) {
   switch (light) {
-    case SphereLight::directional:
+    case ObjectLight::directional:
       return "directional";
-    case SphereLight::pole_beam:
+    case ObjectLight::pole_beam:
       return "pole_beam";
-    case SphereLight::beam:
+    case ObjectLight::beam:
       return "beam";
-    case SphereLight::sphere:
+    case ObjectLight::sphere:
       return "sphere";
   }
   return "unknown";
@@ -129,13 +129,13 @@ std::string to_string(SphereLight light) {
 namespace {
 
 // A sphere about the origin that holds the mesh, in mfp (its farthest vertex).
-double bounding_radius_mfp(const LitSphereSpec& spec) {
+double bounding_radius_mfp(const LitObjectSpec& spec) {
   double farthest = 0.0;
   for (const Vec3& p : spec.mesh->positions) farthest = std::max(farthest, p.norm());
   return farthest * mfp_per_length_unit(spec.medium);
 }
 
-void check_beam(const LitSphereSpec& spec) {
+void check_beam(const LitObjectSpec& spec) {
   for (const double x : spec.beam_origin) {
     if (!std::isfinite(x)) {
       throw InputError("source.origin", "is not finite", "three finite numbers [x, y, z]");
@@ -151,8 +151,8 @@ void check_beam(const LitSphereSpec& spec) {
 
 // The mesh's own checks (closed, outside the beam's origin, met by the beam) need its ray
 // tracer: mesh/lit_mesh.hpp makes them.
-void validate_mesh_spec(const LitSphereSpec& spec) {
-  if (spec.light == SphereLight::pole_beam) {
+void validate_mesh_spec(const LitObjectSpec& spec) {
+  if (spec.light == ObjectLight::pole_beam) {
     throw InputError("source.type", "\"pole_beam\" on a mesh, which has no pole",
                      "\"directional\", \"beam\" (with source.origin and source.direction) or "
                      "\"sphere\" (with source.position and source.radius)");
@@ -161,8 +161,8 @@ void validate_mesh_spec(const LitSphereSpec& spec) {
     throw InputError("mesh", "has no triangles", "a closed triangle mesh");
   }
   spec.mesh->validate();
-  if (spec.light == SphereLight::beam) check_beam(spec);
-  if (spec.light == SphereLight::sphere) {
+  if (spec.light == ObjectLight::beam) check_beam(spec);
+  if (spec.light == ObjectLight::sphere) {
     for (const double x : spec.light_center) {
       if (!std::isfinite(x)) {
         throw InputError("source.position", "is not finite", "three finite numbers [x, y, z]");
@@ -184,7 +184,7 @@ void validate_mesh_spec(const LitSphereSpec& spec) {
 
 }  // namespace
 
-void LitSphereSpec::validate() const {
+void LitObjectSpec::validate() const {
   medium.validate();
   check_length_unit(medium);
   if (!(eta >= min_eta && eta <= max_eta)) {
@@ -203,7 +203,7 @@ void LitSphereSpec::validate() const {
     throw InputError("geometry.radius", fmt::format("is {} mfp", radius_mfp),
                      "a radius of 1e-6 to 1e6 mean free paths");
   }
-  if (light == SphereLight::sphere) {
+  if (light == ObjectLight::sphere) {
     throw InputError("source.type", "\"sphere\" on the analytic sphere",
                      "\"directional\", \"pole_beam\" or \"beam\"; a sphere of light shines on "
                      "a mesh (geometry.type = \"mesh\", e.g. [mesh] shape = \"sphere\")");
@@ -223,7 +223,7 @@ void LitSphereSpec::validate() const {
     throw InputError("grid.azimuth.bins", fmt::format("got {}", azimuth.bins),
                      "an integer >= 1, with grid.psi.bins x grid.azimuth.bins at most 1e7");
   }
-  if (light == SphereLight::beam) {
+  if (light == ObjectLight::beam) {
     check_beam(*this);
     const double origin_mfp =
         std::hypot(beam_origin[0], beam_origin[1], beam_origin[2]) * mfp_per_length_unit(medium);
@@ -253,7 +253,7 @@ std::string mesh_fingerprint(const TriangleMesh& mesh) {
 
 }  // namespace
 
-std::string fingerprint(const LitSphereSpec& spec) {
+std::string fingerprint(const LitObjectSpec& spec) {
   const Medium& m = spec.medium;
   return fingerprint_of(
       fmt::format("lit_sphere|medium {:a} {:a} {:a} {}|radius {:a}|eta "
@@ -265,14 +265,14 @@ std::string fingerprint(const LitSphereSpec& spec) {
                   spec.beam_direction[2], spec.psi.min, spec.psi.max, spec.psi.bins,
                   spec.azimuth.bins, spec.split_by_order, spec.run.photons, spec.run.batches,
                   spec.run.seed) +
-      (spec.light == SphereLight::sphere
+      (spec.light == ObjectLight::sphere
            ? fmt::format("|light sphere {:a} {:a} {:a} {:a}", spec.light_center[0],
                          spec.light_center[1], spec.light_center[2], spec.light_radius)
            : std::string()) +
       (spec.mesh ? mesh_fingerprint(*spec.mesh) : std::string()));
 }
 
-TransportProblem transport_problem(const LitSphereSpec& spec) {
+TransportProblem transport_problem(const LitObjectSpec& spec) {
   const double radius = spec.radius * mfp_per_length_unit(spec.medium);
   TransportProblem problem;
   problem.albedo = spec.medium.albedo;
@@ -300,7 +300,7 @@ TransportProblem transport_problem(const LitSphereSpec& spec) {
   // directional light's reflection depends on where each photon meets the sphere, so it is
   // counted photon by photon.
   double beam_reflectance = 0.0;
-  if (spec.light == SphereLight::directional) {
+  if (spec.light == ObjectLight::directional) {
     problem.source.kind = Source::Kind::sphere_light;
     problem.source.sphere_radius = radius;
     problem.source.eta = spec.eta;
@@ -321,7 +321,7 @@ TransportProblem transport_problem(const LitSphereSpec& spec) {
   return problem;
 }
 
-TransportOutput run_lit_sphere(const LitSphereSpec& spec, const ProgressCallback& progress,
+TransportOutput run_lit_sphere(const LitObjectSpec& spec, const ProgressCallback& progress,
                                const RunControl& control) {
   spec.validate();
   if (spec.mesh) throw std::invalid_argument("run_lit_sphere: a mesh runs with run_lit_mesh");
