@@ -8,10 +8,13 @@ Every run's file holds ``/tallies/NAME/{mean,stderr}`` with attributes ``units``
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+
+from ._scatterlab import check_file
 
 
 def _text(value) -> object:
@@ -171,6 +174,7 @@ def read(path: str | Path) -> Result:
     import h5py
 
     path = Path(path)
+    check_file(os.fspath(path))  # as `scatterlab info` checks it, before h5py reads it
     try:
         f = h5py.File(path, "r")
     except OSError as e:

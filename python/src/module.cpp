@@ -26,6 +26,7 @@
 #endif
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/scene_schema.hpp"
+#include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/io/text_file.hpp"
 #include "scatterlab/models/chandrasekhar_h.hpp"
 #include "scatterlab/models/dipole.hpp"
@@ -210,6 +211,13 @@ PYBIND11_MODULE(_scatterlab, m) {
   m.def(
       "read_scene_file",
       [](const std::string& path) { return scatterlab::read_scene_file(path, "scene"); },
+      py::arg("path"));
+  // The checks `scatterlab info` makes of a file (io/simulation_file.hpp), before h5py reads it:
+  // one of another format_version, one that contradicts itself, or one whose damage would crash
+  // HDF5 (global heaps, links) is refused naming FILE.
+  m.def(
+      "check_file",
+      [](const std::string& path) { (void)scatterlab::read_file_header(path, "FILE"); },
       py::arg("path"));
   // The scene's keys (io/scene_schema.hpp): (dotted path, [geometry.type, ...]) each.
   m.def("scene_keys", [] {

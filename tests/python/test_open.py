@@ -1,5 +1,7 @@
 """scatterlab.open reads every file the program writes the same way."""
 
+from pathlib import Path
+
 import h5py
 import numpy as np
 import pytest
@@ -42,6 +44,22 @@ def test_open_refuses_other_files(tmp_path):
         f["x"] = 1
     with pytest.raises(ValueError, match="not a scatterlab HDF5 file"):
         scatterlab.open(tmp_path / "other.h5")
+
+
+def test_open_refuses_what_info_refuses(tmp_path, run_program):
+    """A file that contradicts itself, or whose damage crashes HDF5 1.10.8 (tests/fuzz/libhdf5),
+    is refused as `scatterlab info` refuses it, before h5py reads it."""
+    libhdf5 = Path(__file__).resolve().parents[1] / "fuzz" / "libhdf5"
+    for damaged in sorted(libhdf5.glob("*.h5")):
+        assert run_program("info", damaged, check=False).returncode == 2, damaged
+        with pytest.raises(ValueError, match="^FILE: "):
+            scatterlab.open(damaged)
+    run_program("simulate", "--photons", 2000, "--batches", 2, "--out", tmp_path / "run.h5")
+    with h5py.File(tmp_path / "run.h5", "r+") as f:
+        edges = f["grid/r"]
+        edges[0] = np.nan
+    with pytest.raises(ValueError, match="^FILE: .*grid"):
+        scatterlab.open(tmp_path / "run.h5")
 
 
 def test_files_carry_dimension_scales_for_general_tools(tmp_path, run_program):
