@@ -1,17 +1,20 @@
-#include "scatterlab/mesh/mesh_checks.hpp"
 #include "scatterlab/render/render_scene.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <string_view>
 #include <tuple>
+#include <vector>
 
 #include "scatterlab/core/constants.hpp"
 #include "scatterlab/core/memory_budget.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
 #include "scatterlab/io/material_presets.hpp"
 #include "scatterlab/io/toml_reader.hpp"
+#include "scatterlab/mesh/mesh_checks.hpp"
 #include "scatterlab/mesh/mesh_ray_tracer.hpp"
 #include "scatterlab/render/obj_mesh.hpp"
 
@@ -33,6 +36,17 @@ void check_procedural_mesh_memory(int rings, int segments) {
   need.add(fmt::format("the mesh of {} triangles and its checks", triangles),
            triangles * kMeshBytesPerTriangle);
   check_memory(need, "mesh.rings x mesh.segments", "fewer rings or segments");
+}
+
+// The keys each mesh shape takes besides `shape`: a key of another shape is refused, not ignored.
+const std::map<std::string_view, std::vector<std::string_view>>& shape_keys() {
+  static const std::map<std::string_view, std::vector<std::string_view>> keys = {
+      {"sphere", {"radius", "rings", "segments", "normals"}},
+      {"bumpy_sphere", {"radius", "amplitude", "frequency", "rings", "segments", "normals"}},
+      {"rounded_tile", {"half_size", "exponent", "rings", "segments", "normals"}},
+      {"box", {"half_size"}},
+      {"obj", {"path", "normals"}}};
+  return keys;
 }
 
 class RenderSceneReader : public TomlReader {
@@ -121,6 +135,19 @@ class RenderSceneReader : public TomlReader {
         "\"sphere\", \"bumpy_sphere\", \"rounded_tile\", \"box\" or \"obj\"";
     const auto shape = string(table, "shape", path, shapes);
     if (!shape) throw InputError("mesh.shape", "missing", std::string(shapes));
+    const auto taken = shape_keys().find(*shape);
+    if (taken == shape_keys().end()) wrong_type(*table.get("shape"), "mesh.shape", shapes);
+    for (auto&& [key, node] : table) {
+      const std::string_view name = key.str();
+      if (name == "shape" ||
+          std::find(taken->second.begin(), taken->second.end(), name) != taken->second.end()) {
+        continue;
+      }
+      throw InputError(
+          dotted(path, name),
+          fmt::format("given for shape \"{}\", which does not take it{}", *shape, at(key.source())),
+          fmt::format("for shape \"{}\": {}", *shape, join(taken->second)));
+    }
     const std::string_view normal_kinds = "\"interpolated\" or \"flat\"";
     const std::string normals =
         string(table, "normals", path, normal_kinds).value_or("interpolated");
@@ -170,8 +197,6 @@ class RenderSceneReader : public TomlReader {
       if (obj.is_relative()) obj = base_ / obj;
       mesh = read_obj_mesh(obj, smooth);
       mesh_file = obj;
-    } else {
-      wrong_type(*table.get("shape"), "mesh.shape", shapes);
     }
     mesh.validate();
     return mesh;
