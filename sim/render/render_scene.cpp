@@ -39,12 +39,13 @@ void check_procedural_mesh_memory(int rings, int segments) {
 }
 
 // The keys each mesh shape takes besides `shape`: a key of another shape is refused, not ignored.
+// Every shape takes `normals` (the explorer sends it with each): a box's faces are flat either way.
 const std::map<std::string_view, std::vector<std::string_view>>& shape_keys() {
   static const std::map<std::string_view, std::vector<std::string_view>> keys = {
       {"sphere", {"radius", "rings", "segments", "normals"}},
       {"bumpy_sphere", {"radius", "amplitude", "frequency", "rings", "segments", "normals"}},
       {"rounded_tile", {"half_size", "exponent", "rings", "segments", "normals"}},
-      {"box", {"half_size"}},
+      {"box", {"half_size", "normals"}},
       {"obj", {"path", "normals"}}};
   return keys;
 }

@@ -659,6 +659,19 @@ TEST_F(ExploreApiTest, MeshFromAnObjFileOfAnOpenFolder) {
   EXPECT_EQ(answer["mesh"]["mesh_triangles"], 12);
 }
 
+// Every shape the page lists, sent as the page sends it (web/mesh_view.js: with its normals).
+TEST_F(ExploreApiTest, EveryListedShapeIsAcceptedAsThePageSendsIt) {
+  const json listed = body_of(api().handle("GET", "/api/meshes", {}, ""));
+  ASSERT_FALSE(listed["shapes"].empty());
+  for (const json& shape : listed["shapes"]) {
+    for (const char* normals : {"interpolated", "flat"}) {
+      const ApiResponse response = post(
+          "/api/mesh_exitance", mesh_request({{"shape", shape}, {"normals", normals}}, 30.0, 40.0));
+      EXPECT_EQ(response.status, 200) << shape << " " << normals << ": " << response.body;
+    }
+  }
+}
+
 TEST_F(ExploreApiTest, BadMeshRequestsNameTheirField) {
   write(directory_ / "outside.obj", "v 0 0 0\n");
   const auto refused = [&](json request, int status, const std::string& field) {
