@@ -11,6 +11,7 @@
 #include <iterator>
 #include <limits>
 #include <optional>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -36,11 +37,11 @@ class SceneReader : public TomlReader {
     std::string_view geometry = default_geometry;
     std::optional<std::string> type;
     if (const auto* table = subtable(root, "geometry", "")) {
-      type = string(*table, "type", "geometry", kGeometriesAccepted);
+      type = string(*table, "type", "geometry", geometries_accepted());
       if (type) {
         if (std::find(scene_geometries.begin(), scene_geometries.end(), *type) ==
             scene_geometries.end()) {
-          wrong_type(*table->get("type"), "geometry.type", kGeometriesAccepted);
+          wrong_type(*table->get("type"), "geometry.type", geometries_accepted());
         }
         geometry = *type;
       }
@@ -61,9 +62,12 @@ class SceneReader : public TomlReader {
   }
 
  private:
-  static constexpr std::string_view kGeometriesAccepted =
-      "\"infinite\", \"half_space\", \"sphere\", \"mesh\" (with a [mesh] table) or \"slab\" "
-      "(with [[layers]])";
+  // The geometry.type values, as a refusal lists them.
+  static const std::string& geometries_accepted() {
+    static const std::string accepted = join(scene_geometries, "\"", "\"") +
+                                        " (\"mesh\" with a [mesh] table, \"slab\" with [[layers]])";
+    return accepted;
+  }
 
   // The infinite medium (scene.hpp): [medium], [source] type, [grid], [tallies], [run], [output].
   SimulationSpec read_infinite(const toml::table& root, Scene& scene) const {
@@ -537,9 +541,14 @@ class SceneReader : public TomlReader {
   }
 };
 
-// The keys whose one value is a list of numbers, [x, y, z]: a list of such lists sweeps them.
-constexpr std::array<std::string_view, 4> kVectorKeys = {"source.origin", "source.direction",
-                                                         "source.position", "mesh.half_size"};
+// Whether the key at `path` ("source.origin") takes a list of numbers, [x, y, z], as its one
+// value (the schema's vector keys): a list of such lists sweeps it.
+bool is_vector_key(std::string_view path) {
+  const std::span<const SceneKey> keys = scene_keys();
+  return std::any_of(keys.begin(), keys.end(), [path](const SceneKey& key) {
+    return key.path == path && key.value == SceneValue::vector;
+  });
+}
 
 // One step down from a table: a key, or (after a key holding an array of tables, [[layers]]) the
 // index of one of its tables.
@@ -555,7 +564,7 @@ struct SweptKey {
 };
 
 // "layers[2].thickness" (indices from 1, as the reader names layers); with `indices` false,
-// "layers.thickness" (to compare with kVectorKeys).
+// "layers.thickness" (the schema's path).
 std::string join_path(const std::vector<Step>& path, bool indices = true) {
   std::string joined;
   for (const Step& step : path) {
@@ -598,8 +607,7 @@ void find_lists(const toml::table& table, std::vector<Step>& path, std::vector<S
       const auto& begin = node.source().begin;
       const std::string where = fmt::format(" ({}:{}:{})", origin, begin.line, begin.column);
       const std::string name = join_path(path);
-      const bool vector_key = std::find(kVectorKeys.begin(), kVectorKeys.end(),
-                                        join_path(path, false)) != kVectorKeys.end();
+      const bool vector_key = is_vector_key(join_path(path, false));
       if (list->empty()) {
         throw InputError(name, "is an empty list" + where,
                          "a value, or a non-empty list of values to sweep over");
