@@ -45,15 +45,16 @@ if grep -q "interrupted before the first batch" long.err && [ "$(grep -c . long.
   [ -z "$(ls -A | grep long.h5)" ]; then pass; else
   fail "first batches: $(cat long.err; ls)"; fi
 
-# Stopped in batches 2 and 3, which the two threads take once batches 0 and 1 are done and saved:
-# keeps the first two, and --resume ends as an uninterrupted run.
+# Stopped once the first checkpoint is saved: keeps the batches that are whole (two, or three when
+# one thread took batch 2 while the other was still in batch 1, as happens on a loaded machine),
+# and --resume ends as an uninterrupted run.
 run=(simulate --photons 24000000 --batches 4 --threads 2 --seed 4 --theta-bins 6 --phi-bins 8)
 "$exe" "${run[@]}" --out full.h5 >/dev/null || fail "uninterrupted run"
 "$exe" "${run[@]}" --out part.h5 --checkpoint-interval 2b >/dev/null 2>part.err &
 pid=$!
 wait_for part.h5.checkpoint || fail "no checkpoint after the first two batches"
-stop_within "batches 2 and 3" TERM $pid
-if grep -q "interrupted after 2 of 4 batches" part.err && "$exe" info part.h5 | grep -q PARTIAL &&
+stop_within "after the first checkpoint" TERM $pid
+if grep -Eq "interrupted after [23] of 4 batches" part.err && "$exe" info part.h5 | grep -q PARTIAL &&
   "$exe" "${run[@]}" --out part.h5 --resume >/dev/null 2>&1 && "$same" full.h5 part.h5 >/dev/null
 then pass; else fail "resume after a stop in mid-batch: $(cat part.err)"; fi
 
