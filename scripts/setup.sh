@@ -1,12 +1,17 @@
 #!/usr/bin/env bash
 # Installs what scatterlab needs to build and test on Debian 12, and nothing that is already there.
 # Idempotent: a second run installs nothing and prints nothing but its last line.
+# Usage: scripts/setup.sh [core]
+#   core: only what the program itself needs (scripts/run.sh): a compiler, CMake and the libraries
+#   the core links. fit, render, explore, MPI, Python, the tests and the page come with no argument.
 set -euo pipefail
 
-packages=(
-  build-essential cmake ninja-build pkg-config
-  libeigen3-dev libhdf5-dev libceres-dev libfmt-dev libgtest-dev libgmock-dev
-  libcli11-dev libtomlplusplus-dev librandom123-dev libbenchmark-dev libhwy-dev
+core=(
+  build-essential cmake ninja-build
+  libeigen3-dev libhdf5-dev libfmt-dev libcli11-dev libtomlplusplus-dev librandom123-dev libhwy-dev
+)
+rest=(
+  pkg-config libceres-dev libgtest-dev libgmock-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
   libembree-dev libtinyobjloader-dev libopenexr-dev libpng-dev
   clang-format
@@ -18,9 +23,14 @@ packages=(
   chromium chromium-driver python3-selenium  # its page's test in a headless browser
   clang libclang-rt-14-dev libomp-dev  # scripts/fuzz.sh: libFuzzer, and OpenMP under clang
 )
-# npm installs the page's JavaScript (web/package.json). Debian's npm comes with its nodejs; a
-# nodejs from elsewhere that already brings npm is left as it is.
-command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
+case "${1:-}" in
+  core) packages=("${core[@]}") ;;
+  "") packages=("${core[@]}" "${rest[@]}")
+    # npm installs the page's JavaScript (web/package.json). Debian's npm comes with its nodejs; a
+    # nodejs from elsewhere that already brings npm is left as it is.
+    command -v npm >/dev/null 2>&1 || packages+=(nodejs npm) ;;
+  *) echo "setup: unknown argument '$1': accepted are 'core' or nothing" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do
@@ -35,6 +45,8 @@ if ((${#missing[@]})); then
   $sudo apt-get update -q
   $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
+
+if [ "${1:-}" = core ]; then echo "setup: the core's dependencies present"; exit 0; fi
 
 # The page's libraries at the versions web/package-lock.json pins, when they are not there yet.
 web="$(dirname "$0")/../web"
