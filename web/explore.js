@@ -22,6 +22,12 @@ const state = {
   openFiles: {},  // path -> the file's JSON (/api/file)
   profileSeq: 0,
   sphereSeq: 0,
+  invertSeq: [0, 0, 0],
+  // Requests the server refused, by source ('profiles', 'sphere', 'mesh', 'invert-0', ...): each
+  // {message, channel}, drawn beside the input its message names by showProblems().
+  failures: {},
+  lastEdited: [null, null, null],  // per channel, the key typed last (α′ or mfp in that mode)
+  started: false,
 };
 
 // What the browser test reads: the series as plotted (raw R_d, before the plot mode's transform).
@@ -29,16 +35,152 @@ window.explore = { series: {}, updates: 0, sphereUpdates: 0, ready: false, lastP
 
 const $ = (id) => document.getElementById(id);
 
+// A message that names no input of the page (a file that would not load, a server that does not
+// answer): shown above the plots.
 function showError(message) {
   const box = $('error');
-  if (message) {
-    box.textContent = message;
-    box.hidden = false;
-    window.explore.errors.push(message);
+  box.textContent = message || '';
+  box.hidden = !message;
+}
+
+// ---- refused inputs: the message beside the field, the field marked, the status, stale plots ----
+
+// A request of `source` refused with `error` (or answered: error null). `channel`: the channel
+// whose medium the request sent, when it sent one.
+function reportFailure(source, error, channel) {
+  if (error) {
+    state.failures[source] = { message: error.message, channel };
+    window.explore.errors.push(`${source}: ${error.message}`);
   } else {
-    box.hidden = true;
-    box.textContent = '';
+    delete state.failures[source];
   }
+  showProblems();
+}
+
+// Inputs of the page by the field names of the server's refusals ("<field>: <problem>; accepted:
+// ...", sim/explore/request_fields.cpp); `points` and `model` depend on the request.
+const FIELD_INPUTS = {
+  eta: 'eta', scale: 'scale', r_max: 'r-max', radius: 'sphere-radius', samples: 'sphere-samples',
+  cluster_angle: 'mesh-epsilon', 'light.azimuth': 'light-azimuth', 'light.elevation': 'light-elevation',
+};
+const CHANNEL_KEYS = ['sigma_a', 'sigma_s', 'sigma_s_reduced', 'g', 'R_dr', 'l_d'];
+
+// The mesh's refusal of a channel's coefficient names the key but not the channel: the channel is
+// the one holding the value the message quotes ("sigma_a: got -1.000000; ...", times scale).
+function channelQuoted(key, message) {
+  const got = Number((/: got ([^;\s]+)/.exec(message) || [])[1]);
+  if (!Number.isFinite(got)) return undefined;
+  const value = (c) => (key === 'sigma_a' ? c.sigma_a * scale()
+    : key === 'sigma_s' ? (c.sigma_s_reduced * scale()) / (1 - c.g) : c[key]);
+  const found = state.channels.findIndex((c) => Math.abs(value(c) - got) <= 1e-6 * (1 + Math.abs(got)));
+  return found >= 0 ? found : undefined;
+}
+
+// The input a refusal of `source` names, or null.
+function inputFor(source, failure) {
+  const field = (/^([\w.[\]]+): /.exec(failure.message) || [])[1];
+  if (!field) return null;
+  const [, index, rest] = /^(?:medium\.|media\[(\d)\]\.)?(.*)$/.exec(field);
+  let key = rest;
+  if (CHANNEL_KEYS.includes(key)) {
+    const channel = index !== undefined ? Number(index)
+      : failure.channel !== undefined ? failure.channel : channelQuoted(key, failure.message);
+    if (channel === undefined) return null;
+    if (key === 'sigma_s') key = 'sigma_s_reduced';  // sigma_s = σ′_s / (1 − g): the σ′_s typed
+    // In the α′, mfp mode the coefficients come from the one of the two typed last.
+    if (state.mode === 'albedo' && key !== 'g') key = state.lastEdited[channel] === 'mfp' ? 'mfp' : 'albedo';
+    return $(`${key}-${CHANNELS[channel]}`);
+  }
+  if (key === 'points') return $(source === 'mesh' ? 'mesh-points' : 'points');
+  if (key === 'model') return $(source === 'mesh' ? 'mesh-model' : 'inversion-model');
+  if (key.startsWith('mesh')) return $('mesh-shape');
+  return FIELD_INPUTS[key] ? $(FIELD_INPUTS[key]) : null;
+}
+
+// How the status line names an input: its row and channel in the table, else its label.
+function fieldName(input) {
+  const row = input.closest('#channels tr');
+  if (row) return `${row.cells[0].textContent.replace(/\s*\[.*\]$/, '')} (${CHANNELS[input.dataset.channel]})`;
+  const label = input.closest('label');
+  const text = label && label.firstChild.nodeType === Node.TEXT_NODE ? label.firstChild.textContent.trim() : '';
+  // The plot and the mesh both have "points".
+  const view = input.closest('#mesh-controls') ? 'mesh ' : input.closest('#sphere-controls') ? 'lit sphere ' : '';
+  return text ? view + text : input.id;
+}
+
+function markField(input, message) {
+  const id = `${input.id}-error`;
+  const existing = $(id);
+  if (existing) {  // the same field refused by another request (profiles, lit sphere, mesh)
+    if (!existing.textContent.split('\n').includes(message)) existing.textContent += `\n${message}`;
+    return;
+  }
+  input.classList.add('invalid');
+  input.setAttribute('aria-invalid', 'true');
+  input.setAttribute('aria-describedby', id);
+  const box = document.createElement('span');
+  box.id = id;
+  box.className = 'error field-error';
+  box.textContent = message;
+  const row = input.closest('#channels tr');
+  if (row) {
+    // A row of its own under the field's row, the whole table wide: the message stays readable
+    // and the table keeps its three columns.
+    const tr = document.createElement('tr');
+    tr.className = 'field-error-row';
+    const td = document.createElement('td');
+    td.colSpan = row.cells.length;
+    td.appendChild(box);
+    tr.appendChild(td);
+    let after = row;
+    while (after.nextElementSibling && after.nextElementSibling.classList.contains('field-error-row')) after = after.nextElementSibling;
+    after.after(tr);
+  } else {
+    (input.closest('label') || input).after(box);
+  }
+}
+
+// Draws state.failures: every message beside its field (or above the plots if it names none),
+// the status line, and the views whose last request was refused greyed as stale.
+function showProblems() {
+  document.querySelectorAll('.field-error-row, .field-error').forEach((e) => e.remove());
+  document.querySelectorAll('.invalid').forEach((input) => {
+    input.classList.remove('invalid');
+    input.removeAttribute('aria-invalid');
+    input.removeAttribute('aria-describedby');
+  });
+  const named = [], general = [];
+  for (const [source, failure] of Object.entries(state.failures)) {
+    const input = inputFor(source, failure);
+    if (input) {
+      markField(input, failure.message);
+      if (!named.includes(fieldName(input))) named.push(fieldName(input));
+    } else {
+      general.push(`${source}: ${failure.message}`);
+    }
+  }
+  showError(general.join('\n'));
+  // A refused inversion leaves the coefficients of before: every view is then stale.
+  const inverting = Object.keys(state.failures).some((source) => source.startsWith('invert'));
+  for (const [id, source] of [['profile-plot', 'profiles'], ['sphere-plot', 'sphere'], ['mesh-view', 'mesh']]) {
+    $(id).classList.toggle('stale', inverting || source in state.failures);
+  }
+  // The lines under the profiles describe them: as stale as they are.
+  for (const id of ['derived', 'timing']) $(id).classList.toggle('stale-text', $('profile-plot').classList.contains('stale'));
+  const status = $('status');
+  const failed = named.length + general.length > 0;
+  status.classList.toggle('error', failed);
+  if (failed) {
+    status.textContent = named.length ? `error: ${named.join(', ')} rejected` : `error: ${general[0]}`;
+    status.title = Object.values(state.failures).map((f) => f.message).join('\n');
+  } else {
+    status.textContent = state.started ? 'ready' : 'loading…';
+    status.title = '';
+  }
+}
+
+function clearInversionFailures() {
+  for (const source of Object.keys(state.failures)) if (source.startsWith('invert')) delete state.failures[source];
 }
 
 async function api(path, body) {
@@ -119,6 +261,7 @@ function buildRows() {
     body.appendChild(tr);
   }
   $('inversion-model-label').hidden = state.mode !== 'appearance';
+  showProblems();  // the table's inputs are new: mark them again
 }
 
 async function onChannelInput(event) {
@@ -128,6 +271,7 @@ async function onChannelInput(event) {
   const value = Number(input.value);
   if (input.value.trim() === '' || !Number.isFinite(value)) return;  // while typing
   const c = state.channels[channel];
+  state.lastEdited[channel] = key;
   // The material is no longer the preset's.
   $('preset').value = '';
   $('preset-source').textContent = '';
@@ -151,16 +295,19 @@ async function onChannelInput(event) {
 async function invertChannel(channel) {
   const c = state.channels[channel];
   if (c.R_dr === null || c.l_d === null) return;
+  // Each key typed asks again, and the answers may come back in another order: the last asked wins.
+  const seq = ++state.invertSeq[channel];
   try {
     const answer = await api('/api/invert', {
       model: $('inversion-model').value, R_dr: c.R_dr, l_d: c.l_d,
       eta: Number($('eta').value), g: c.g,
     });
+    if (seq !== state.invertSeq[channel]) return;
     c.sigma_a = answer.sigma_a;
     c.sigma_s_reduced = answer.sigma_s_reduced;
-    showError('');
+    reportFailure(`invert-${channel}`, null);
   } catch (error) {
-    showError(`inversion, ${CHANNELS[channel]}: ${error.message}`);
+    if (seq === state.invertSeq[channel]) reportFailure(`invert-${channel}`, error, channel);
   }
 }
 
@@ -255,9 +402,16 @@ function mediumOf(channel) {
   return { sigma_a: c.sigma_a, sigma_s_reduced: c.sigma_s_reduced, g: c.g, eta: Number($('eta').value) };
 }
 
-function profileRequest() {
+// What a plot drawn from `channel`'s medium shows: after "use this medium" (or a grey material)
+// all three channels hold one medium, and naming one channel would mislead.
+function channelTitle(channel) {
+  const [r, g, b] = state.channels.map((c) => `${c.sigma_a} ${c.sigma_s_reduced} ${c.g}`);
+  return r === g && g === b ? 'all channels equal' : `${CHANNELS[channel]} channel`;
+}
+
+function profileRequest(channel) {
   const request = {
-    medium: mediumOf(Number($('channel').value)),
+    medium: mediumOf(channel),
     scale: scale(),
     points: Number($('points').value),
     models: checkedModels(),
@@ -342,12 +496,12 @@ function profileTraces(answer, mode) {
   return { traces, series };
 }
 
-function drawProfiles(answer) {
+// `what`: channelTitle() of the request's channel, taken when the request was sent.
+function drawProfiles(answer, what) {
   const mode = $('plot-mode').value;
   const { traces, series } = profileTraces(answer, mode);
   let maxValue = 0;
   for (const t of traces) for (const v of t.customdata) if (typeof v === 'number' && Number.isFinite(v)) maxValue = Math.max(maxValue, v);
-  const channel = CHANNELS[Number($('channel').value)];
   // A log axis spans at most nine decades below the largest value: the exact single scattering
   // falls far faster than diffusion, and would otherwise squeeze every other curve to the top.
   let logRange = null;
@@ -357,7 +511,8 @@ function drawProfiles(answer) {
     logRange = [Math.log10(Math.max(minValue, maxValue * 1e-9)), Math.log10(maxValue) + 0.2];
   }
   const layout = {
-    title: { text: `Profiles R<sub>d</sub>(r), ${channel} channel, per unit power entering`, font: { size: 15 } },
+    // Left, clear of the mode bar on the right.
+    title: { text: `Profiles R<sub>d</sub>(r), ${what}, per unit power entering`, font: { size: 15 }, x: 0.01, xanchor: 'left' },
     xaxis: { title: { text: `r  [${plotUnit()}]` }, zeroline: false },
     yaxis: { title: { text: yTitle(mode) }, type: mode === 'log' ? 'log' : 'linear', exponentformat: 'power',
              ...(mode === 'sqrt' ? sqrtTicks(maxValue) : {}), ...(logRange ? { range: logRange } : { autorange: true }) },
@@ -399,19 +554,21 @@ function update() {
 
 async function updateProfiles() {
   const seq = ++state.profileSeq;
-  const request = profileRequest();
+  const channel = Number($('channel').value);
+  const request = profileRequest(channel);
+  const what = channelTitle(channel);
   const started = performance.now();
   try {
     const answer = await api('/api/profiles', request);
     if (seq !== state.profileSeq) return;  // a newer request is on its way
     const elapsed = performance.now() - started;
-    drawProfiles(answer);
+    drawProfiles(answer, what);
     showDerived(answer);
     const per = answer.curves.map((c) => `${c.model} ${c.ms.toFixed(2)}`).join(', ');
     $('timing').textContent = `${answer.r.length} points; server ms per profile: ${per}; round trip ${elapsed.toFixed(1)} ms`;
-    showError('');
+    reportFailure('profiles', null);
   } catch (error) {
-    if (seq === state.profileSeq) showError(`profiles: ${error.message}`);
+    if (seq === state.profileSeq) reportFailure('profiles', error, channel);
   }
 }
 
@@ -427,8 +584,11 @@ function updateSphere() {
 async function drawSphere() {
   const seq = ++state.sphereSeq;
   const models = checkedModels().filter((m) => ['dipole', 'better_dipole', 'quantized_diffusion'].includes(m));
+  const channel = Number($('channel').value);
+  const what = channelTitle(channel);
+  const unitNow = plotUnit();
   const request = {
-    medium: mediumOf(Number($('channel').value)), scale: scale(),
+    medium: mediumOf(channel), scale: scale(),
     radius: Number($('sphere-radius').value), samples: Number($('sphere-samples').value), bins: 36, models,
   };
   try {
@@ -459,9 +619,9 @@ async function drawSphere() {
       }
     });
     const layout = {
-      title: { text: `Lit sphere, radius ${format(request.radius)} ${plotUnit()}: exitance per unit power meeting it`, font: { size: 14 } },
+      title: { text: `Lit sphere, radius ${format(request.radius)} ${unitNow}, ${what}: exitance per unit power meeting it`, font: { size: 14 }, x: 0.01, xanchor: 'left' },
       xaxis: { title: { text: 'ψ from the lit pole  [degrees]' }, range: [0, 180], dtick: 30 },
-      yaxis: { title: { text: `M(ψ)  [1/${plotUnit()}²]` }, type: 'log', exponentformat: 'power' },
+      yaxis: { title: { text: `M(ψ)  [1/${unitNow}²]` }, type: 'log', exponentformat: 'power' },
       shapes: [{ type: 'line', x0: 90, x1: 90, yref: 'paper', y0: 0, y1: 1, line: { dash: 'dot', color: '#888' } }],
       legend: { x: 0.99, xanchor: 'right', y: 0.99, bgcolor: 'rgba(255,255,255,0.8)' },
       margin: { l: 80, r: 20, t: 40, b: 50 }, uirevision: 'sphere',
@@ -469,8 +629,9 @@ async function drawSphere() {
     Plotly.react('sphere-plot', traces, layout, { responsive: true, displaylogo: false });
     window.explore.sphere = answer;
     window.explore.sphereUpdates += 1;
+    reportFailure('sphere', null);
   } catch (error) {
-    if (seq === state.sphereSeq) showError(`lit sphere: ${error.message}`);
+    if (seq === state.sphereSeq) reportFailure('sphere', error, channel);
   }
 }
 
@@ -505,6 +666,7 @@ async function applyPreset(value) {
   $('eta').value = library.eta;
   $('unit').value = library.length_unit;
   $('preset-source').textContent = library.citation;
+  clearInversionFailures();  // the coefficients are the preset's now
   if (state.mode === 'appearance') setMode('coefficients');
   buildRows();
   update();
@@ -512,6 +674,7 @@ async function applyPreset(value) {
 
 function setMode(mode) {
   state.mode = mode;
+  if (mode !== 'appearance') clearInversionFailures();  // R_dr and l_d are no longer the inputs
   document.querySelector(`input[name=mode][value=${mode}]`).checked = true;
   buildRows();
 }
@@ -556,6 +719,7 @@ async function toggleFile(file, on, row) {
     box.querySelectorAll('input').forEach((input) => input.addEventListener('change', update));
     box.querySelector('button').addEventListener('click', () => {
       for (const c of state.channels) Object.assign(c, { sigma_a: m.sigma_a, sigma_s_reduced: m.sigma_s * (1 - m.g), g: m.g, R_dr: null, l_d: null });
+      clearInversionFailures();
       $('eta').value = m.eta;
       $('unit').value = m.length_unit;
       $('scale').value = 1;
@@ -565,9 +729,10 @@ async function toggleFile(file, on, row) {
       update();
     });
     row.appendChild(box);
+    reportFailure(`file ${file.name}`, null);
     update();
   } catch (error) {
-    showError(`${file.name}: ${error.message}`);
+    reportFailure(`file ${file.name}`, error);
   }
 }
 
@@ -579,7 +744,7 @@ async function start() {
     state.presets = await api('/api/presets');
     state.textModels = state.info.text_models;
   } catch (error) {
-    showError(`the server did not answer: ${error.message}`);
+    reportFailure('server', error);
     return;
   }
   $('version').textContent = `scatterlab ${state.info.version}`;
@@ -605,7 +770,8 @@ async function start() {
   await buildFiles();
   $('preset').value = 'jensen2001/marble';
   await applyPreset($('preset').value);
-  $('status').textContent = 'ready';
+  state.started = true;
+  showProblems();  // the status: ready, or what was refused on the way
   window.explore.ready = true;
 }
 

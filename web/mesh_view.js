@@ -185,9 +185,10 @@ async function update() {
     describe(answer, performance.now() - started);
     window.explore.meshUpdates = (window.explore.meshUpdates || 0) + 1;
     window.explore.mesh = { key: answer.mesh.key, vertices: answer.mesh.vertices, ms: answer.ms, light: answer.light, model: answer.model };
-    window.showError('');
+    window.reportFailure('mesh', null);
   } catch (error) {
-    if (seq === view.seq) window.showError(`mesh: ${error.message}`);
+    // The channel its message names is found from the value it quotes (explore.js, inputFor).
+    if (seq === view.seq) window.reportFailure('mesh', error);
   }
 }
 

@@ -7,8 +7,11 @@ the values Plotly plots equal the C++ models' within 1e-9 (the dipoles and the e
 scattering through the Python module `import scatterlab`, quantized diffusion through an API call
 of its own), loads a text-file model by dropping a file into the --models folder and pressing
 "Reload text models", refuses a bad one with a message naming the file and line, shows a
-searchlight file with error bars, and saves screenshots, checked against the expected layout
-(elements present and visible, each plot's image not blank), not pixel by pixel.
+searchlight file with error bars, shows a refused field's message beside it with the field marked,
+the status in error and the plots greyed as stale (and all of it gone once the field is fixed),
+checks that the plots' titles name the channel drawn (or none, when "use this medium" made the
+three one), and saves screenshots, checked against the expected layout (elements present and
+visible, each plot's image not blank), not pixel by pixel.
 
     browser_test.py SCATTERLAB_PROGRAM SOURCE_DIR SCREENSHOT_DIR   (PYTHONPATH: the build's python/)
 """
@@ -148,6 +151,67 @@ return [ink / (200 * 120), values];
 """
 
 
+def plot_titles(driver):
+    return driver.execute_script(
+        "return ['profile-plot', 'sphere-plot'].map(id => document.getElementById(id).layout.title.text)")
+
+
+# The state a refused field leaves: the fields marked, their messages, the status, the stale views.
+PROBLEMS = """
+const marked = [...document.querySelectorAll('[aria-invalid=true]')].map(e => e.id);
+const stale = [...document.querySelectorAll('.stale')].map(e => e.id);
+const status = document.getElementById('status');
+return {marked, stale, messages: document.querySelectorAll('.field-error').length,
+        status: status.textContent, statusError: status.classList.contains('error')};
+"""
+
+
+def check_refused_field(driver):
+    """sigma_a = -1 typed for the red channel: the server's refusal shown beside the field and in
+    view (in the issue's 857 px tall window too), the field marked, the status in error, the views
+    greyed as stale; the field fixed, all of it gone."""
+    set_field(driver, "sigma_a-red", -1)
+    wait_for(driver, "const s = id => document.getElementById(id).classList.contains('stale');"
+             "return document.getElementById('status').classList.contains('error') &&"
+             " s('profile-plot') && s('sphere-plot') && (!window.meshView || s('mesh-view'))",
+             "the refusal of sigma_a = -1")
+    field = driver.find_element(By.ID, "sigma_a-red")
+    check(field.get_attribute("aria-invalid") == "true" and "invalid" in field.get_attribute("class"),
+          "refused field: sigma_a-red is not marked")
+    outline = driver.execute_script("return getComputedStyle(arguments[0]).outlineStyle", field)
+    check(outline == "solid", f"refused field: no outline ({outline})")
+    message = driver.find_element(By.ID, field.get_attribute("aria-describedby") or "sigma_a-red-error")
+    check(message.is_displayed() and message.text.startswith("sigma_a: got -1"),
+          f"refused field: message {message.text!r}")
+    at, box, height = driver.execute_script(
+        "return [arguments[0].getBoundingClientRect(), arguments[1].getBoundingClientRect(), window.innerHeight]",
+        field, message)
+    check(0 <= box["top"] and box["bottom"] <= min(height, 857),
+          f"refused field: message not in view (at {box['top']:.0f}-{box['bottom']:.0f} px of {height})")
+    check(0 <= box["top"] - at["bottom"] < 30 and box["left"] <= at["right"] and box["right"] >= at["left"],
+          f"refused field: message not beside the field (field {at}, message {box})")
+    status = driver.find_element(By.ID, "status")
+    check(status.text.startswith("error") and "σa (red)" in status.text and "ready" not in status.text,
+          f"refused field: status {status.text!r}")
+    colour = driver.execute_script("return getComputedStyle(arguments[0]).backgroundColor", status)
+    check(colour == "rgb(198, 40, 40)", f"refused field: status background {colour}")
+    banner = driver.execute_script(
+        "return getComputedStyle(document.getElementById('profile-plot'), '::after').content")
+    check("stale: inputs rejected" in banner, f"refused field: stale banner {banner!r}")
+    check(not driver.find_element(By.ID, "error").is_displayed(),
+          "refused field: the message was shown above the plots, not only beside its field")
+    driver.save_screenshot(str(SHOTS / "1b-refused-field.png"))
+
+    set_field(driver, "sigma_a-red", 0.0021)
+    wait_for(driver, "const p = window.explore.lastProfile; return p.medium.sigma_a === 0.0021 &&"
+             " document.getElementById('status').textContent === 'ready' &&"
+             " !document.querySelector('.stale, .invalid, .field-error')", "the fixed field", 60)
+    problems = driver.execute_script(PROBLEMS)
+    check(problems == {"marked": [], "stale": [], "messages": 0, "status": "ready", "statusError": False},
+          f"fixed field: {problems}")
+    driver.save_screenshot(str(SHOTS / "1c-field-fixed.png"))
+
+
 def check_mesh_view(driver, runs):
     """The BSSRDF on a mesh: drawn, changed by the light, and an OBJ file of the open folder."""
     driver.execute_script("document.getElementById('mesh-controls').scrollIntoView()")
@@ -207,9 +271,15 @@ def check_path_traced_sphere(driver):
     button = "//input[@data-path='0/sphere.h5']/ancestor::div[contains(@class,'file-row')]//button"
     wait_for(driver, "return !!window.explore.sphere", "the lit sphere")
     WebDriverWait(driver, 30).until(lambda d: d.find_elements(By.XPATH, button))
+    check(all("red channel" in t for t in plot_titles(driver)), f"titles before: {plot_titles(driver)}")
     before = driver.execute_script("return window.explore.sphereUpdates")
     driver.find_element(By.XPATH, button).click()
     wait_for(driver, f"return window.explore.sphereUpdates > {before}", "the lit sphere of the file's medium", 60)
+    # One medium in all three channels now: no title may name the red channel.
+    wait_for(driver, "return ['profile-plot', 'sphere-plot'].every(id =>"
+             " document.getElementById(id).layout.title.text.includes('all channels equal'))",
+             "titles saying that all channels are equal")
+    check(not any("red" in t for t in plot_titles(driver)), f"titles after 'use this medium': {plot_titles(driver)}")
     radius = driver.find_element(By.ID, "sphere-radius").get_attribute("value")
     check(float(radius) == 1.0, f"the file's radius was not taken over: {radius}")
     points = driver.execute_script(
@@ -248,6 +318,9 @@ def main():
         check(driver.title == "scatterlab explore", f"title {driver.title!r}")
         wait_for(driver, "return window.explore.sphereUpdates > 0", "the lit sphere")
         check_layout(driver, "1-marble-log", ["profile-plot", "sphere-plot"])
+        check(all("red channel" in t for t in plot_titles(driver)), f"marble's titles: {plot_titles(driver)}")
+        check(driver.find_element(By.ID, "status").text == "ready", "status not ready")
+        check_refused_field(driver)
 
         # A user's change: the red channel to sigma_a = 0.01, sigma_s' = 0.99 per mm (sigma_t' = 1,
         # albedo 0.99), g = 0, eta 1.3, and the square-root mode.
