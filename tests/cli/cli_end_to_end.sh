@@ -88,9 +88,16 @@ if [ $? -eq 2 ] && grep -q -- "--section" "$work/stderr" && grep -q "half_space_
   [ ! -e "$work/no_report" ]; then pass; else fail "report bad section: $(cat "$work/stderr")"; fi
 
 # invert: (R_dr, l_d) -> (sigma_a, sigma_s) and the forward model back, per channel.
-if "$exe" invert --Rd 0.5 0.3 --ld 2 1 --model better_dipole >"$work/stdout" &&
-  awk '$1 == "0" && $7 == "0.5" && $8 == "2" {ok++} $1 == "1" && $7 == "0.3" && $8 == "1" {ok++}
-       END {exit ok != 2}' "$work/stdout"; then pass; else fail "invert round trip: $(cat "$work/stdout")"; fi
+if "$exe" invert --Rd 0.5 0.3 0.2 --ld 2 1 0.5 --model better_dipole --length-unit cm \
+    >"$work/stdout" &&
+  awk '$1 == "red" && $7 == "0.5" && $8 == "2" {ok++} $1 == "green" && $7 == "0.3" && $8 == "1" {ok++}
+       $1 == "blue" && $7 == "0.2" && $8 == "0.5" {ok++} /sigma_a \/cm/ {ok++}
+       END {exit ok != 4}' "$work/stdout"; then pass; else fail "invert round trip: $(cat "$work/stdout")"; fi
+for args in "--Rd 0.5 0.3 --ld 2 1:--Rd" "--Rd 0.5 --ld 2 --length-unit inch:--length-unit"; do
+  "$exe" invert ${args%%:*} >"$work/stdout" 2>"$work/stderr"
+  if [ $? -eq 2 ] && grep -q -- "${args##*:}" "$work/stderr" && [ "$(grep -c . "$work/stderr")" -eq 1 ]
+  then pass; else fail "invert ${args%%:*}: $(cat "$work/stderr")"; fi
+done
 "$exe" invert --Rd 1.5 --ld 2 >"$work/stdout" 2>"$work/stderr"
 if [ $? -eq 2 ] && grep -q "R_dr" "$work/stderr"; then pass; else fail "invert bad R_dr: $(cat "$work/stderr")"; fi
 "$exe" invert --Rd 0.5 --ld 2 --model grosjean >"$work/stdout" 2>"$work/stderr"
