@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "scatterlab/tally/figure_of_merit.hpp"
@@ -12,14 +13,16 @@ namespace scatterlab::cli {
 void print_run_time(const TransportOutput& out) {
   const double events = static_cast<double>(out.scattering_events);
   const double seconds = out.run_wall_seconds();
-  const int workers = out.threads * out.ranks;
   const std::string ranks = out.ranks > 1 ? fmt::format("{} ranks x ", out.ranks) : "";
+  // Per event, the walk's time only: set-up, the batches' tallies and finishing do not grow with
+  // the events, and in a small run they would read as a slow walk.
   fmt::print(
       "  {} photons in {} batches on {}{} thread{}: {:.2f} s ({:.3g} photons/s, {:.3g} "
-      "scattering events, {:.1f} ns per event per thread)\n",
+      "scattering events, {:.1f} ns per event per thread in the walk; {:.2f} s outside it)\n",
       out.photons, out.batches_done, ranks, out.threads, out.threads == 1 ? "" : "s", seconds,
       static_cast<double>(out.photons) / seconds, events,
-      events > 0 ? seconds * workers / events * 1e9 : 0.0);
+      out.walk_events > 0 ? out.walk_seconds / static_cast<double>(out.walk_events) * 1e9 : 0.0,
+      std::max(0.0, out.wall_seconds - out.walk_seconds / out.threads));
   if (out.threads < out.threads_asked) {
     fmt::print("  OpenMP granted {} of the {} threads asked for (OMP_DYNAMIC, OMP_THREAD_LIMIT)\n",
                out.threads, out.threads_asked);

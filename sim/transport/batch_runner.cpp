@@ -197,6 +197,7 @@ class BatchScheduler {
       const std::uint64_t batch = start_ + g * rank_count_ + rank_;
       std::uint64_t batch_scatterings = 0;
       bool whole = worker != nullptr;
+      const auto walk_start = std::chrono::steady_clock::now();
       if (worker && batch < batches_) {
         try {
           whole = transport(*worker, batch_range(photons_, batches_, batch), ring_[g % slots_].data(),
@@ -207,9 +208,12 @@ class BatchScheduler {
           whole = false;
         }
       }
+      const std::chrono::duration<double> walked = std::chrono::steady_clock::now() - walk_start;
       {
         std::lock_guard<std::mutex> lock(ring_mutex_);
         ring_state_[g % slots_] = {g, whole, batch_scatterings};
+        walk_seconds_ += walked.count();
+        walk_events_ += batch_scatterings;
       }
       fold_ready();
       if (t == 0) report_progress();
@@ -459,6 +463,8 @@ class BatchScheduler {
     outcome.batches_resumed = start_;
     outcome.photons_resumed = batch_range(photons_, batches_, start_).first;
     outcome.resumed_wall_seconds = resumed_wall_seconds_;
+    outcome.walk_seconds = walk_seconds_;
+    outcome.walk_events = walk_events_;
     outcome.threads = granted_;
     outcome.threads_asked = threads_;
     outcome.ranks = ranks_;
@@ -504,6 +510,9 @@ class BatchScheduler {
   std::vector<double> received_;  // a group's slices from every rank
   std::vector<std::size_t> receive_counts_;
   std::uint64_t scatterings_ = 0;
+  // This process's time in the walk, summed over threads, and its events (ring_mutex_).
+  double walk_seconds_ = 0.0;
+  std::uint64_t walk_events_ = 0;
   const std::chrono::steady_clock::time_point clock_start_;
   double resumed_wall_seconds_ = 0.0;
   std::chrono::steady_clock::time_point last_checkpoint_;

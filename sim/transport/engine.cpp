@@ -108,6 +108,8 @@ TransportOutput detail::run_kernel(const TransportProblem& problem,
   output.photons = outcome.photons_done;
   output.photons_resumed = outcome.photons_resumed;
   output.resumed_wall_seconds = outcome.resumed_wall_seconds;
+  output.walk_seconds = outcome.walk_seconds;
+  output.walk_events = outcome.walk_events;
   output.batches_done = outcome.batches_done;
   output.threads = outcome.threads;
   output.threads_asked = outcome.threads_asked;

@@ -88,6 +88,10 @@ struct BatchOutcome {
   std::uint64_t batches_resumed = 0;
   std::uint64_t photons_resumed = 0;
   double resumed_wall_seconds = 0.0;
+  // This process's time in the random walk (scoring included), summed over its threads, and the
+  // scattering events it walked: the cost per event without set-up, folding and finishing.
+  double walk_seconds = 0.0;
+  std::uint64_t walk_events = 0;
   int threads = 1;        // per rank: what OpenMP granted
   int threads_asked = 1;  // per rank: run.threads (or OpenMP's count for 0), at most the batches
   int ranks = 1;

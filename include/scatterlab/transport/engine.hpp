@@ -16,7 +16,12 @@ namespace scatterlab {
 struct TransportOutput {
   std::vector<TallyResult> tallies;  // on the root rank; empty on the others
   double wall_seconds = 0.0;         // of this process
-  std::uint64_t photons = 0;         // in the batches done, by this process and any it resumed
+  // This process's time in the random walk, summed over threads, and its events there
+  // (BatchOutcome): a small run spends most of its wall time on set-up, the batches' tallies and
+  // finishing, which is not a cost per event.
+  double walk_seconds = 0.0;
+  std::uint64_t walk_events = 0;
+  std::uint64_t photons = 0;  // in the batches done, by this process and any it resumed
   // Done by the run this process resumed from a checkpoint (0 when it started afresh); the wall
   // time on the root rank only.
   std::uint64_t photons_resumed = 0;
