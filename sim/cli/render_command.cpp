@@ -178,9 +178,9 @@ int run_study(const RenderOptions& o, const std::filesystem::path& out_dir, doub
                std::isnan(row.mean_z2) ? "" : fmt::format(", mean z^2 {:.3g}", row.mean_z2));
     std::fflush(stdout);
   };
-  run_render_study(scenes, options, out_dir, on_row, progress);
+  const RenderStudyResult study = run_render_study(scenes, options, out_dir, on_row, progress);
   reporter.reset();
-  fmt::print("wrote {}\n", (out_dir / "render_study.csv").string());
+  for (const std::filesystem::path& path : study.written) fmt::print("wrote {}\n", path.string());
   return 0;
 }
 
@@ -243,7 +243,7 @@ Action add_render_command(CLI::App& app) {
   render->add_option("--seed", options->seed,
                      "Random seed (pathtrace, volumetric), in [0, 2^63 - 1]");
   CLI::Option* out_option = render->add_option(
-      "--out", options->out,
+      "-o,--out", options->out,
       "Output OpenEXR file, NAME.exr; the PNG is written beside it as NAME.png "
       "(--study: the output directory, new, empty or one scatterlab wrote, made if "
       "missing; by default render-study)");

@@ -57,9 +57,10 @@ void check_size(int width, int height) {
 void check(const LinePlot& plot) {
   if (plot.series.empty()) throw InputError("plot", "no series", "at least one series");
   for (const PlotSeries& s : plot.series) {
-    if (s.x.size() != s.y.size() || (!s.y_error.empty() && s.y_error.size() != s.y.size())) {
+    if (s.x.size() != s.y.size() || (!s.y_error.empty() && s.y_error.size() != s.y.size()) ||
+        (!s.point_labels.empty() && s.point_labels.size() != s.y.size())) {
       throw InputError("plot", "series \"" + s.name + "\" has mismatched lengths",
-                       "x, y (and y_error if given) of equal length");
+                       "x, y (and y_error and point_labels if given) of equal length");
     }
   }
   check_size(plot.width, plot.height);
@@ -128,6 +129,14 @@ std::string figure_json(const LinePlot& plot, const std::string& output) {
         "{}{{\"name\": {}, \"model\": {}, \"markers\": {}, \"x\": [{}], \"y\": [{}]",
         k == 0 ? "" : ", ", json_string(s.name), json_string(s.model), s.markers, xs, ys);
     if (!s.y_error.empty()) json += fmt::format(", \"low\": [{}], \"high\": [{}]", lows, highs);
+    if (!s.point_labels.empty()) {
+      json += ", \"point_labels\": [";
+      for (std::size_t i = 0; i < s.point_labels.size(); ++i) {
+        if (i > 0) json += ", ";
+        json += json_string(s.point_labels[i]);
+      }
+      json += "]";
+    }
     json += "}";
   }
   return json + "]}";

@@ -233,6 +233,17 @@ def draw(figure, path):
                 label=label,
                 zorder=order,
             )
+        for px, py, text in zip(series["x"], series["y"], series.get("point_labels", [])):
+            if px is not None and py is not None:
+                ax.annotate(
+                    text,
+                    (px, py),
+                    xytext=(4, 4),
+                    textcoords="offset points",
+                    fontsize=7,
+                    color=colour,
+                    zorder=order,
+                )
         if label:
             legend.append((handle, label))
     set_scale(ax.set_yscale, figure["y_scale"])

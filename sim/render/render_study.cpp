@@ -128,10 +128,11 @@ void write_error_plot(const std::string& scene, const std::vector<RenderStudyRow
 
 RenderStudyOptions RenderStudyOptions::quick() {
   RenderStudyOptions options;
-  options.size = 8;
-  options.budgets = {1, 4};
-  options.pathtrace_budgets = {2000, 8000};
-  options.reference_samples = 64000;
+  // 32 x 32: the smallest image in which a reader sees the object; budgets small to match.
+  options.size = 32;
+  options.budgets = {1, 2};
+  options.pathtrace_budgets = {1000, 4000};
+  options.reference_samples = 16000;
   return options;
 }
 
@@ -161,10 +162,11 @@ ImageErrors image_errors(const Image& image, const Image& reference, const Image
   return errors;
 }
 
-std::vector<RenderStudyRow> run_render_study(
-    const std::vector<RenderStudyScene>& scenes, const RenderStudyOptions& options,
-    const std::filesystem::path& out_dir, const std::function<void(const RenderStudyRow&)>& on_row,
-    const StudyProgress& progress) {
+RenderStudyResult run_render_study(const std::vector<RenderStudyScene>& scenes,
+                                   const RenderStudyOptions& options,
+                                   const std::filesystem::path& out_dir,
+                                   const std::function<void(const RenderStudyRow&)>& on_row,
+                                   const StudyProgress& progress) {
   if (options.size < 1 || options.budgets.empty() || options.pathtrace_budgets.empty() ||
       options.reference_samples < 2) {
     throw InputError("study", "an empty study",
@@ -183,6 +185,7 @@ std::vector<RenderStudyRow> run_render_study(
                     : WorkProgress{};
   };
   std::vector<RenderStudyRow> rows;
+  std::vector<std::filesystem::path> written;
   for (const RenderStudyScene& entry : scenes) {
     RenderScene scene = entry.scene;
     scene.width = scene.height = options.size;
@@ -222,7 +225,8 @@ std::vector<RenderStudyRow> run_render_study(
       }
       largest.push_back(std::move(last));
     }
-    write_error_plot(entry.name, rows, out_dir / (entry.name + "_error.png"));
+    written.push_back(out_dir / (entry.name + "_error.png"));
+    write_error_plot(entry.name, rows, written.back());
     // The reference and each method at its largest budget, titled, at one exposure.
     ImageFigure figure;
     figure.title =
@@ -243,10 +247,12 @@ std::vector<RenderStudyRow> run_render_study(
       figure.panels.push_back(
           {fmt::format("{}\n{}", method_name(method), budget), &largest[m].image});
     }
-    write_png(figure, out_dir / (entry.name + "_images.png"));
+    written.push_back(out_dir / (entry.name + "_images.png"));
+    write_png(figure, written.back());
   }
-  write_csv(rows, out_dir / "render_study.csv");
-  return rows;
+  written.push_back(out_dir / "render_study.csv");
+  write_csv(rows, written.back());
+  return {std::move(rows), std::move(written)};
 }
 
 }  // namespace scatterlab

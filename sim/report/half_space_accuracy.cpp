@@ -65,9 +65,9 @@ Section half_space_convergence(const Profile& profile) {
   section.table.columns = {"photons", "seconds", "photons_per_second", "diffuse_reflectance",
                            "stderr", "relative_error", "z"};
   LinePlot plot{fmt::format("Index-matched half-space, normal beam, albedo {:g}:\nerror of the "
-                            "total diffuse reflectance against run time",
+                            "total diffuse reflectance against photons (labels: wall time)",
                             albedo),
-                "wall-clock time (s)",
+                "photons",
                 "relative error of $R_\\mathrm{d}$",
                 AxisScale::log,
                 true,
@@ -91,9 +91,10 @@ Section half_space_convergence(const Profile& profile) {
          fmt::format("{:.4g}", static_cast<double>(photons) / out.wall_seconds),
          fmt::format("{:.7f}", r.mean), fmt::format("{:.2g}", r.stderr_of_mean),
          fmt::format("{:.3g}", std::abs(r.mean - exact) / exact), fmt::format("{:.2f}", z)});
-    errors.x.push_back(out.wall_seconds);
+    errors.x.push_back(static_cast<double>(photons));
     errors.y.push_back(std::abs(r.mean - exact) / exact);
-    predicted.x.push_back(out.wall_seconds);
+    errors.point_labels.push_back(wall_time_label(out.wall_seconds));
+    predicted.x.push_back(static_cast<double>(photons));
     predicted.y.push_back(r.stderr_of_mean / exact);
     photon_counts.push_back(static_cast<double>(photons));
     standard_errors.push_back(r.stderr_of_mean);

@@ -70,9 +70,9 @@ Section infinite_medium_convergence(const Profile& profile) {
   }
 
   LinePlot plot{fmt::format("Infinite medium, isotropic point source, albedo {:g}:\nerror of the "
-                            "fluence (shells {:g} to {:g} mfp) against run time",
+                            "fluence (shells {:g} to {:g} mfp) against photons\n(labels: wall time)",
                             kAlbedo, kRhoMin, kRhoMax),
-                "wall-clock time (s)",
+                "photons",
                 "relative RMS error of $\\phi$",
                 AxisScale::log,
                 true,
@@ -109,11 +109,12 @@ Section infinite_medium_convergence(const Profile& profile) {
     }
     plot.series.push_back(
         {estimator == Estimator::collision ? "collision estimator" : "track-length estimator",
-         seconds,
+         photons,
          errors,
          {},
          true,
-         to_string(estimator)});
+         to_string(estimator),
+         wall_time_labels(seconds)});
     const double slope = log_log_slope(photons, errors);
     const double time_slope = log_log_slope(seconds, errors);
     section.checks.push_back(

@@ -49,8 +49,9 @@ std::string to_markdown(const Table& table) {
   return text;
 }
 
-void write_report(const std::filesystem::path& directory, const std::string& command_line,
-                  const std::vector<Section>& sections) {
+std::vector<std::filesystem::path> write_report(const std::filesystem::path& directory,
+                                                const std::string& command_line,
+                                                const std::vector<Section>& sections) {
   std::error_code error;
   std::filesystem::create_directories(directory, error);
   if (error || !std::filesystem::is_directory(directory)) {
@@ -58,6 +59,7 @@ void write_report(const std::filesystem::path& directory, const std::string& com
                      "a directory, or a path where one can be made");
   }
 
+  std::vector<std::filesystem::path> written;
   std::string markdown = fmt::format(
       "# scatterlab accuracy report\n\nscatterlab {}, {}\n\n`{}`\n\n| section | result |\n"
       "|---|---|\n",
@@ -73,7 +75,8 @@ void write_report(const std::filesystem::path& directory, const std::string& com
         section.id, section.title, section.reference, section.tolerance, section.findings,
         to_markdown(section.table), section.id, section.id);
     for (const Figure& figure : section.figures) {
-      write_png(figure.plot, directory / (figure.id + ".png"));
+      written.push_back(directory / (figure.id + ".png"));
+      write_png(figure.plot, written.back());
       // The title's line break (io/plot.hpp) is a space in the image's text.
       std::string alt = figure.plot.title;
       std::replace(alt.begin(), alt.end(), '\n', ' ');
@@ -84,9 +87,12 @@ void write_report(const std::filesystem::path& directory, const std::string& com
       markdown += "\n**Failed:**\n\n";
       for (const std::string& failure : failures) markdown += "- " + failure + "\n";
     }
-    write_text(directory / (section.id + ".csv"), to_csv(section.table));
+    written.push_back(directory / (section.id + ".csv"));
+    write_text(written.back(), to_csv(section.table));
   }
-  write_text(directory / "report.md", markdown);
+  written.push_back(directory / "report.md");
+  write_text(written.back(), markdown);
+  return written;
 }
 
 }  // namespace scatterlab::report

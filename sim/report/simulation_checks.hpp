@@ -1,6 +1,8 @@
 #pragma once
 // Small helpers the report's Monte Carlo sections share.
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -25,6 +27,15 @@ inline double log_log_slope(const std::vector<double>& x, const std::vector<doub
     sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
   }
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+// A point's wall time, drawn beside it on an error-against-photons figure ("0.42 s").
+inline std::string wall_time_label(double seconds) { return fmt::format("{:.2g} s", seconds); }
+
+inline std::vector<std::string> wall_time_labels(const std::vector<double>& seconds) {
+  std::vector<std::string> labels;
+  for (const double s : seconds) labels.push_back(wall_time_label(s));
+  return labels;
 }
 
 // NaN or Inf anywhere in a run's tallies (means and standard errors).

@@ -31,6 +31,9 @@ struct PlotSeries {
   // grosjean, grosjean_beam, measured, straight, walter, holzschuch, pathtrace, and
   // "<key>+single_scatter" (drawn as <key>). Empty or unknown: the next free colour.
   std::string model = {};
+  // Empty, or a short text per point, drawn beside it (error against photons: each point's wall
+  // time, which under load need not grow with the photons and so makes a poor axis).
+  std::vector<std::string> point_labels = {};
 };
 
 struct LinePlot {

@@ -86,12 +86,18 @@ ImageErrors image_errors(const Image& image, const Image& reference, const Image
 // samples"); what it returns is given that render's progress (tiles done, of the total).
 using StudyProgress = std::function<WorkProgress(const std::string& what)>;
 
-// Runs the study and writes its files into `out_dir` (which must exist: InputError "out").
-// `on_row` is called after each run. Returns every row, references excluded.
-std::vector<RenderStudyRow> run_render_study(
-    const std::vector<RenderStudyScene>& scenes, const RenderStudyOptions& options,
-    const std::filesystem::path& out_dir,
-    const std::function<void(const RenderStudyRow&)>& on_row = {},
-    const StudyProgress& progress = {});
+struct RenderStudyResult {
+  std::vector<RenderStudyRow> rows;            // every run, references excluded
+  std::vector<std::filesystem::path> written;  // every file, in the order written
+};
+
+// Runs the study and writes its files into `out_dir` (which must exist: InputError "out"): per
+// scene NAME_error.png and NAME_images.png, then render_study.csv. `on_row` is called after
+// each run.
+RenderStudyResult run_render_study(const std::vector<RenderStudyScene>& scenes,
+                                   const RenderStudyOptions& options,
+                                   const std::filesystem::path& out_dir,
+                                   const std::function<void(const RenderStudyRow&)>& on_row = {},
+                                   const StudyProgress& progress = {});
 
 }  // namespace scatterlab

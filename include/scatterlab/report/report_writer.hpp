@@ -11,8 +11,10 @@
 namespace scatterlab::report {
 
 // Creates `directory` if it is missing (its parent must exist: InputError "out" otherwise).
-void write_report(const std::filesystem::path& directory, const std::string& command_line,
-                  const std::vector<Section>& sections);
+// Returns every file written, report.md last.
+std::vector<std::filesystem::path> write_report(const std::filesystem::path& directory,
+                                                const std::string& command_line,
+                                                const std::vector<Section>& sections);
 
 // The table as RFC 4180 CSV and as a Markdown table.
 std::string to_csv(const Table& table);
