@@ -37,7 +37,10 @@ int run_with_checkpoints(const std::string& command, const LongRunOptions& optio
   }
   ProgressReporter reporter(command, "batches", log_interval);
   ProgressCallback progress;
-  if (root) progress = [&reporter](const BatchProgress& done) { reporter.update(done); };
+  if (root) {
+    reporter.start(long_run.resumed_batches(), batches);
+    progress = [&reporter](const BatchProgress& done) { reporter.update(done); };
+  }
   const TransportOutput out = run(progress, long_run.control());
   reporter.finish();
 

@@ -9,8 +9,8 @@
 namespace scatterlab::cli {
 
 std::shared_ptr<double> add_log_interval_option(CLI::App& command) {
-  // A minute: a line per minute keeps a day's batch log readable and shows a stalled job soon.
-  auto seconds = std::make_shared<double>(60.0);
+  // Ten seconds: a job shows it is alive soon after it starts; a day's log is still 8640 lines.
+  auto seconds = std::make_shared<double>(10.0);
   // A bad value is a parse error: one line naming the flag, status 2, before any work (CLI11
   // names the flag).
   const CLI::Validator non_negative(
@@ -25,7 +25,8 @@ std::shared_ptr<double> add_log_interval_option(CLI::App& command) {
   command
       .add_option("--log-interval", *seconds,
                   "Off a terminal (batch jobs, | tee, cluster logs), write a progress line to "
-                  "standard error every SECONDS: work done, rate and ETA; 0 writes none. On a "
+                  "standard error as it starts and then every SECONDS: work done, rate and ETA; 0 "
+                  "writes none. On a "
                   "terminal a progress bar is drawn instead")
       ->type_name("SECONDS")
       ->check(non_negative);

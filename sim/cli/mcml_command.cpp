@@ -1,7 +1,8 @@
 // scatterlab mcml FILE.mci: every run of an MCML input file (io/mcml_input.hpp) on the layered
 // slab (transport/layered_slab.hpp), each written as our HDF5 file named after the run's output
-// file (sample.mco -> sample.h5) in the current directory and, with --mco, as MCML's own .mco
-// (io/mco_file.hpp) beside it. Every run is read, checked and planned before the first starts.
+// file (sample.mco -> sample.h5) in --out-dir (the current directory by default), or at --out
+// for a file of one run, and, with --mco, as MCML's own .mco (io/mco_file.hpp) beside it. Every
+// run is read, checked and planned before the first starts.
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -28,6 +29,7 @@ namespace {
 
 struct McmlFlags {
   std::string input;
+  std::string out, out_dir;  // out_dir empty: the current directory
   bool mco = false;
   std::string weighting = "analog";
   RunOptions run;
@@ -59,21 +61,31 @@ int run_mcml(const CLI::App& command, const McmlFlags& flags, const LongRunOptio
         fmt::format("given for {} runs: every run checkpoints beside its file", runs.size()),
         "--checkpoint only for a file of one run");
   }
-  std::vector<LayeredSlabSpec> specs;
   OutputPlan plan;
   plan.input("FILE", flags.input);
+  if (runs.size() > 1 && !flags.out.empty()) {
+    throw InputError("--out", fmt::format("given for {} runs", runs.size()),
+                     "--out only for a file of one run; --out-dir for the directory of them all");
+  }
+  std::vector<LayeredSlabSpec> specs;
   std::vector<std::filesystem::path> h5_paths, mco_paths;
   for (const McmlRun& run : runs) {
     specs.push_back(slab_spec(run, command, flags));
     check_transport_memory(transport_problem(specs.back()), world.size(), long_run.resume);
-    // In the current directory, whatever directory the .mci names its output in.
-    const std::filesystem::path name = std::filesystem::path(run.output_file).filename();
-    const std::string field = fmt::format("{}:{} output file", flags.input, run.line);
-    h5_paths.push_back(std::filesystem::path(name).replace_extension(".h5"));
+    // In --out-dir, whatever directory the .mci names its output in.
+    const std::filesystem::path name =
+        std::filesystem::path(flags.out_dir) / std::filesystem::path(run.output_file).filename();
+    const std::string field = !flags.out.empty() ? "--out"
+                              : command.get_option("--out-dir")->count() > 0
+                                  ? "--out-dir"
+                                  : fmt::format("{}:{} output file", flags.input, run.line);
+    h5_paths.push_back(flags.out.empty() ? std::filesystem::path(name).replace_extension(".h5")
+                                         : std::filesystem::path(flags.out));
     plan.output_file(field, h5_paths.back());
     plan.output_file("--checkpoint", checkpoint_path(long_run, h5_paths.back()));
     if (flags.mco) {
-      mco_paths.push_back(name);
+      mco_paths.push_back(
+          flags.out.empty() ? name : std::filesystem::path(flags.out).replace_extension(".mco"));
       plan.output_file(field, mco_paths.back());
     }
   }
@@ -118,12 +130,22 @@ Action add_mcml_command(CLI::App& app, const std::string& command_line, World& w
   auto* command = app.add_subcommand(
       "mcml",
       "Run every run of an MCML input file (.mci) on the layered slab: one HDF5 file per run, "
-      "named after the run's output file (sample.mco -> sample.h5), in the current directory");
+      "named after the run's output file (sample.mco -> sample.h5), in --out-dir; or --out for "
+      "a file of one run");
   auto flags = std::make_shared<McmlFlags>();
   command->add_option("FILE", flags->input, "MCML 1.2.2 input file (.mci)")->required();
+  CLI::Option* out =
+      command->add_option("-o,--out", flags->out,
+                          "The HDF5 file of a file of one run (the .mco beside it, as NAME.mco)");
+  command
+      ->add_option("--out-dir", flags->out_dir,
+                   "Directory of the runs' files, each named after its run's output file; must "
+                   "exist")
+      ->excludes(out)
+      ->default_str("the current directory");
   command->add_flag("--mco", flags->mco,
-                    "Also write MCML's .mco text output, under the run's output file name, in "
-                    "the current directory");
+                    "Also write MCML's .mco text output, under the run's output file name (with "
+                    "--out: NAME.mco beside it)");
   command
       ->add_option("--weighting", flags->weighting,
                    "analog: each photon is absorbed whole (energy balances photon by photon); "

@@ -29,8 +29,20 @@ ProgressReporter::~ProgressReporter() {
   finish();
 }
 
+// Off a terminal the first line is due at once, then one per interval.
 bool ProgressReporter::due(std::chrono::steady_clock::time_point now) const {
+  if (mode_ == Mode::lines && !said_) return true;
   return mode_ != Mode::off && now - last_ >= interval_;
+}
+
+void ProgressReporter::start(std::uint64_t done, std::uint64_t total) {
+  if (mode_ != Mode::lines) return;
+  const std::string resumed = done > 0 ? fmt::format(" ({} resumed)", done) : "";
+  fmt::print(stderr, "{}: {}/{} {}{}, started; a line every {:g} s\n", label_, done, total, unit_,
+             resumed, interval_.count());
+  std::fflush(stderr);
+  said_ = true;
+  last_ = std::chrono::steady_clock::now();
 }
 
 void ProgressReporter::update(std::uint64_t done, std::uint64_t total) {
@@ -58,6 +70,7 @@ void ProgressReporter::report(const WorkPace& pace, const std::string& rate) {
                   duration_text(pace.seconds), duration_text(pace.seconds_left()));
   if (mode_ == Mode::lines) {
     fmt::print(stderr, "{}: {}\n", label_, text);
+    said_ = true;
   } else {
     constexpr int width = 30;
     const double fraction =

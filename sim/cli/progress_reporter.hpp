@@ -1,7 +1,8 @@
 #pragma once
 // How far a long command has got, on standard error only (standard output carries results): on a
 // terminal a bar with the ETA, redrawn a few times a second and cleared at the end; off a terminal
-// (batch jobs, `| tee`, cluster logs) one plain line every --log-interval seconds, e.g.
+// (batch jobs, `| tee`, cluster logs) one plain line as it starts, then one every --log-interval
+// seconds, e.g.
 //
 //   simulate: 12/64 batches, 1.9e6 photons/s, 41 s elapsed, ETA 3 min
 //
@@ -27,6 +28,9 @@ class ProgressReporter {
   ProgressReporter(const ProgressReporter&) = delete;
   ProgressReporter& operator=(const ProgressReporter&) = delete;
 
+  // Off a terminal, one line as the work starts ("simulate: 0/64 batches, started; a line every
+  // 10 s"), so that a log shows at once that the job runs and how much it holds.
+  void start(std::uint64_t done, std::uint64_t total);
   void update(std::uint64_t done, std::uint64_t total);
   // Batches, with photons per second.
   void update(const BatchProgress& progress);
@@ -41,7 +45,8 @@ class ProgressReporter {
   Mode mode_;
   std::chrono::duration<double> interval_;
   std::chrono::steady_clock::time_point start_, last_;
-  bool drawn_ = false;
+  bool drawn_ = false;  // a bar is on the terminal
+  bool said_ = false;   // a line is in the log
 };
 
 }  // namespace scatterlab::cli

@@ -35,7 +35,7 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
   auto* command = app.add_subcommand("report", kReportDescription);
   auto options = std::make_shared<ReportOptions>();
   command->add_flag("--quick", options->quick, "Small budgets, for the test suite (minutes)");
-  command->add_option("--out", options->out,
+  command->add_option("-o,--out", options->out,
                       "Directory to write: new, empty or one scatterlab wrote (made if missing)");
   command->add_option("--threads", options->profile.threads, threads_help());
   add_memory_limit_option(*command);
@@ -86,6 +86,7 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
         std::count_if(suites->begin(), suites->end(),
                       [&chosen](const auto& entry) { return chosen(entry.first); }));
     ProgressReporter reporter("report", "sections", *log_interval);
+    reporter.start(0, to_run);
     std::vector<report::Section> sections;
     int failed = 0;
     for (const auto& [name, suite] : *suites) {
@@ -100,7 +101,9 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
       reporter.update(sections.size(), to_run);
     }
     reporter.finish();
-    report::write_report(options->out, command_line, sections);
+    for (const auto& path : report::write_report(options->out, command_line, sections)) {
+      fmt::print("wrote {}\n", path.string());
+    }
     fmt::print("{} of {} sections pass; report in {}/report.md\n", sections.size() - failed,
                sections.size(), options->out);
     return failed == 0 ? 0 : 1;

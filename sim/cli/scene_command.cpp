@@ -591,7 +591,7 @@ Action add_run_command(CLI::App& app, const std::string& name, const std::string
   // As in most Unix tools, a repeated flag takes its last value (scripts append overrides).
   command->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   CLI::Option* out = command->add_option(
-      "--out", o->out,
+      "-o,--out", o->out,
       "Output HDF5 file (default: the scene's output.path, else scatterlab.h5, searchlight.h5, "
       "lit-sphere.h5 or slab.h5 by geometry); for a sweep (a scene whose keys hold lists of "
       "values), the directory for its files, one per combination named from its values, at "

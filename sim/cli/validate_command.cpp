@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <vector>
@@ -39,6 +40,10 @@ struct ValidateOptions {
   double log_interval = 60.0;
 };
 
+void print_written(const std::vector<std::filesystem::path>& files) {
+  for (const std::filesystem::path& path : files) fmt::print("  wrote {}\n", path.string());
+}
+
 int run_deon(const ValidateOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   PointSourceComparisonSettings settings;
@@ -48,6 +53,7 @@ int run_deon(const ValidateOptions& options) {
   const std::vector<double>& albedos = deon_albedos;
   std::vector<PointSourceComparison> comparisons;
   ProgressReporter reporter("validate deon", "albedos", options.log_interval);
+  reporter.start(0, albedos.size());
   for (std::size_t i = 0; i < albedos.size(); ++i) {
     // A seed per albedo: with one seed the albedos share their first flights, and a fluctuation
     // in one shell repeats in every row of the table.
@@ -68,7 +74,8 @@ int run_deon(const ValidateOptions& options) {
       "mean relative error of shell-averaged fluence against the exact solution, near "
       "(r < 1 mfp) / far (r >= 1 mfp):\n{}",
       point_source_error_table(comparisons));
-  fmt::print("  {:.2f} s; wrote {} files to {}\n", seconds, files.size(), options.out);
+  fmt::print("  {:.2f} s\n", seconds);
+  print_written(files);
   return 0;
 }
 
@@ -116,6 +123,7 @@ int run_searchlight_validation(const SearchlightValidateOptions& o) {
   spec.run.seed = o.seed;
   spec.validate();
   ProgressReporter reporter("validate searchlight", "batches", o.log_interval);
+  reporter.start(0, spec.run.batches);
   const SearchlightOutput out =
       run_searchlight(spec, [&reporter](const BatchProgress& done) { reporter.update(done); });
   reporter.finish();
@@ -165,7 +173,8 @@ int run_searchlight_validation(const SearchlightValidateOptions& o) {
       agreement.max_abs_z, agreement.mean_squared_z);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  fmt::print("  {:.2f} s; wrote {} files to {}\n", seconds, files.size(), o.out);
+  fmt::print("  {:.2f} s\n", seconds);
+  print_written(files);
   return 0;
 }
 
@@ -191,6 +200,7 @@ int run_lit_sphere_validation(const LitSphereValidateOptions& o) {
   const std::vector<LitSphereCase> cases = lit_sphere_cases();
   std::vector<LitSphereComparison> comparisons;
   ProgressReporter reporter("validate litsphere", "cases", o.log_interval);
+  reporter.start(0, cases.size());
   for (std::size_t i = 0; i < cases.size(); ++i) {
     settings.seed = o.seed + i;  // a seed per case, as validate deon's per albedo
     comparisons.push_back(compare_lit_sphere(cases[i], settings));
@@ -216,9 +226,9 @@ int run_lit_sphere_validation(const LitSphereValidateOptions& o) {
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  fmt::print(
-      "  {:.2f} s ({:.2f} s path tracing, {:.2f} s BSSRDF integration); wrote {} files to {}\n",
-      seconds, transport, integration, files.size(), o.out);
+  fmt::print("  {:.2f} s ({:.2f} s path tracing, {:.2f} s BSSRDF integration)\n", seconds,
+             transport, integration);
+  print_written(files);
   return 0;
 }
 
@@ -234,7 +244,7 @@ Action add_validate_command(CLI::App& app) {
       "Point-source fluence r^2 phi(r) for albedos 0.01-0.99: Monte Carlo, exact, diffusion, "
       "Grosjean (d'Eon & Irving 2011); error table, CSV and PNG plots");
   deon->add_option(
-      "--out", options->out,
+      "-o,--out", options->out,
       "Directory for the CSV and PNG files: new, empty or one scatterlab wrote (made if missing)");
   CLI::Option* deon_photons = deon->add_option("--photons", options->photons, "Photons per albedo");
   // --quick sets the photons: both would be a silent choice.
@@ -254,7 +264,7 @@ Action add_validate_command(CLI::App& app) {
       "exact refractive single-scatter solution, and its total against their sums and the "
       "Grosjean beam (R_d(r), phi(r, z); linear, log, sqrt and r R plots)");
   searchlight->add_option(
-      "--out", half_space->out,
+      "-o,--out", half_space->out,
       "Directory for the CSV and PNG files: new, empty or one scatterlab wrote (made if missing)");
   CLI::Option* searchlight_photons =
       searchlight->add_option("--photons", half_space->photons, "Photons");
@@ -277,7 +287,7 @@ Action add_validate_command(CLI::App& app) {
       "profile; error table (lit side, terminator, shadow side), CSV and "
       "PNG plots");
   litsphere->add_option(
-      "--out", sphere->out,
+      "-o,--out", sphere->out,
       "Directory for the CSV and PNG files: new, empty or one scatterlab wrote (made if missing)");
   CLI::Option* litsphere_photons =
       litsphere->add_option("--photons", sphere->photons, "Photons per case");

@@ -170,7 +170,7 @@ else
 status=$?
 if [ $status -ne 1 ]; then
   fail "an allocation past the estimate: exit $status, expected 1: $(cat "$scratch/stderr")"
-elif [ "$(grep -c . "$scratch/stderr")" -ne 1 ] || ! grep -q "out of memory" "$scratch/stderr"; then
+elif [ "$(error_lines "$scratch/stderr")" -ne 1 ] || ! grep -q "out of memory" "$scratch/stderr"; then
   fail "an allocation past the estimate: not one line saying so: $(cat "$scratch/stderr")"
 elif compgen -G "oom.h5*" >/dev/null; then
   fail "an allocation past the estimate left a file"

@@ -49,7 +49,15 @@ expect_default simulate "--seed UINT=1"
 expect_default simulate "--escape-radius FLOAT=inf"
 expect_default simulate "--r-bins INT=15"
 expect_default simulate "--z-min FLOAT=-1"
-expect_default simulate "--out TEXT=scatterlab.h5"
+expect_default simulate "-o,--out TEXT=scatterlab.h5"
+# One spelling for the file or directory a command writes: -o, --out.
+for command in simulate searchlight mcml merge report render "validate deon" "validate searchlight" \
+  "validate litsphere"; do
+  # shellcheck disable=SC2086
+  if "$exe" $command --help | grep -q -- "^  -o,--out "; then pass; else
+    fail "$command --help has no -o,--out"
+  fi
+done
 expect_default searchlight "--albedo FLOAT=0.99"
 expect_default searchlight "--photons FLOAT=1e+07"
 expect_default searchlight "--eta FLOAT=1.3"

@@ -13,6 +13,10 @@ report() {
   [ $failures -eq 0 ]
 }
 
+# error_lines FILE: the lines of FILE that are not progress lines ("simulate: 0/4 batches,
+# started; ..."), which a command off a terminal writes to stderr once its work has begun.
+error_lines() { grep -cvE '^[a-z][a-z -]*: [0-9]+/[0-9]+ ' "$1"; }
+
 # expect_command_error COMMAND NAME FIELD ARGS...: exit status 2, one line on stderr naming
 # FIELD, and no output file (nor a temporary one). The run gets the arguments in the array
 # `small` (set by the script; a small run by default) and --out $work/NAME.h5.

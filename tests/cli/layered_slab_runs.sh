@@ -71,9 +71,21 @@ then
     fail "--resume of a finished file: $(cat "$work/stdout" "$work/stderr")"
   fi
   expect_refused two_checkpoints --checkpoint mcml "$work/two.mci" --checkpoint "$work/c.ckpt"
+  # --out names the file of a file of one run; several runs go to --out-dir, which must exist.
+  expect_refused two_outs --out mcml "$work/two.mci" -o "$work/x.h5"
+  expect_refused missing_dir --out-dir mcml "$work/two.mci" --out-dir "$work/none"
+  mkdir "$work/runs"
+  if "$exe" mcml "$work/two.mci" --batches 4 --out-dir "$work/runs" >"$work/stdout" 2>"$work/stderr" &&
+    [ -s "$work/runs/one.h5" ] && [ -s "$work/runs/two.h5" ] &&
+    grep -q "wrote $work/runs/two.h5" "$work/stdout"; then pass; else
+    fail "--out-dir: $(cat "$work/stdout" "$work/stderr"; ls "$work/runs")"; fi
 else
   fail "two.mci: $(cat "$work/stderr")"
 fi
+rm -f "$work"/*.h5 "$work"/*.mco
+if "$exe" mcml "$sample" "${small[@]}" --mco -o "$work/named.h5" >"$work/stdout" 2>"$work/stderr" &&
+  [ -s "$work/named.h5" ] && [ -s "$work/named.mco" ] && [ ! -e "$work/sample.h5" ]; then pass; else
+  fail "mcml -o: $(cat "$work/stderr"; ls "$work")"; fi
 rm -f "$work"/*.h5 "$work"/*.mco
 
 # Refusals: one line naming the place, status 2, nothing written.

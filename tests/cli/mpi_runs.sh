@@ -19,8 +19,10 @@ run=(simulate --photons 400000 --batches 24 --seed 21 --theta-bins 6 --phi-bins 
 if mpi 2 "$exe" "${run[@]}" --threads 1 --out 2x1.h5 >2x1.out 2>2x1.err; then pass; else
   fail "2 x 1: $(cat 2x1.out 2x1.err)"; fi
 if "$same" 1x1.h5 1x2.h5 2x1.h5; then pass; else fail "tallies differ between ranks x threads"; fi
-# Once: the summary comes from rank 0 alone, and the file says how many ranks ran it.
-if [ "$(grep -c '^scatterlab simulate' 2x1.out)" -eq 1 ] && [ ! -s 2x1.err ] &&
+# Once: the summary and the progress come from rank 0 alone, and the file says how many ranks
+# ran it.
+if [ "$(grep -c '^scatterlab simulate' 2x1.out)" -eq 1 ] && [ "$(error_lines 2x1.err)" -eq 0 ] &&
+  [ "$(grep -c '^simulate: 0/24 batches, started' 2x1.err)" -eq 1 ] &&
   "$exe" info 2x1.h5 | grep -q "ranks       2"; then pass; else fail "rank 0 only: $(cat 2x1.out 2x1.err)"; fi
 # The comparison can fail: another seed differs.
 "$exe" "${run[@]}" --seed 22 --threads 1 --out seed22.h5 >/dev/null

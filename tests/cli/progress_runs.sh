@@ -12,16 +12,24 @@ source "$(dirname "$0")/harness.sh"
 run=(simulate --photons 12000000 --batches 24 --threads 1 --seed 5 --theta-bins 6 --phi-bins 8)
 line='^simulate: [0-9]+/24 batches, [0-9.e+-]+ photons/s, [0-9.]+ (s|min|h) elapsed, ETA ([0-9.]+ (s|min|h)|--)$'
 
-# Lines every 0.05 s, off a terminal (standard error is a file here): a line after the first
-# batch to end after each interval, so between 2 and 24 of them.
+# Lines every 0.05 s, off a terminal (standard error is a file here): one as the run starts, then
+# a line after the first batch and after the first batch to end after each interval, so between
+# 2 and 24 of them.
 "$exe" "${run[@]}" --out logged.h5 --log-interval 0.05 >logged.out 2>logged.err ||
   fail "logged run: $(cat logged.err)"
 lines=$(grep -cE "$line" logged.err)
-if [ "$lines" -ge 2 ] && [ "$lines" -le 24 ] && [ "$lines" -eq "$(grep -c . logged.err)" ]; then
+if [ "$(head -1 logged.err)" = "simulate: 0/24 batches, started; a line every 0.05 s" ] &&
+  [ "$lines" -ge 2 ] && [ "$lines" -le 24 ] && [ "$((lines + 1))" -eq "$(grep -c . logged.err)" ]
+then
   pass
 else
-  fail "expected 2 to 24 progress lines and nothing else on stderr: $(cat logged.err)"
+  fail "expected a first line, then 2 to 24 progress lines and nothing else on stderr: $(cat logged.err)"
 fi
+# The default: a first line at once, then one every 10 s (none, unless the machine is loaded).
+"$exe" "${run[@]}" --out default.h5 >default.out 2>default.err || fail "default run"
+if [ "$(head -1 default.err)" = "simulate: 0/24 batches, started; a line every 10 s" ] &&
+  [ "$(tail -n +2 default.err | grep -cvE "$line")" -eq 0 ]; then pass; else
+  fail "default progress: $(cat default.err)"; fi
 if grep -q "batches," logged.out; then fail "progress on standard output: $(cat logged.out)"; else pass; fi
 
 # 0: no lines.
@@ -55,7 +63,8 @@ status=$?
 [ $status -eq 130 ] || fail "interrupt: exit $status, $(cat first.err)"
 "$exe" "${run[@]}" --out resumed.h5 --resume --log-interval 0.05 >resume.out 2>resume.err ||
   fail "resume: $(cat resume.err)"
-if grep -qE '^simulate: [0-9]+/24 batches \([0-9]+ resumed\), ' resume.err; then pass; else
+if grep -qE '^simulate: [0-9]+/24 batches \([0-9]+ resumed\), ' resume.err &&
+  grep -qE '^simulate: [0-9]+/24 batches \([0-9]+ resumed\), started' resume.err; then pass; else
   fail "resumed progress lines do not say what was resumed: $(cat resume.err)"
 fi
 if grep -q "this session: " resume.out; then pass; else

@@ -41,7 +41,7 @@ stop_within() {
 pid=$!
 sleep 2  # the signal handlers are in place well before
 stop_within "first batches" INT $pid
-if grep -q "interrupted before the first batch" long.err && [ "$(grep -c . long.err)" -eq 1 ] &&
+if grep -q "interrupted before the first batch" long.err && [ "$(error_lines long.err)" -eq 1 ] &&
   [ -z "$(ls -A | grep long.h5)" ]; then pass; else
   fail "first batches: $(cat long.err; ls)"; fi
 

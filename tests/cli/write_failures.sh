@@ -58,7 +58,7 @@ expect_write_failure() {
     fail "$name: the error does not name $path: $(cat "$scratch/stderr")"
   elif ! grep -q -F -- "$reason" "$scratch/stderr"; then
     fail "$name: the error does not say '$reason': $(cat "$scratch/stderr")"
-  elif [ "$(grep -c . "$scratch/stderr")" -ne 1 ]; then
+  elif [ "$(error_lines "$scratch/stderr")" -ne 1 ]; then
     fail "$name: more than one line on stderr: $(cat "$scratch/stderr")"
   elif compgen -G "$(dirname "$path")/*.tmp-*" >/dev/null; then
     fail "$name: left a temporary: $(ls "$(dirname "$path")")"
@@ -85,7 +85,7 @@ expect_refused_saying() {
   elif ! grep -q -F -- "$field" "$scratch/stderr" || ! grep -q -F -- "$text" "$scratch/stderr"
   then
     fail "$name: the error does not name $field and $text: $(cat "$scratch/stderr")"
-  elif [ "$(grep -c . "$scratch/stderr")" -ne 1 ]; then
+  elif [ "$(error_lines "$scratch/stderr")" -ne 1 ]; then
     fail "$name: more than one line on stderr: $(cat "$scratch/stderr")"
   elif ! cmp -s "$scratch/before" "$scratch/after"; then
     fail "$name: files changed: $(diff "$scratch/before" "$scratch/after")"
@@ -139,7 +139,7 @@ expect_directory_write_failure() {
   elif [ "${named#"$directory"/}" = "$named" ] || ! grep -q "File too large" "$scratch/stderr"
   then
     fail "$name: the error names no file of $directory, or no reason: $(cat "$scratch/stderr")"
-  elif [ "$(grep -c . "$scratch/stderr")" -ne 1 ]; then
+  elif [ "$(error_lines "$scratch/stderr")" -ne 1 ]; then
     fail "$name: more than one line on stderr: $(cat "$scratch/stderr")"
   elif ! grep -q -F "  ${named#"$directory"/}" "$scratch/before" ||
     [ "$(cd "$directory" && sha256sum -- "${named#"$directory"/}")" != \
@@ -224,7 +224,7 @@ for args in "info a.h5" "--help" "simulate --help" "invert --Rd 0.5 --ld 2"; do
   status=$?
   if [ $status -eq 1 ] && grep -q "standard output" "$scratch/stderr" &&
     grep -q "No space left on device" "$scratch/stderr" &&
-    [ "$(grep -c . "$scratch/stderr")" -eq 1 ]; then pass; else
+    [ "$(error_lines "$scratch/stderr")" -eq 1 ]; then pass; else
     fail "$args >/dev/full: exit $status: $(cat "$scratch/stderr")"
   fi
 done
