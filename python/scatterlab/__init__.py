@@ -158,7 +158,8 @@ def simulate(scene: str | Path | None = None, *, out: str | Path | None = None,
     out:      where the HDF5 file goes (default: the scene's output.path, else a temporary file
               that is removed once read, and Result.path is None).
     progress: True prints the batches done to stderr; a callable gets (batches_done, batches)
-              after every round of batches. Ctrl-C stops the run and raises KeyboardInterrupt.
+              after every round of batches. Ctrl-C stops the run within a slice of photons and
+              raises KeyboardInterrupt (or runs your SIGINT handler); no file is written.
     keys:     the scene's keys: ``albedo=0.9, g=0.5, photons=2e5, batches=8, seed=3,
               r={"max": 2, "bins": 20}``, or whole tables: ``medium={...}``.
 

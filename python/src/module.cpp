@@ -7,8 +7,11 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <signal.h>
+
 #include <atomic>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
@@ -45,16 +48,62 @@ namespace py = pybind11;
 namespace scatterlab::python {
 namespace {
 
+// Ctrl-C during a run. Python runs its SIGINT handler only on the main thread and only when that
+// thread holds the GIL, which a run hands back once per batch: seconds or minutes apart. While a
+// run holds the main thread, SIGINT instead sets the run's stop flag, so that the engine stops
+// within a slice of photons (batch_runner.hpp) as the command line does; once the run has ended
+// and Python's handler is back, the signal is handed on to it (PyErr_SetInterrupt), so that
+// whatever handler the user has (KeyboardInterrupt by default) runs. Elsewhere than the main
+// thread Python receives no signals, and nothing is installed.
+class InterruptGuard {
+ public:
+  explicit InterruptGuard(std::atomic<bool>& stop) {
+    const py::module_ threading = py::module_::import("threading");
+    if (!threading.attr("current_thread")().is(threading.attr("main_thread")())) return;
+    // A SIGINT that is ignored, or that ends the process, stays so.
+    if (sigaction(SIGINT, nullptr, &previous_) != 0 || previous_.sa_handler == SIG_IGN ||
+        previous_.sa_handler == SIG_DFL) {
+      return;
+    }
+    stop_ = &stop;
+    caught_ = 0;
+    struct sigaction action {};
+    action.sa_handler = on_interrupt;
+    sigemptyset(&action.sa_mask);
+    installed_ = sigaction(SIGINT, &action, nullptr) == 0;
+  }
+  ~InterruptGuard() {
+    if (installed_) sigaction(SIGINT, &previous_, nullptr);
+    if (installed_) stop_ = nullptr;
+  }
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+
+  bool caught() const { return installed_ && caught_ != 0; }
+
+ private:
+  static void on_interrupt(int) {
+    caught_ = 1;
+    if (stop_ != nullptr) stop_->store(true);  // lock-free: safe in a signal handler
+  }
+  static inline std::atomic<bool>* stop_ = nullptr;
+  static inline volatile std::sig_atomic_t caught_ = 0;
+  struct sigaction previous_ {};
+  bool installed_ = false;
+};
+
 // Runs `work(progress, control, stopped)` (transport, write) without the GIL. After each batch that
 // the calling thread transports, the progress callback takes the GIL back to call
-// `progress(batches_done, batches)` (when given) and to let Python see a signal: Ctrl-C stops the
-// run within a batch and raises KeyboardInterrupt, and no file is written.
+// `progress(batches_done, batches)` (when given) and to let Python see a signal; on the main
+// thread Ctrl-C stops the run within a slice of photons (InterruptGuard). Either way it raises
+// KeyboardInterrupt (or runs the user's SIGINT handler), and no file is written.
 template <class Work>
 void without_gil(const py::object& progress, Work&& work) {
   std::atomic<bool> stop{false};
   std::optional<py::error_already_set> failure;
   RunControl control;
   control.stop_requested = &stop;
+  std::optional<InterruptGuard> interrupts(std::in_place, stop);
   const ProgressCallback callback = [&](const BatchProgress& done) {
     py::gil_scoped_acquire gil;
     if (failure) return;
@@ -70,7 +119,16 @@ void without_gil(const py::object& progress, Work&& work) {
     py::gil_scoped_release released;
     work(callback, control, stop);
   }
+  const bool interrupted = interrupts->caught();
+  interrupts.reset();  // Python's handler back in place
   if (failure) throw std::move(*failure);
+  if (interrupted) {
+    PyErr_SetInterrupt();
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    // The user's handler returned: the run was stopped all the same, and wrote no file.
+    PyErr_SetNone(PyExc_KeyboardInterrupt);
+    throw py::error_already_set();
+  }
 }
 
 // Parses `toml` as a scene (the one reader, io/scene.hpp; `geometry` for a text that names none),
