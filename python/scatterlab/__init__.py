@@ -22,9 +22,35 @@ import tempfile
 from pathlib import Path
 from typing import Any, Callable
 
-from . import _scatterlab, models
-from ._result import Axis, Fit, Result, Tally, read
-from ._scene import KEY_TABLES, apply_keys, scene_dict, to_toml
+
+def _check_interpreter() -> None:
+    """Says what this interpreter lacks before an import fails with less to go on: numpy and h5py,
+    and a compiled module built for its version of Python."""
+    import glob
+    import importlib.util
+
+    missing = [name for name in ("numpy", "h5py") if importlib.util.find_spec(name) is None]
+    if missing:
+        raise ImportError(
+            f"scatterlab needs {' and '.join(missing)}, which {sys.executable} cannot import: "
+            "use Debian's /usr/bin/python3 with python3-numpy and python3-h5py (or a virtual "
+            "environment made with --system-site-packages from it), or install them into this "
+            "interpreter")
+    here = os.path.dirname(__file__)
+    tag = f"cpython-{sys.version_info.major}{sys.version_info.minor}-"
+    built = [os.path.basename(p) for p in glob.glob(os.path.join(here, "_scatterlab.*.so"))]
+    if built and not any(tag in name for name in built):
+        raise ImportError(
+            f"scatterlab's compiled module here ({', '.join(built)}) was built for another "
+            f"Python than {sys.executable} ({sys.version_info.major}.{sys.version_info.minor}): "
+            f"build it for this one with cmake -DPython3_EXECUTABLE={sys.executable}")
+
+
+_check_interpreter()
+
+from . import _scatterlab, models  # noqa: E402 (after the check that explains a failure)
+from ._result import Axis, Fit, Result, Tally, read  # noqa: E402
+from ._scene import KEY_TABLES, apply_keys, scene_dict, to_toml  # noqa: E402
 
 __all__ = ["simulate", "searchlight", "open", "fit", "models", "Scene", "scene_text", "Result",
            "Tally", "Axis", "Fit", "InputError", "KEY_TABLES", "__version__"]
