@@ -67,8 +67,10 @@ STYLES = {
     "holzschuch": (OKABE_ITO["purple"], "-", "D", 3),
     "pathtrace": (OKABE_ITO["blue"], "-", "o", 3),
 }
-# Series without a known key take these in turn.
-FALLBACK = [OKABE_ITO[c] for c in ("sky_blue", "orange", "green", "purple", "vermillion", "yellow")]
+# Series without a known key take these in turn; series that share an unknown key share one.
+FALLBACK = [
+    OKABE_ITO[c] for c in ("sky_blue", "orange", "green", "purple", "vermillion", "yellow", "blue")
+]
 
 DPI = 150
 LEGEND_WRAP = 32  # characters per legend line
@@ -179,14 +181,14 @@ def draw(figure, path):
     size = (figure["width"] / DPI, figure["height"] / DPI)
     fig = plt.figure(figsize=size, dpi=DPI, layout="constrained")
     ax = fig.add_subplot()
-    fallback = 0
+    fallback = {}  # an unknown key's colour index; an empty key is a key of its own
     core = []  # the values the y axis must show: points, and bar ends near their point
     legend = []  # (handle, label) in the order of the series
-    for series in figure["series"]:
-        colour, line_style, marker, order = style_of(series, fallback)
+    for number, series in enumerate(figure["series"]):
         key = series.get("model", "")
-        if key not in STYLES and not key.endswith("+single_scatter"):
-            fallback += 1
+        known = key in STYLES or key.endswith("+single_scatter")
+        index = 0 if known else fallback.setdefault(key or ("", number), len(fallback))
+        colour, line_style, marker, order = style_of(series, index)
         x, y = values(series["x"]), values(series["y"])
         core += [v for v in series["y"] if v is not None]
         label = "\n".join(textwrap.wrap(series["name"], LEGEND_WRAP)) or None

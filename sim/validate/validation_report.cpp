@@ -136,6 +136,25 @@ std::vector<std::filesystem::path> write_point_source_report(
       written.push_back(path);
     }
   }
+  // Every albedo on one axis, as d'Eon & Irving 2011 Fig. 2 draws them: the exact curve and the
+  // Monte Carlo points of an albedo in one colour (a key of the albedo's own, io/plot.hpp).
+  LinePlot overview;
+  overview.title =
+      "Isotropic point source in an infinite medium, isotropic scattering, every albedo:\n"
+      "lines exact transport, points Monte Carlo ±1σ";
+  overview.x_label = "distance from the source $r$ (mfp)";
+  overview.y_label = "$r^2\\,\\phi(r)$ (per unit source power)";
+  overview.y_scale = AxisScale::log;
+  for (const PointSourceComparison& c : comparisons) {
+    const auto rho = centres(c.rho_lo, c.rho_hi);
+    const std::string key = fmt::format("albedo {:g}", c.albedo);
+    overview.series.push_back({key, rho, times_rho2(rho, c.exact), {}, false, key});
+    overview.series.push_back({"", rho, times_rho2(rho, c.monte_carlo),
+                               times_rho2(rho, c.monte_carlo_stderr), true, key});
+  }
+  const auto overview_path = directory / "deon_all_albedos_log.png";
+  figures.push_back({overview, overview_path});
+  written.push_back(overview_path);
   write_pngs(figures);
   return written;
 }

@@ -179,7 +179,9 @@ for albedo in 0.01 0.1 0.3 0.5 0.7 0.9 0.99; do
     [ "$(head -c 4 "$f" 2>/dev/null | tail -c 3)" = "PNG" ] && pngs=$((pngs + 1))
   done
 done
-if [ "$pngs" -eq 14 ]; then pass; else fail "validate deon: $pngs of 14 PNG files"; fi
+f="$work/deon/deon_all_albedos_log.png"  # the overview of every albedo
+[ "$(head -c 4 "$f" 2>/dev/null | tail -c 3)" = "PNG" ] && pngs=$((pngs + 1))
+if [ "$pngs" -eq 15 ]; then pass; else fail "validate deon: $pngs of 15 PNG files"; fi
 if compgen -G "$work/deon/*.tmp-*" >/dev/null; then fail "validate deon left temporary files"; else pass; fi
 # Without python3 and matplotlib, the commands that draw figures stop before their work, say what
 # to install, and write nothing.
