@@ -18,7 +18,9 @@ rest=(
   python3-matplotlib  # the figures (sim/io/plot_figure.py) and the notebooks
   python3-h5py python3-h5netcdf python3-nbconvert python3-nbclient python3-ipykernel
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-xarray python3-pytest
+  python3-tqdm  # progress="tqdm" in the Python module
   python3-jsonschema  # scene files against `scatterlab scene --schema` (tests/cli/scene_schema.sh)
+  mkdocs mkdocs-material  # the manual as a site (mkdocs.yml; tests/docs/site.sh)
   libcpp-httplib-dev nlohmann-json3-dev libmuparser-dev  # scatterlab explore
   chromium chromium-driver python3-selenium  # its page's test in a headless browser
   clang libclang-rt-14-dev libomp-dev  # scripts/fuzz.sh: libFuzzer, and OpenMP under clang

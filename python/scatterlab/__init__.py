@@ -16,9 +16,13 @@ ValueError (scatterlab.InputError) with the same message, naming the field.
 from __future__ import annotations
 
 import copy
+import inspect
+import math
 import os
 import sys
 import tempfile
+import time
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
@@ -53,7 +57,7 @@ from ._result import Axis, Fit, Result, Tally, read  # noqa: E402
 from ._scene import KEY_TABLES, apply_keys, scene_dict, to_toml  # noqa: E402
 
 __all__ = ["simulate", "searchlight", "open", "fit", "models", "Scene", "scene_text", "Result",
-           "Tally", "Axis", "Fit", "InputError", "KEY_TABLES", "__version__"]
+           "Tally", "Axis", "Fit", "Progress", "InputError", "KEY_TABLES", "__version__"]
 __version__ = _scatterlab.version
 InputError = _scatterlab.InputError
 
@@ -65,33 +69,112 @@ def scene_text(scene: str | Path | None = None, geometry: str | None = None,
     return to_toml(scene_dict(geometry, scene, keys)[1])
 
 
+@dataclass(frozen=True)
+class Progress:
+    """How far a call has got: ``done`` of ``total`` units (batches, or bins for ``fit``), the
+    seconds since it started, the rate in units per second and the seconds left (NaN until a
+    unit is done)."""
+
+    done: int
+    total: int
+    elapsed: float
+    rate: float
+    eta: float
+
+    def __str__(self) -> str:
+        def duration(seconds: float) -> str:
+            if math.isnan(seconds):
+                return "--"
+            if seconds < 90:
+                return f"{seconds:.0f} s"
+            return f"{seconds / 60:.0f} min" if seconds < 5400 else f"{seconds / 3600:.1f} h"
+
+        return (f"{self.done}/{self.total}, {self.rate:.3g}/s, {duration(self.elapsed)} elapsed, "
+                f"ETA {duration(self.eta)}")
+
+
+class _Pace:
+    """Turns the compiled module's (done, total) into a Progress, timed from the call's start."""
+
+    def __init__(self):
+        self.start = time.monotonic()
+
+    def __call__(self, done: int, total: int) -> Progress:
+        elapsed = time.monotonic() - self.start
+        rate = done / elapsed if done > 0 and elapsed > 0 else math.nan
+        eta = (total - done) / rate if done > 0 and elapsed > 0 else math.nan
+        return Progress(done, total, elapsed, rate, eta)
+
+
 class _ProgressLine:
-    """progress=True: one line on stderr, rewritten as work is done, ended when the call ends."""
+    """progress=True: one line on stderr from the start, rewritten with the rate and ETA as work
+    is done, ended when the call ends."""
 
     def __init__(self, what: str):
         self.what = what
-        self.shown = False
+        self.pace = _Pace()
+        print(f"scatterlab: {what}: started", end="", file=sys.stderr, flush=True)
 
     def __call__(self, done: int, total: int) -> None:
-        print(f"\rscatterlab: {self.what} {done} of {total}", end="", file=sys.stderr,
+        print(f"\rscatterlab: {self.what} {self.pace(done, total)}   ", end="", file=sys.stderr,
               flush=True)
-        self.shown = True
 
     def end(self) -> None:
-        if self.shown:
-            print(file=sys.stderr, flush=True)
+        print(file=sys.stderr, flush=True)
+
+
+class _TqdmBar:
+    """progress="tqdm": a tqdm bar (Debian: python3-tqdm)."""
+
+    def __init__(self, what: str):
+        try:
+            import tqdm
+        except ImportError:
+            raise ValueError('progress: "tqdm" needs the tqdm package (Debian: python3-tqdm); '
+                             "accepted without it: True, False, None or a callable") from None
+        self.bar = tqdm.tqdm(unit={"batches": " batch", "bins": " bin"}.get(what, what))
+
+    def __call__(self, done: int, total: int) -> None:
+        self.bar.total = total
+        self.bar.update(done - self.bar.n)
+
+    def end(self) -> None:
+        self.bar.close()
+
+
+def _wants_progress(function) -> bool:
+    """Whether a callable takes a third positional argument (or ``*args``): then it gets the
+    Progress too."""
+    try:
+        parameters = inspect.signature(function).parameters.values()
+    except (TypeError, ValueError):
+        return False
+    positional = [p for p in parameters if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
+    return len(positional) >= 3 or any(p.kind == p.VAR_POSITIONAL for p in parameters)
 
 
 def _progress_of(progress, what: str):
-    """The callable the compiled module calls, from the ``progress`` argument."""
+    """The callable the compiled module calls, from the ``progress`` argument: True a line on
+    stderr, "tqdm" a tqdm bar, a callable ``f(done, total)`` or ``f(done, total, progress)``,
+    the last a Progress with the rate and ETA."""
     if progress is True:
         return _ProgressLine(what)
+    if progress == "tqdm":
+        return _TqdmBar(what)
     if progress is False or progress is None:
         return None
     if not callable(progress):
-        raise ValueError(f"progress: got {progress!r}; accepted: True, False, None or a "
-                         f"callable ({what}_done, {what})")
+        raise ValueError(f"progress: got {progress!r}; accepted: True, \"tqdm\", False, None or "
+                         f"a callable ({what}_done, {what}[, Progress])")
+    if _wants_progress(progress):
+        pace = _Pace()
+        return lambda done, total: progress(done, total, pace(done, total))
     return progress
+
+
+def _end(progress) -> None:
+    if isinstance(progress, (_ProgressLine, _TqdmBar)):
+        progress.end()
 
 
 def _run(geometry: str | None, scene, out, progress, model_fluence: bool, keys: dict,
@@ -122,8 +205,7 @@ def _run_text(text: str, origin: str, geometry: str, doc: dict, out, progress,
                               progress)
         result = read(out)
     finally:
-        if isinstance(progress, _ProgressLine):
-            progress.end()
+        _end(progress)
         if temporary and os.path.exists(out):
             os.remove(out)
     if temporary:
@@ -157,7 +239,7 @@ class Scene:
         return self
 
     def run(self, *, out: str | Path | None = None,
-            progress: bool | Callable[[int, int], None] | None = None,
+            progress: bool | str | Callable[..., None] | None = None,
             model_fluence: bool = False) -> Result:
         """Runs the scene in this process; ``out`` and ``progress`` as for ``simulate``,
         ``model_fluence`` as for ``searchlight`` (a half-space only)."""
@@ -172,7 +254,7 @@ class Scene:
 
 
 def simulate(scene: str | Path | None = None, *, out: str | Path | None = None,
-             progress: bool | Callable[[int, int], None] | None = None,
+             progress: bool | str | Callable[..., None] | None = None,
              **keys: Any) -> Result:
     """Runs a scene as ``scatterlab simulate`` does, in this process, and returns its Result.
 
@@ -183,8 +265,9 @@ def simulate(scene: str | Path | None = None, *, out: str | Path | None = None,
     scene:    a TOML scene file to start from; keywords override its keys.
     out:      where the HDF5 file goes (default: the scene's output.path, else a temporary file
               that is removed once read, and Result.path is None).
-    progress: True prints the batches done to stderr; a callable gets (batches_done, batches)
-              after every round of batches. Ctrl-C stops the run within a slice of photons and
+    progress: True prints the batches done to stderr, with the rate and ETA; "tqdm" draws a
+              tqdm bar; a callable gets (batches_done, batches) after every round of batches,
+              and a scatterlab.Progress (rate, ETA) too when it takes a third argument. Ctrl-C stops the run within a slice of photons and
               raises KeyboardInterrupt (or runs your SIGINT handler); no file is written.
     keys:     the scene's keys: ``albedo=0.9, g=0.5, photons=2e5, batches=8, seed=3,
               r={"max": 2, "bins": 20}``, or whole tables: ``medium={...}``.
@@ -195,7 +278,7 @@ def simulate(scene: str | Path | None = None, *, out: str | Path | None = None,
 
 
 def searchlight(scene: str | Path | None = None, *, out: str | Path | None = None,
-                progress: bool | Callable[[int, int], None] | None = None,
+                progress: bool | str | Callable[..., None] | None = None,
                 model_fluence: bool = False, **keys: Any) -> Result:
     """Runs the half-space as ``scatterlab searchlight`` does: a pencil beam on z > 0 behind
     an interface of relative index ``eta`` (Bitterli 2013, §2.3); the models' curves are in
@@ -207,7 +290,7 @@ def searchlight(scene: str | Path | None = None, *, out: str | Path | None = Non
 def fit(file: str | Path | Result, *,
         models: str = "sg,sg_free,dexp_paper,dexp,adexp,asg,adexp_ridge,adexp2_ridge",
         csv: str | Path | None = None, quadrature: int = 3, threads: int = 0,
-        progress: bool | Callable[[int, int], None] | None = None) -> Result:
+        progress: bool | str | Callable[..., None] | None = None) -> Result:
     """Fits lobe models to every spatial bin of a file's radiance (Vavassori 2013, §4.2), as
     ``scatterlab fit FILE`` does: /fits/<model> is added to the file and a summary CSV written
     (default: FILE-fits.csv). Returns the file read again; its ``fits`` hold the parameters.
@@ -216,7 +299,8 @@ def fit(file: str | Path | Result, *,
     models:     comma-separated: sg, sg_free, dexp_paper, dexp, adexp, asg, adexp_ridge,
                 adexp2_ridge.
     quadrature: Gauss-Legendre points per angular bin and axis, in [1, 8].
-    progress:   True prints the bins done; a callable gets (bins_done, bins). The fits cannot be
+    progress:   as for simulate, in bins: True prints the bins done; a callable gets
+                (bins_done, bins[, Progress]). The fits cannot be
                 stopped part way: Ctrl-C is raised when they end.
     """
     if isinstance(file, Result):
@@ -229,8 +313,7 @@ def fit(file: str | Path | Result, *,
         _scatterlab.fit_file(os.fspath(file), "" if csv is None else os.fspath(csv), models,
                              quadrature, threads, progress)
     finally:
-        if isinstance(progress, _ProgressLine):
-            progress.end()
+        _end(progress)
     return read(file)
 
 

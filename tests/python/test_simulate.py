@@ -147,6 +147,33 @@ def test_progress_is_called_after_every_round():
     assert calls == [(b, 6) for b in range(1, 7)]
 
 
+def test_progress_gets_the_rate_and_eta_when_it_asks(capsys):
+    seen = []
+    scatterlab.simulate(photons=20000, batches=4, threads=1, radiance=False,
+                        progress=lambda done, total, info: seen.append(info))
+    assert [p.done for p in seen] == [1, 2, 3, 4] and all(p.total == 4 for p in seen)
+    last = seen[-1]
+    assert last.eta == 0 and last.rate > 0 and last.elapsed > 0
+    assert abs(last.rate * last.elapsed - 4) < 1e-9  # batches per second over the whole call
+    assert str(last).startswith("4/4, ") and "ETA 0 s" in str(last)
+    # progress=True: a line at once, then the same figures, on stderr only.
+    scatterlab.simulate(photons=20000, batches=4, threads=1, radiance=False, progress=True)
+    out, err = capsys.readouterr()
+    assert out == "" and err.startswith("scatterlab: batches: started")
+    assert err.rstrip().endswith("ETA 0 s") and "scatterlab: batches 4/4, " in err
+
+
+def test_tqdm_is_named_when_missing_or_drawn():
+    try:
+        import tqdm  # noqa: F401
+    except ImportError:
+        with pytest.raises(ValueError, match="python3-tqdm"):
+            scatterlab.simulate(photons=2000, batches=2, radiance=False, progress="tqdm")
+    else:
+        r = scatterlab.simulate(photons=2000, batches=2, radiance=False, progress="tqdm")
+        assert r.attrs["batches_done"] == 2
+
+
 def test_an_exception_in_progress_stops_the_run(tmp_path):
     def fail(done, batches):
         raise RuntimeError("stop here")
