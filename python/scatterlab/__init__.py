@@ -60,6 +60,8 @@ __all__ = ["simulate", "searchlight", "open", "fit", "models", "Scene", "scene_t
            "Tally", "Axis", "Fit", "Progress", "InputError", "KEY_TABLES", "__version__"]
 __version__ = _scatterlab.version
 InputError = _scatterlab.InputError
+InputError.__doc__ = ("Bad input, found before any work (a ValueError): its message names the "
+                      "field and what it accepts, as the command line's does.")
 
 
 def scene_text(scene: str | Path | None = None, geometry: str | None = None,
