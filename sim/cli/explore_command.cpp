@@ -94,7 +94,7 @@ Action add_explore_command(CLI::App& app) {
       "--open", o->open,
       "A folder whose searchlight and lit-sphere files (*.h5) the page may read (repeatable)");
   command->add_option("--models", o->models,
-                      "A folder of text models (*.toml; README, \"The explorer\")");
+                      "A folder of text models (*.toml; docs/guide/explorer.md)");
   command->add_option("--page", o->page,
                       "The page's folder (default: the installed one, else the source tree's "
                       "web/)");

@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 json parse_body(std::string_view body) {
   json parsed = json::parse(body, nullptr, /*allow_exceptions=*/false);
   if (parsed.is_discarded() || !parsed.is_object()) {
-    throw InputError("body", "not a JSON object", "a JSON object (see the API in the README)");
+    throw InputError("body", "not a JSON object", "a JSON object (see the API in docs/guide/explorer.md)");
   }
   return parsed;
 }

@@ -89,7 +89,7 @@ TextModel TextModel::parse(std::string_view toml_text, const std::string& origin
     const auto& begin = error.source().begin;
     throw InputError(fmt::format("{}:{}", origin, begin.line),
                      fmt::format("not TOML: {}", error.description()),
-                     "a TOML file (README, \"The explorer\": the model file format)");
+                     "a TOML file (docs/guide/explorer.md: the model file format)");
   }
   const TomlReader reader(origin);
   const auto where = [&](const toml::node* node, std::string_view key) {
@@ -281,7 +281,7 @@ std::vector<double> TextModel::reflectance(const HalfSpaceMedium& medium,
     } catch (const mu::Parser::exception_type& error) {
       throw InputError(fmt::format("{}:{}: {}", origin_, line.line,
                                    line.name.empty() ? "R_d" : "define " + line.name),
-                       error.GetMsg(), "a muparser expression (README, \"The explorer\")");
+                       error.GetMsg(), "a muparser expression (docs/guide/explorer.md)");
     }
   };
   for (std::size_t i = 0; i < definitions_.size(); ++i) compile(i, definitions_[i]);
