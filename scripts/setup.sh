@@ -19,6 +19,7 @@ rest=(
   python3-h5py python3-h5netcdf python3-nbconvert python3-nbclient python3-ipykernel
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-xarray python3-pytest
   python3-tqdm  # progress="tqdm" in the Python module
+  python3-venv  # the module from a virtual environment (tests/python/test_interpreter.py)
   python3-jsonschema  # scene files against `scatterlab scene --schema` (tests/cli/scene_schema.sh)
   mkdocs mkdocs-material  # the manual as a site (mkdocs.yml; tests/docs/site.sh)
   libcpp-httplib-dev nlohmann-json3-dev libmuparser-dev  # scatterlab explore
