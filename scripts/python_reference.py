@@ -47,8 +47,10 @@ for name in scatterlab.__all__:
         out += [f"## `scatterlab.{name}`", "", "```text", inspect.getdoc(obj) or "", "```", ""]
         for member in sorted(n for n in dir(obj) if not n.startswith("_")):
             value = getattr(obj, member)
-            if callable(value) and getattr(value, "__module__", "").startswith("scatterlab") \
-                    or type(value).__name__ in ("builtin_function_or_method", "vectorize"):
+            # The module's own functions: its Python ones, and the compiled ones it exposes.
+            own = getattr(value, "__module__", "") or ""
+            compiled = type(value).__name__ in ("builtin_function_or_method", "vectorize")
+            if callable(value) and (own.startswith("scatterlab") or compiled):
                 out += entry(f"{name}.{member}", value, "###")
     else:
         out += entry(name, obj, "##")

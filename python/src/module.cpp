@@ -73,8 +73,9 @@ class InterruptGuard {
     installed_ = sigaction(SIGINT, &action, nullptr) == 0;
   }
   ~InterruptGuard() {
-    if (installed_) sigaction(SIGINT, &previous_, nullptr);
-    if (installed_) stop_ = nullptr;
+    if (!installed_) return;
+    sigaction(SIGINT, &previous_, nullptr);
+    stop_ = nullptr;
   }
   InterruptGuard(const InterruptGuard&) = delete;
   InterruptGuard& operator=(const InterruptGuard&) = delete;

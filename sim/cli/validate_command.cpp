@@ -37,7 +37,7 @@ struct ValidateOptions {
   bool quick = false;
   int threads = 0;
   std::uint64_t seed = 1;
-  double log_interval = 60.0;
+  double log_interval = 0.0;  // set from --log-interval (log_interval_option.hpp)
 };
 
 void print_written(const std::vector<std::filesystem::path>& files) {
@@ -86,7 +86,7 @@ struct SearchlightValidateOptions {
   bool quick = false;
   int threads = 0;
   std::uint64_t seed = 1;
-  double log_interval = 60.0;
+  double log_interval = 0.0;  // set from --log-interval (log_interval_option.hpp)
 };
 
 MonteCarloCurve curve(const std::vector<TallyResult>& tallies, const std::string& name,
@@ -186,7 +186,7 @@ struct LitSphereValidateOptions {
   bool quick = false;
   int threads = 0;
   std::uint64_t seed = 1;
-  double log_interval = 60.0;
+  double log_interval = 0.0;  // set from --log-interval (log_interval_option.hpp)
 };
 
 // The lit sphere, like with like (validate/lit_sphere_comparison.hpp): each diffusion BSSRDF
