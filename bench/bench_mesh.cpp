@@ -24,9 +24,9 @@
 #include <utility>
 
 #include "lit_sphere_scene.hpp"
+#include "mesh/mesh_light.hpp"
 #include "scatterlab/core/phase_function.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
-#include "scatterlab/mesh/mesh_light.hpp"
 #include "scatterlab/render/render_scene.hpp"
 #include "scatterlab/tally/scorer.hpp"
 #include "scatterlab/tally/tally_book.hpp"

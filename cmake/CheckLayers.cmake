@@ -1,7 +1,7 @@
 # Fails when a file of one module includes a header of a module it may not use.
 #   cmake -DSOURCE_DIR=... -DLAYERS="core:core|tally:tally,core|..." -P CheckLayers.cmake
-# A module's files are sim/<module>/ and include/scatterlab/<module>/ (fit: fit/ too); the CLI
-# (sim/cli) may include anything.
+# A module's files are sim/<module>/ and include/scatterlab/<module>/ (fit: fit/ too; python:
+# python/src/); the CLI (sim/cli) may include anything.
 cmake_minimum_required(VERSION 3.25)
 set(violations "")
 string(REPLACE "|" ";" LAYERS "${LAYERS}")
@@ -13,8 +13,11 @@ foreach(layer IN LISTS LAYERS)
   file(GLOB_RECURSE files ${SOURCE_DIR}/sim/${module}/*.cpp ${SOURCE_DIR}/sim/${module}/*.hpp
        ${SOURCE_DIR}/include/scatterlab/${module}/*.hpp)
   if(module STREQUAL "fit")
-    file(GLOB fit_files ${SOURCE_DIR}/fit/*.cpp)
-    list(APPEND files ${fit_files})
+    file(GLOB own_files ${SOURCE_DIR}/fit/*.cpp ${SOURCE_DIR}/fit/*.hpp)
+    list(APPEND files ${own_files})
+  elseif(module STREQUAL "python")
+    file(GLOB own_files ${SOURCE_DIR}/python/src/*.cpp ${SOURCE_DIR}/python/src/*.hpp)
+    list(APPEND files ${own_files})
   endif()
   foreach(file IN LISTS files)
     file(STRINGS ${file} includes REGEX "^#include [\"<](scatterlab/)?[a-z_]+/|^#include \"\\.\\./")

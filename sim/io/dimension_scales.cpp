@@ -1,4 +1,4 @@
-#include "scatterlab/io/dimension_scales.hpp"
+#include "dimension_scales.hpp"
 
 #include <fmt/format.h>
 

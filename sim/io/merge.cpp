@@ -12,10 +12,10 @@
 #include <string_view>
 #include <utility>
 
+#include "dimension_scales.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/memory_budget.hpp"
 #include "scatterlab/io/atomic_output.hpp"
-#include "scatterlab/io/dimension_scales.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
 #include "scatterlab/io/simulation_file.hpp"
 #include "scatterlab/tally/pooled_statistics.hpp"

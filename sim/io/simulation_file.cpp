@@ -16,10 +16,10 @@
 #include <utility>
 #include <vector>
 
+#include "dimension_scales.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/memory_budget.hpp"
 #include "scatterlab/io/atomic_output.hpp"
-#include "scatterlab/io/dimension_scales.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
 #include "scatterlab/tally/figure_of_merit.hpp"
 #include "scatterlab/tally/scalar_estimate.hpp"

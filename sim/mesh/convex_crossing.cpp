@@ -1,4 +1,4 @@
-#include "scatterlab/mesh/convex_crossing.hpp"
+#include "convex_crossing.hpp"
 
 #include <algorithm>
 #include <bit>

@@ -1,4 +1,4 @@
-#include "scatterlab/mesh/convex_mesh.hpp"
+#include "convex_mesh.hpp"
 
 #include <algorithm>
 #include <cmath>

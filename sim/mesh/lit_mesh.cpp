@@ -4,10 +4,10 @@
 
 #include <algorithm>
 
+#include "mesh_boundary.hpp"
+#include "mesh_light.hpp"
 #include "scatterlab/core/error.hpp"
-#include "scatterlab/mesh/mesh_boundary.hpp"
 #include "scatterlab/mesh/mesh_checks.hpp"
-#include "scatterlab/mesh/mesh_light.hpp"
 #include "scatterlab/mesh/mesh_ray_tracer.hpp"
 #include "scatterlab/transport/kernel.hpp"
 #include "scatterlab/transport/length_units.hpp"

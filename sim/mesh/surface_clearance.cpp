@@ -1,4 +1,4 @@
-#include "scatterlab/mesh/surface_clearance.hpp"
+#include "surface_clearance.hpp"
 
 #include <algorithm>
 #include <array>

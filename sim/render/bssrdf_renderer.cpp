@@ -9,13 +9,13 @@
 #include <cmath>
 #include <span>
 
+#include "image_tiles.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
+#include "scatterlab/mesh/mesh_ray_tracer.hpp"
 #include "scatterlab/models/bssrdf.hpp"
 #include "scatterlab/models/half_space_medium.hpp"
-#include "scatterlab/render/image_tiles.hpp"
-#include "scatterlab/mesh/mesh_ray_tracer.hpp"
 #include "scatterlab/render/point_octree.hpp"
 #include "scatterlab/render/single_scatter_renderer.hpp"
 

@@ -1,4 +1,4 @@
-#include "scatterlab/render/obj_mesh.hpp"
+#include "obj_mesh.hpp"
 
 #include <fmt/format.h>
 #include <tiny_obj_loader.h>

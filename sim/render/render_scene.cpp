@@ -9,6 +9,7 @@
 #include <tuple>
 #include <vector>
 
+#include "obj_mesh.hpp"
 #include "scatterlab/core/constants.hpp"
 #include "scatterlab/core/memory_budget.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
@@ -16,7 +17,6 @@
 #include "scatterlab/io/toml_reader.hpp"
 #include "scatterlab/mesh/mesh_checks.hpp"
 #include "scatterlab/mesh/mesh_ray_tracer.hpp"
-#include "scatterlab/render/obj_mesh.hpp"
 
 namespace scatterlab {
 namespace {

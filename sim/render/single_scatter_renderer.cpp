@@ -8,16 +8,16 @@
 #include <stdexcept>
 #include <vector>
 
+#include "image_tiles.hpp"
 #include "scatterlab/core/constants.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/core/phase_function.hpp"
 #include "scatterlab/core/random.hpp"
+#include "scatterlab/mesh/mesh_ray_tracer.hpp"
 #include "scatterlab/refract/path_contribution.hpp"
 #include "scatterlab/refract/refractive_solver.hpp"
 #include "scatterlab/refract/support_interval.hpp"
-#include "scatterlab/render/image_tiles.hpp"
-#include "scatterlab/mesh/mesh_ray_tracer.hpp"
 
 namespace scatterlab {
 

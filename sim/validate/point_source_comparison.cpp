@@ -4,9 +4,9 @@
 #include <stdexcept>
 #include <utility>
 
+#include "point_source_models.hpp"
 #include "scatterlab/core/constants.hpp"
 #include "scatterlab/transport/simulate.hpp"
-#include "scatterlab/validate/point_source_models.hpp"
 
 namespace scatterlab {
 namespace {

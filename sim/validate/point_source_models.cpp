@@ -1,4 +1,4 @@
-#include "scatterlab/validate/point_source_models.hpp"
+#include "point_source_models.hpp"
 
 #include <fmt/format.h>
 

@@ -3,9 +3,9 @@
 #include <type_traits>
 #include <variant>
 
+#include "point_source_models.hpp"
 #include "scatterlab/tally/scalar_estimate.hpp"
-#include "scatterlab/validate/point_source_models.hpp"
-#include "scatterlab/validate/searchlight_models.hpp"
+#include "searchlight_models.hpp"
 
 namespace scatterlab {
 

@@ -1,4 +1,4 @@
-#include "scatterlab/validate/searchlight_models.hpp"
+#include "searchlight_models.hpp"
 
 #include <fmt/format.h>
 

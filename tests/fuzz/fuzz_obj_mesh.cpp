@@ -7,8 +7,8 @@
 #include <string>
 
 #include "fuzz_support.hpp"
+#include "render/obj_mesh.hpp"
 #include "scatterlab/mesh/mesh_checks.hpp"
-#include "scatterlab/render/obj_mesh.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   scatterlab::fuzz::limit_memory();

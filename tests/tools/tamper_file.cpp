@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "scatterlab/io/dimension_scales.hpp"
+#include "io/dimension_scales.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
 
 namespace {

@@ -11,9 +11,9 @@
 #include <limits>
 #include <random>
 
+#include "mesh/convex_crossing.hpp"
+#include "mesh/convex_mesh.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
-#include "scatterlab/mesh/convex_crossing.hpp"
-#include "scatterlab/mesh/convex_mesh.hpp"
 #include "scatterlab/mesh/mesh_ray_tracer.hpp"
 
 namespace scatterlab {

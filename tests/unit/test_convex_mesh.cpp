@@ -8,9 +8,9 @@
 #include <cmath>
 #include <random>
 
+#include "mesh/convex_mesh.hpp"
+#include "mesh/mesh_boundary.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
-#include "scatterlab/mesh/convex_mesh.hpp"
-#include "scatterlab/mesh/mesh_boundary.hpp"
 #include "scatterlab/mesh/mesh_ray_tracer.hpp"
 #include "scatterlab/render/render_scene.hpp"
 

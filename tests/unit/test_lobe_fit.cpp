@@ -14,10 +14,10 @@
 #include <vector>
 
 #include "../physics/lobe_fixtures.hpp"
+#include "io/dimension_scales.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/fit/field_table.hpp"
 #include "scatterlab/fit/lobe_fits_file.hpp"
-#include "scatterlab/io/dimension_scales.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
 #include "scatterlab/io/simulation_file.hpp"
 

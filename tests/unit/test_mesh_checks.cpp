@@ -6,11 +6,11 @@
 #include <memory>
 #include <string>
 
+#include "render/obj_mesh.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
 #include "scatterlab/mesh/lit_mesh.hpp"
 #include "scatterlab/mesh/mesh_checks.hpp"
-#include "scatterlab/render/obj_mesh.hpp"
 #include "scatterlab/render/render_scene.hpp"
 
 namespace scatterlab {

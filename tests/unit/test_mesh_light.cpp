@@ -8,9 +8,9 @@
 #include <random>
 #include <vector>
 
+#include "mesh/mesh_light.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
 #include "scatterlab/core/random.hpp"
-#include "scatterlab/mesh/mesh_light.hpp"
 #include "scatterlab/mesh/mesh_ray_tracer.hpp"
 
 namespace scatterlab {

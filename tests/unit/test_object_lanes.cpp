@@ -15,10 +15,10 @@
 #include <vector>
 
 #include "every_target.hpp"
+#include "mesh/mesh_boundary.hpp"
+#include "mesh/mesh_light.hpp"
 #include "scatterlab/core/phase_function.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
-#include "scatterlab/mesh/mesh_boundary.hpp"
-#include "scatterlab/mesh/mesh_light.hpp"
 #include "scatterlab/mesh/mesh_ray_tracer.hpp"
 #include "scatterlab/render/render_scene.hpp"
 #include "scatterlab/tally/scorer.hpp"

@@ -10,7 +10,7 @@
 #include "scatterlab/models/point_source_diffusion.hpp"
 #include "scatterlab/models/point_source_exact.hpp"
 #include "scatterlab/models/point_source_grosjean.hpp"
-#include "scatterlab/validate/point_source_models.hpp"
+#include "validate/point_source_models.hpp"
 
 namespace scatterlab {
 namespace {

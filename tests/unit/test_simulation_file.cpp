@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "io/dimension_scales.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/io/atomic_output.hpp"
-#include "scatterlab/io/dimension_scales.hpp"
 #include "scatterlab/io/hdf5_file.hpp"
 #include "scatterlab/io/simulation_file.hpp"
 #include "scratch_directory.hpp"

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <random>
 
+#include "mesh/surface_clearance.hpp"
 #include "scatterlab/core/procedural_meshes.hpp"
 #include "scatterlab/mesh/mesh_ray_tracer.hpp"
-#include "scatterlab/mesh/surface_clearance.hpp"
 
 namespace scatterlab {
 namespace {

@@ -27,11 +27,11 @@
 #include <optional>
 #include <vector>
 
+#include "mesh_boundary.hpp"
 #include "scatterlab/core/alias_table.hpp"
 #include "scatterlab/core/azimuth.hpp"
 #include "scatterlab/core/frame.hpp"
 #include "scatterlab/core/random.hpp"
-#include "scatterlab/mesh/mesh_boundary.hpp"
 #include "scatterlab/transport/object_boundary.hpp"
 
 namespace scatterlab {

@@ -33,15 +33,15 @@
 #include <memory>
 #include <vector>
 
+#include "convex_crossing.hpp"
+#include "convex_mesh.hpp"
 #include "scatterlab/core/frame.hpp"
 #include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/core/random.hpp"
 #include "scatterlab/core/triangle_mesh.hpp"
-#include "scatterlab/mesh/convex_crossing.hpp"
-#include "scatterlab/mesh/convex_mesh.hpp"
 #include "scatterlab/mesh/mesh_ray_tracer.hpp"
-#include "scatterlab/mesh/surface_clearance.hpp"
 #include "scatterlab/tally/surface_exit.hpp"
+#include "surface_clearance.hpp"
 
 namespace scatterlab {
 
