@@ -16,7 +16,6 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <type_traits>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -37,10 +36,7 @@
 #include "scatterlab/models/point_source_exact.hpp"
 #include "scatterlab/refract/half_space_single_scatter.hpp"
 #include "scatterlab/transport/engine.hpp"
-#include "scatterlab/transport/layered_slab.hpp"
-#include "scatterlab/transport/lit_object.hpp"
 #include "scatterlab/transport/searchlight.hpp"
-#include "scatterlab/transport/simulate.hpp"
 #include "scatterlab/validate/run_file.hpp"
 
 namespace py = pybind11;
@@ -155,20 +151,7 @@ void run_scene(const std::string& toml, const std::string& origin, const std::st
   const std::filesystem::path out_path(path);
   without_gil(progress, [&](const ProgressCallback& callback, const RunControl& control,
                             const std::atomic<bool>& stopped) {
-    const TransportOutput out = std::visit(
-        [&](const auto& spec) {
-          using Spec = std::decay_t<decltype(spec)>;
-          if constexpr (std::is_same_v<Spec, SimulationSpec>) {
-            return simulate(spec, callback, control);
-          } else if constexpr (std::is_same_v<Spec, SearchlightSpec>) {
-            return run_searchlight(spec, callback, control);
-          } else if constexpr (std::is_same_v<Spec, LitObjectSpec>) {
-            return run_lit_sphere(spec, callback, control);
-          } else {
-            return run_layered_slab(spec, callback, control);
-          }
-        },
-        scene.spec);
+    const TransportOutput out = run_spec(scene.spec, callback, control);
     if (!stopped) write_run_result(out_path, scene.spec, out, command, model_fluence);
   });
 }

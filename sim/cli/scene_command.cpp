@@ -479,24 +479,15 @@ void print_summary(const std::string& command, const LayeredSlabSpec& spec,
   fmt::print("  wrote {}: R_d and T_t by r and angle, A by layer, depth and (r, z)\n", path);
 }
 
-// One spec on the transport engine; only the root rank gets tallies.
-TransportOutput run_spec(const SceneSpec& spec, const ProgressCallback& progress,
-                         const RunControl& control) {
-  return std::visit(
-      Overloaded{[&](const SimulationSpec& s) { return simulate(s, progress, control); },
-                 [&](const SearchlightSpec& s) { return run_searchlight(s, progress, control); },
-                 [&](const LitObjectSpec& s) {
+// One spec on the transport engine (io/scene.hpp); a mesh in its own module, traced with Embree.
+TransportOutput run_any_spec(const SceneSpec& spec, const ProgressCallback& progress,
+                             const RunControl& control) {
 #ifdef SCATTERLAB_WITH_RENDER
-                   if (s.mesh) return run_lit_mesh(s, progress, control);
+  if (const auto* object = std::get_if<LitObjectSpec>(&spec); object != nullptr && object->mesh) {
+    return run_lit_mesh(*object, progress, control);
+  }
 #endif
-                   return run_lit_sphere(s, progress, control);
-                 },
-                 [&](const LayeredSlabSpec& s) { return run_layered_slab(s, progress, control); }},
-      spec);
-}
-
-std::string fingerprint_of(const SceneSpec& spec) {
-  return std::visit([](const auto& s) { return fingerprint(s); }, spec);
+  return run_spec(spec, progress, control);
 }
 
 int run_one(PlannedRun run, const std::string& command, const SceneOptions& o,
@@ -505,9 +496,9 @@ int run_one(PlannedRun run, const std::string& command, const SceneOptions& o,
   const std::uint64_t batches =
       std::visit([](const auto& s) -> std::uint64_t { return s.run.batches; }, run.spec);
   return run_with_checkpoints(
-      command, options, run.output, fingerprint_of(run.spec), batches, log_interval, world,
+      command, options, run.output, fingerprint(run.spec), batches, log_interval, world,
       [&run](const ProgressCallback& progress, const RunControl& control) {
-        return run_spec(run.spec, progress, control);
+        return run_any_spec(run.spec, progress, control);
       },
       [&](const std::filesystem::path& path, const TransportOutput& out) {
         const std::vector<ModelResult> models =
@@ -525,11 +516,7 @@ int run_scene_command(const CLI::App& command, const SceneOptions& o, const std:
   const std::string& directory = run_plan.directory;
   // Every run's memory before any starts (engine.hpp): a sweep is refused whole, not halfway.
   for (const PlannedRun& run : runs) {
-    std::visit(
-        [&](const auto& s) {
-          check_transport_memory(transport_problem(s), world.size(), long_run.resume);
-        },
-        run.spec);
+    check_transport_memory(transport_problem(run.spec), world.size(), long_run.resume);
   }
   OutputPlan plan;
   if (!o.scene.empty()) plan.input("--scene", o.scene);
@@ -555,7 +542,7 @@ int run_scene_command(const CLI::App& command, const SceneOptions& o, const std:
     // runs the same.
     const bool skip = !directory.empty() &&
                       world.communicator().broadcast_from_root(
-                          complete_file_of(run.output, fingerprint_of(run.spec)) ? 1 : 0) != 0;
+                          complete_file_of(run.output, fingerprint(run.spec)) ? 1 : 0) != 0;
     if (skip) {
       if (world.is_root())
         fmt::print("skip {}: done already, same parameters\n", run.output.string());

@@ -14,6 +14,8 @@
 #include <span>
 #include <sstream>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "scatterlab/core/error.hpp"
@@ -703,6 +705,32 @@ Scene read_scene(const toml::table& root, std::optional<std::string_view> text,
 }
 
 }  // namespace
+
+TransportProblem transport_problem(const SceneSpec& spec) {
+  return std::visit([](const auto& s) { return transport_problem(s); }, spec);
+}
+
+std::string fingerprint(const SceneSpec& spec) {
+  return std::visit([](const auto& s) { return fingerprint(s); }, spec);
+}
+
+TransportOutput run_spec(const SceneSpec& spec, const ProgressCallback& progress,
+                         const RunControl& control) {
+  return std::visit(
+      [&](const auto& s) {
+        using Spec = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<Spec, SimulationSpec>) {
+          return simulate(s, progress, control);
+        } else if constexpr (std::is_same_v<Spec, SearchlightSpec>) {
+          return run_searchlight(s, progress, control);
+        } else if constexpr (std::is_same_v<Spec, LitObjectSpec>) {
+          return run_lit_sphere(s, progress, control);  // refuses a mesh (lit_object.hpp)
+        } else {
+          return run_layered_slab(s, progress, control);
+        }
+      },
+      spec);
+}
 
 std::string_view Scene::geometry() const {
   switch (spec.index()) {

@@ -71,6 +71,7 @@
 #include "scatterlab/transport/layered_slab.hpp"
 #include "scatterlab/transport/lit_object.hpp"
 #include "scatterlab/transport/searchlight.hpp"
+#include "scatterlab/transport/simulate.hpp"
 #include "scatterlab/transport/simulation.hpp"
 
 namespace scatterlab {
@@ -103,6 +104,15 @@ struct Scene {
   // The geometry.type this scene has: one of scene_geometries.
   std::string_view geometry() const;
 };
+
+// A scene's spec as the engine takes it, whatever its geometry: each geometry's
+// transport_problem, fingerprint (what shapes its tallies: equal for a run and its resumption) and
+// run. A mesh is traced with Embree in its own module, which runs it (mesh/lit_mesh.hpp,
+// run_lit_mesh); run_spec refuses one with std::invalid_argument. Only the root rank gets tallies.
+TransportProblem transport_problem(const SceneSpec& spec);
+std::string fingerprint(const SceneSpec& spec);
+TransportOutput run_spec(const SceneSpec& spec, const ProgressCallback& progress = {},
+                         const RunControl& control = {});
 
 // `origin` names the text in messages (usually its file name). `default_geometry` is the
 // geometry of a file that names none (one of scene_geometries): "infinite" for simulate,
