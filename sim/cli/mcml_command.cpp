@@ -110,7 +110,7 @@ int run_mcml(const CLI::App& command, const McmlFlags& flags, const LongRunOptio
         },
         [&](const std::filesystem::path& path, const TransportOutput& out) {
           spec.run.threads = out.threads;  // record what ran, not "all cores"
-          write_layered_slab_file(path, spec, out.tallies, run_provenance(out, command_line));
+          write_simulation_file(path, spec, out.tallies, run_provenance(out, command_line));
           print_summary(i, runs.size(), spec, out);
           fmt::print("  wrote {}\n", path.string());
           if (!flags.mco || !out.complete(spec)) return;

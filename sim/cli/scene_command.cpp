@@ -493,8 +493,7 @@ TransportOutput run_any_spec(const SceneSpec& spec, const ProgressCallback& prog
 int run_one(PlannedRun run, const std::string& command, const SceneOptions& o,
             const LongRunOptions& options, double log_interval, const std::string& command_line,
             World& world) {
-  const std::uint64_t batches =
-      std::visit([](const auto& s) -> std::uint64_t { return s.run.batches; }, run.spec);
+  const std::uint64_t batches = run_settings(run.spec).batches;
   return run_with_checkpoints(
       command, options, run.output, fingerprint(run.spec), batches, log_interval, world,
       [&run](const ProgressCallback& progress, const RunControl& control) {

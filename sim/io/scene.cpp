@@ -710,6 +710,10 @@ TransportProblem transport_problem(const SceneSpec& spec) {
   return std::visit([](const auto& s) { return transport_problem(s); }, spec);
 }
 
+const RunSettings& run_settings(const SceneSpec& spec) {
+  return std::visit([](const auto& s) -> const RunSettings& { return s.run; }, spec);
+}
+
 std::string fingerprint(const SceneSpec& spec) {
   return std::visit([](const auto& s) { return fingerprint(s); }, spec);
 }

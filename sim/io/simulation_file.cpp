@@ -270,6 +270,39 @@ void write_searchlight_grid(hdf5::Group& root, const SearchlightSpec& spec) {
   }
 }
 
+// Each geometry's /parameters and /grid (simulation_file.hpp).
+void describe(hdf5::Group& root, const SimulationSpec& spec) {
+  write_parameters(root, spec);
+  write_grid(root, spec);
+}
+
+void describe(hdf5::Group& root, const SearchlightSpec& spec) {
+  write_searchlight_parameters(root, spec);
+  write_searchlight_grid(root, spec);
+}
+
+void describe(hdf5::Group& root, const LitObjectSpec& spec) {
+  write_lit_sphere_parameters(root, spec);
+  hdf5::Group grid = root.create_group("grid");
+  if (spec.mesh) return;  // the exitance is per triangle of /parameters/mesh
+  write_axis(grid, "psi", spec.psi, "rad");
+  write_axis(grid, "azimuth", spec.azimuth, "rad");
+}
+
+void describe(hdf5::Group& root, const LayeredSlabSpec& spec) {
+  write_layered_slab_parameters(root, spec);
+  hdf5::Group grid = root.create_group("grid");
+  write_axis(grid, "r", spec.r, spec.length_unit);
+  write_axis(grid, "z", spec.z, spec.length_unit);
+  write_axis(grid, "theta_o", spec.theta_o, "rad");
+  // The layer axis's edges are the interfaces' depths (the last infinite when semi-infinite).
+  std::vector<double> interfaces{0.0};
+  for (const SlabLayerSpec& l : spec.layers) {
+    interfaces.push_back(interfaces.back() + l.thickness);
+  }
+  grid.write_dataset("layer", interfaces).write_string_attribute("units", spec.length_unit);
+}
+
 void write_tallies(hdf5::Group& root, const std::vector<TallyResult>& tallies) {
   hdf5::Group group = root.create_group("tallies");
   for (const TallyResult& tally : tallies) {
@@ -604,21 +637,18 @@ std::string iso8601_now() {
   return text;
 }
 
-namespace {
-
 // Every run's file, one way: written whole to a temporary beside `path` and renamed into place
-// (atomic_output.hpp), with the provenance, then what `describe` writes (the spec's parameters
-// and grid), then the tallies, their figures of merit and any model curves.
-template <class Spec, class Describe>
-void write_run_file(const std::filesystem::path& path, const Spec& spec,
-                    const std::vector<TallyResult>& tallies, const Provenance& provenance,
-                    const std::vector<ModelResult>& models, Describe&& describe) {
+// (atomic_output.hpp), with the provenance, then the geometry's parameters and grid (`describe`),
+// then the tallies, their figures of merit and any model curves.
+void write_simulation_file(const std::filesystem::path& path, const SceneSpec& spec,
+                           const std::vector<TallyResult>& tallies, const Provenance& provenance,
+                           const std::vector<ModelResult>& models) {
   AtomicOutput output(path);
   check_tallies(tallies);
   {
     hdf5::File file = hdf5::File::create(output.temporary_path());
-    write_provenance(file.root(), provenance, spec.run.batches, fingerprint(spec));
-    describe(file.root());
+    write_provenance(file.root(), provenance, run_settings(spec).batches, fingerprint(spec));
+    std::visit([&file](const auto& s) { describe(file.root(), s); }, spec);
     write_tallies(file.root(), tallies);
     write_figures_of_merit(file.root(), tallies, provenance.wall_seconds);
     write_models(file.root(), models);
@@ -626,55 +656,6 @@ void write_run_file(const std::filesystem::path& path, const Spec& spec,
     file.close();
   }
   output.commit();
-}
-
-}  // namespace
-
-void write_simulation_file(const std::filesystem::path& path, const SimulationSpec& spec,
-                           const std::vector<TallyResult>& tallies, const Provenance& provenance,
-                           const std::vector<ModelResult>& models) {
-  write_run_file(path, spec, tallies, provenance, models, [&spec](hdf5::Group& root) {
-    write_parameters(root, spec);
-    write_grid(root, spec);
-  });
-}
-
-void write_searchlight_file(const std::filesystem::path& path, const SearchlightSpec& spec,
-                            const std::vector<TallyResult>& tallies, const Provenance& provenance,
-                            const std::vector<ModelResult>& models) {
-  write_run_file(path, spec, tallies, provenance, models, [&spec](hdf5::Group& root) {
-    write_searchlight_parameters(root, spec);
-    write_searchlight_grid(root, spec);
-  });
-}
-
-void write_lit_object_file(const std::filesystem::path& path, const LitObjectSpec& spec,
-                           const std::vector<TallyResult>& tallies, const Provenance& provenance) {
-  write_run_file(path, spec, tallies, provenance, {}, [&spec](hdf5::Group& root) {
-    write_lit_sphere_parameters(root, spec);
-    hdf5::Group grid = root.create_group("grid");
-    if (spec.mesh) return;  // the exitance is per triangle of /parameters/mesh
-    write_axis(grid, "psi", spec.psi, "rad");
-    write_axis(grid, "azimuth", spec.azimuth, "rad");
-  });
-}
-
-void write_layered_slab_file(const std::filesystem::path& path, const LayeredSlabSpec& spec,
-                             const std::vector<TallyResult>& tallies,
-                             const Provenance& provenance) {
-  write_run_file(path, spec, tallies, provenance, {}, [&spec](hdf5::Group& root) {
-    write_layered_slab_parameters(root, spec);
-    hdf5::Group grid = root.create_group("grid");
-    write_axis(grid, "r", spec.r, spec.length_unit);
-    write_axis(grid, "z", spec.z, spec.length_unit);
-    write_axis(grid, "theta_o", spec.theta_o, "rad");
-    // The layer axis's edges are the interfaces' depths (the last infinite when semi-infinite).
-    std::vector<double> interfaces{0.0};
-    for (const SlabLayerSpec& l : spec.layers) {
-      interfaces.push_back(interfaces.back() + l.thickness);
-    }
-    grid.write_dataset("layer", interfaces).write_string_attribute("units", spec.length_unit);
-  });
 }
 
 namespace {

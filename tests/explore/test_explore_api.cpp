@@ -376,7 +376,7 @@ TEST_F(ExploreApiTest, ASearchlightFileIsReadWithItsErrorBars) {
   spec.grid.r = UniformAxis{0.0, 5.0, 10};
   const SearchlightOutput out = run_searchlight(spec);
   fs::create_directories(open_ / "runs");
-  write_searchlight_file(open_ / "runs/half.h5", spec, out.tallies, run_provenance(out, "test"));
+  write_simulation_file(open_ / "runs/half.h5", spec, out.tallies, run_provenance(out, "test"));
   const ExploreApi explorer = api();
   const json files = body_of(explorer.handle("GET", "/api/files", {}, ""));
   ASSERT_EQ(files.size(), 1u);
@@ -412,7 +412,7 @@ TEST_F(ExploreApiTest, APathTracedLitSphereIsReadForTheLitSpherePanel) {
   spec.run = RunSettings{2000, 4, 1, 1};
   const TransportOutput out = run_lit_sphere(spec);
   fs::create_directories(open_ / "runs");
-  write_lit_object_file(open_ / "runs/sphere.h5", spec, out.tallies, run_provenance(out, "test"));
+  write_simulation_file(open_ / "runs/sphere.h5", spec, out.tallies, run_provenance(out, "test"));
   const ExploreApi explorer = api();
   const ApiResponse response =
       explorer.handle("GET", "/api/file", {{"path", "0/runs/sphere.h5"}}, "");
@@ -439,7 +439,7 @@ TEST_F(ExploreApiTest, APathTracedLitSphereIsReadForTheLitSpherePanel) {
   spec.light = ObjectLight::pole_beam;
   spec.azimuth = UniformAxis{0.0, 2.0 * std::numbers::pi, 4};
   const TransportOutput beam = run_lit_sphere(spec);
-  write_lit_object_file(open_ / "runs/beam.h5", spec, beam.tallies, run_provenance(beam, "test"));
+  write_simulation_file(open_ / "runs/beam.h5", spec, beam.tallies, run_provenance(beam, "test"));
   const ApiResponse refused = explorer.handle("GET", "/api/file", {{"path", "0/runs/beam.h5"}}, "");
   EXPECT_EQ(refused.status, 400);
   EXPECT_NE(refused.body.find("path"), std::string::npos) << refused.body;

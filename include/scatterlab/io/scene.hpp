@@ -110,6 +110,7 @@ struct Scene {
 // run. A mesh is traced with Embree in its own module, which runs it (mesh/lit_mesh.hpp,
 // run_lit_mesh); run_spec refuses one with std::invalid_argument. Only the root rank gets tallies.
 TransportProblem transport_problem(const SceneSpec& spec);
+const RunSettings& run_settings(const SceneSpec& spec);
 std::string fingerprint(const SceneSpec& spec);
 TransportOutput run_spec(const SceneSpec& spec, const ProgressCallback& progress = {},
                          const RunControl& control = {});

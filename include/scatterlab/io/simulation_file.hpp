@@ -33,12 +33,9 @@
 #include <utility>
 #include <vector>
 
+#include "scatterlab/io/scene.hpp"
 #include "scatterlab/tally/tally_result.hpp"
 #include "scatterlab/transport/engine.hpp"
-#include "scatterlab/transport/layered_slab.hpp"
-#include "scatterlab/transport/lit_object.hpp"
-#include "scatterlab/transport/searchlight.hpp"
-#include "scatterlab/transport/simulation.hpp"
 
 namespace scatterlab {
 
@@ -66,7 +63,7 @@ Provenance run_provenance(const TransportOutput& out, std::string command);
 
 // The last guard before a tally reaches a file: throws std::runtime_error (exit status 1), naming
 // the tally, when a mean or standard error is NaN or infinite. Every writer of tallies calls it
-// before its file is created (write_simulation_file, write_searchlight_file, merge).
+// before its file is created (write_simulation_file, merge).
 void check_finite_tally(const std::string& name, const std::vector<double>& mean,
                         const std::vector<double>& stderr_of_mean);
 
@@ -92,35 +89,26 @@ struct ModelResult {
 // failure leaves no file behind. Throws InputError("out", ...) when the directory does not
 // exist, std::invalid_argument for an inconsistent tally, std::runtime_error for HDF5 failures.
 // Tallies are written in the order given. Does not validate `spec` (the caller did). Model
-// curves, if any (the point source's, validate/point_source_models.hpp), go under /models.
-void write_simulation_file(const std::filesystem::path& path, const SimulationSpec& spec,
+// curves, if any (validate/point_source_models.hpp, searchlight_models.hpp), go under /models.
+//
+// Each geometry writes its own /parameters and /grid:
+// - the infinite medium (transport/simulation.hpp): as in the layout above;
+// - the half-space (transport/searchlight.hpp): /parameters adds geometry = "half_space", eta and
+//   incidence_deg; /grid holds r, z (with the fluence) and theta_o, the exit angle outside the
+//   medium, and x and y with the exitance map;
+// - a lit object (transport/lit_object.hpp): /parameters adds geometry = "sphere", source
+//   (directional, pole_beam, beam, sphere), radius and eta; /grid holds psi, the angle of a point
+//   of the surface from the lit pole, and azimuth. For a mesh, geometry = "mesh" and
+//   /parameters/mesh holds positions (n x 3, in the length unit), triangles (m x 3 vertex
+//   indices, int32), area (m) and the attribute source; /grid is empty (the exitance is per
+//   triangle); a sphere of light's radius and centre are the attribute light_sphere;
+// - the layered slab (transport/layered_slab.hpp): /parameters adds geometry = "slab", the
+//   indices above and below and the stack in /parameters/layers (mu_a, mu_s, g, n, thickness, top
+//   down); /grid holds r, z, theta_o and layer (the interfaces' depths).
+// The tallies are those each geometry declares (sim/transport/<geometry>.cpp).
+void write_simulation_file(const std::filesystem::path& path, const SceneSpec& spec,
                            const std::vector<TallyResult>& tallies, const Provenance& provenance,
                            const std::vector<ModelResult>& models = {});
-
-// The same file for the half-space (scatterlab searchlight): /parameters adds geometry =
-// "half_space", eta and incidence_deg; /grid holds r, z (with the fluence) and theta_o, the exit
-// angle outside the medium; the tallies are those declared in sim/transport/searchlight.cpp.
-// Model curves, if any, go under /models.
-void write_searchlight_file(const std::filesystem::path& path, const SearchlightSpec& spec,
-                            const std::vector<TallyResult>& tallies, const Provenance& provenance,
-                            const std::vector<ModelResult>& models = {});
-
-// The same file for the lit sphere (transport/lit_object.hpp): /parameters adds geometry =
-// "sphere", source (directional, pole_beam, beam), radius and eta; /grid holds psi, the angle of
-// a point of the surface from the lit pole, and azimuth; the tallies are those declared in
-// sim/transport/lit_object.cpp. For a mesh, geometry = "mesh" and /parameters/mesh holds
-// positions (n x 3, in the length unit), triangles (m x 3 vertex indices, int32), area (m) and
-// the attribute source; /grid is empty (the exitance is per triangle); a sphere of light's
-// radius and centre are the attribute light_sphere.
-void write_lit_object_file(const std::filesystem::path& path, const LitObjectSpec& spec,
-                           const std::vector<TallyResult>& tallies, const Provenance& provenance);
-
-// The same file for the layered slab (transport/layered_slab.hpp): /parameters adds geometry =
-// "slab", the indices above and below and the stack in /parameters/layers (mu_a, mu_s, g, n,
-// thickness, top down); /grid holds r, z, theta_o and layer (the interfaces' depths); the
-// tallies are those declared in sim/transport/layered_slab.cpp.
-void write_layered_slab_file(const std::filesystem::path& path, const LayeredSlabSpec& spec,
-                             const std::vector<TallyResult>& tallies, const Provenance& provenance);
 
 // What `scatterlab info FILE` reports, read back from a file.
 struct AxisSummary {
