@@ -59,11 +59,12 @@ void HalfSpaceLanes(benchmark::State& state, SearchlightSpec spec) {
   const TransportProblem problem = transport_problem(spec);
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
-  const LaneWalk walk(
-      spec.eta == 1.0 ? LaneWalk::Geometry::half_space : LaneWalk::Geometry::fresnel_half_space,
-      spec.eta, scorer, problem.source, problem.albedo, problem.g,
-      spec.tallies.fluence ? Estimator::collision : Estimator::none,
-      problem.run.escape_radius, problem.run.seed);
+  // (HalfSpace here is the benchmark above; the geometry is scatterlab::HalfSpace.)
+  const LaneWalk walk(spec.eta == 1.0 ? LaneGeometry(scatterlab::HalfSpace<false>(spec.eta))
+                                      : scatterlab::HalfSpace<true>(spec.eta),
+                      scorer, problem.source, problem.albedo, problem.g,
+                      spec.tallies.fluence ? Estimator::collision : Estimator::none,
+                      problem.run.escape_radius, problem.run.seed);
   bench::time_walk(state, walk, book.size());
   state.counters["lanes"] = LaneWalk::lanes();
 }

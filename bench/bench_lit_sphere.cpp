@@ -48,10 +48,11 @@ void SphereLanes(benchmark::State& state, LitObjectSpec spec) {
   const TransportProblem problem = transport_problem(spec);
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
-  const LaneWalk walk(
-      spec.eta == 1.0 ? LaneWalk::Geometry::sphere : LaneWalk::Geometry::fresnel_sphere,
-      problem.eta, scorer, problem.source, problem.albedo, problem.g, Estimator::none,
-      problem.run.escape_radius, problem.run.seed, problem.radius);
+  // (Sphere here is the benchmark above; the geometry is scatterlab::Sphere.)
+  const LaneWalk walk(spec.eta == 1.0 ? LaneGeometry(scatterlab::Sphere<false>(problem.radius, 1.0))
+                                      : scatterlab::Sphere<true>(problem.radius, problem.eta),
+                      scorer, problem.source, problem.albedo, problem.g, Estimator::none,
+                      problem.run.escape_radius, problem.run.seed);
   bench::time_walk(state, walk, book.size());
   state.counters["lanes"] = LaneWalk::lanes();
 }

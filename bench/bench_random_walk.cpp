@@ -93,9 +93,8 @@ void Lanes(benchmark::State& state, SimulationSpec spec) {
   const TransportProblem problem = transport_problem(spec);
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
-  const LaneWalk walk(LaneWalk::Geometry::infinite_medium, 1.0, scorer, problem.source,
-                      problem.albedo, problem.g, Estimator::collision,
-                      problem.run.escape_radius, problem.run.seed);
+  const LaneWalk walk(InfiniteMedium{}, scorer, problem.source, problem.albedo, problem.g,
+                      Estimator::collision, problem.run.escape_radius, problem.run.seed);
   bench::time_walk(state, walk, book.size());
   state.counters["lanes"] = LaneWalk::lanes();
 }
@@ -107,9 +106,8 @@ void LaneLoop(benchmark::State& state, SimulationSpec spec) {
   problem.tallies.clear();
   const TallyBook book(problem.tallies, false);
   const Scorer scorer(problem.axes, book);
-  const LaneWalk walk(LaneWalk::Geometry::infinite_medium, 1.0, scorer, problem.source,
-                      problem.albedo, problem.g, Estimator::none, problem.run.escape_radius,
-                      problem.run.seed);
+  const LaneWalk walk(InfiniteMedium{}, scorer, problem.source, problem.albedo, problem.g,
+                      Estimator::none, problem.run.escape_radius, problem.run.seed);
   bench::time_walk(state, walk, book.size());
   state.counters["lanes"] = LaneWalk::lanes();
 }

@@ -190,10 +190,11 @@ HWY_INLINE auto stays_inside(const HalfSpace<fresnel>&, const LaneWalk::Setup&, 
   return hn::Not(hn::Lt(z, hn::Zero(D())));
 }
 template <bool fresnel>
-HWY_INLINE auto stays_inside(const Sphere<fresnel>&, const LaneWalk::Setup& setup, V x, V y, V z) {
+HWY_INLINE auto stays_inside(const Sphere<fresnel>& sphere, const LaneWalk::Setup&, V x, V y,
+                             V z) {
   const D d;
   const V r2 = hn::MulAdd(x, x, hn::MulAdd(y, y, hn::Mul(z, z)));
-  return hn::Lt(r2, hn::Set(d, setup.radius * setup.radius * (1.0 - 1e-12)));
+  return hn::Lt(r2, hn::Set(d, sphere.radius() * sphere.radius() * (1.0 - 1e-12)));
 }
 // A convex object's (object_boundary.hpp): the end lies below every face of a polyhedron of few
 // faces; or in the object's core, or in a cell wholly inside (InteriorClearance::at positive).
@@ -489,25 +490,17 @@ std::uint64_t run_on(const Geometry& geometry, const LaneWalk::Setup& setup, std
 
 std::uint64_t RunLanes(const LaneWalk::Setup& setup, std::uint64_t first, std::uint64_t last,
                        double* buffer) {
-  switch (setup.geometry) {
-    case LaneWalk::Geometry::infinite_medium:
-      return run_on(InfiniteMedium{}, setup, first, last, buffer);
-    case LaneWalk::Geometry::half_space:
-      return run_on(HalfSpace<false>(setup.eta), setup, first, last, buffer);
-    case LaneWalk::Geometry::fresnel_half_space:
-      return run_on(HalfSpace<true>(setup.eta), setup, first, last, buffer);
-    case LaneWalk::Geometry::sphere:
-      return run_on(Sphere<false>(setup.radius, 1.0), setup, first, last, buffer);
-    case LaneWalk::Geometry::fresnel_sphere:
-      return run_on(Sphere<true>(setup.radius, setup.eta), setup, first, last, buffer);
-    case LaneWalk::Geometry::layered_slab:
-      return setup.weighting == Weighting::implicit_capture
-                 ? run_lanes<Slab, false, false, true>(*setup.slab, setup, first, last, buffer)
-                 : run_lanes<Slab, false, false, false>(*setup.slab, setup, first, last, buffer);
-    case LaneWalk::Geometry::object:
-      return run_on(*setup.object, setup, first, last, buffer);
-  }
-  return 0;
+  return std::visit(
+      [&](const auto& geometry) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(geometry)>, Slab>) {
+          return setup.weighting == Weighting::implicit_capture
+                     ? run_lanes<Slab, false, false, true>(geometry, setup, first, last, buffer)
+                     : run_lanes<Slab, false, false, false>(geometry, setup, first, last, buffer);
+        } else {
+          return run_on(geometry, setup, first, last, buffer);
+        }
+      },
+      setup.geometry);
 }
 
 int LaneCount() {
@@ -532,74 +525,56 @@ void refuse_track_length(Estimator estimator) {
   }
 }
 
-void refuse_sphere_light_off_the_sphere(LaneWalk::Geometry geometry, const Source& source) {
-  if (source.kind == Source::Kind::sphere_light && geometry != LaneWalk::Geometry::sphere &&
-      geometry != LaneWalk::Geometry::fresnel_sphere) {
+void refuse_sphere_light_off_the_sphere(const LaneGeometry& geometry, const Source& source) {
+  if (source.kind == Source::Kind::sphere_light &&
+      !std::holds_alternative<Sphere<false>>(geometry) &&
+      !std::holds_alternative<Sphere<true>>(geometry)) {
     throw std::invalid_argument("LaneWalk: a sphere light needs the sphere's geometry");
   }
 }
 
 }  // namespace
 
-LaneWalk::LaneWalk(Geometry geometry, double eta, const Scorer& scorer, const Source& source,
+LaneWalk::LaneWalk(const LaneGeometry& geometry, const Scorer& scorer, const Source& source,
                    double albedo, double g, Estimator estimator, double escape_radius,
-                   std::uint64_t seed, double radius)
-    : setup_{geometry,
-             eta,
-             &scorer,
-             source,
-             albedo,
-             g,
-             escape_radius * escape_radius,
-             radius,
-             estimator == Estimator::collision,
-             seed,
-             std::nullopt,
-             Weighting::analog,
-             std::nullopt} {
+                   std::uint64_t seed)
+    : setup_{geometry, &scorer, source, albedo, g, escape_radius * escape_radius,
+             estimator == Estimator::collision, seed, Weighting::analog} {
   refuse_track_length(estimator);
-  if (geometry == Geometry::layered_slab) {
-    throw std::invalid_argument("LaneWalk: a layered slab is given by its stack (Slab)");
+  if (std::holds_alternative<Slab>(geometry)) {
+    throw std::invalid_argument("LaneWalk: a layered slab takes the constructor with its weighting");
   }
-  if (geometry == Geometry::object) {
-    throw std::invalid_argument("LaneWalk: an object is given by its boundary (ObjectBoundary)");
+  if (std::holds_alternative<ObjectBoundary>(geometry)) {
+    throw std::invalid_argument("LaneWalk: an object takes the constructor without a source (its light launches)");
   }
   refuse_sphere_light_off_the_sphere(geometry, source);
 }
 
 LaneWalk::LaneWalk(const Slab& slab, Weighting weighting, const Scorer& scorer,
                    const Source& source, double escape_radius, std::uint64_t seed)
-    : setup_{Geometry::layered_slab,
-             1.0,
+    : setup_{slab,
              &scorer,
              source,
              0.0,  // each layer's albedo and g are the slab's
              0.0,
              escape_radius * escape_radius,
-             0.0,
              false,
              seed,
-             slab,
-             weighting,
-             std::nullopt} {
-  refuse_sphere_light_off_the_sphere(Geometry::layered_slab, source);
+             weighting} {
+  refuse_sphere_light_off_the_sphere(setup_.geometry, source);
 }
 
 LaneWalk::LaneWalk(const ObjectBoundary& object, const Scorer& scorer, double albedo, double g,
                    Estimator estimator, double escape_radius, std::uint64_t seed)
-    : setup_{Geometry::object,
-             1.0,  // the object's own surface holds its index
+    : setup_{object,
              &scorer,
              Source{},  // unused: the object's light launches
              albedo,
              g,
              escape_radius * escape_radius,
-             0.0,
              estimator == Estimator::collision,
              seed,
-             std::nullopt,
-             Weighting::analog,
-             object} {
+             Weighting::analog} {
   refuse_track_length(estimator);
 }
 

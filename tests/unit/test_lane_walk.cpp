@@ -63,28 +63,26 @@ void expect_same_sums(const OneWalk& one, const LaneWalk& lanes, std::size_t cel
   EXPECT_EQ(differing, 0u) << "of " << a.sums.size() << " cells";
 }
 
-// `geometry` and `kind` the same geometry, for RandomWalk and LaneWalk, with the collision
-// estimator. By default a range that does not start at 0 and is no multiple of any lane count.
+// `geometry` on RandomWalk and on LaneWalk, with the collision estimator. By default a range
+// that does not start at 0 and is no multiple of any lane count.
 template <class Geometry, class Phase>
 void expect_same_paths(const TransportProblem& problem, const Geometry& geometry,
-                       LaneWalk::Geometry kind, const Phase& phase, std::uint64_t first = 1001,
-                       std::uint64_t last = 4004, double radius = 0.0) {
+                       const Phase& phase, std::uint64_t first = 1001, std::uint64_t last = 4004) {
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
   const RandomWalk<Geometry, Phase, Estimator::collision> one(
       geometry, phase, problem.source, scorer, problem.albedo, problem.run.escape_radius,
       problem.run.seed);
   on_every_target([&] {
-    const LaneWalk lanes(kind, problem.eta, scorer, problem.source, problem.albedo, problem.g,
-                         Estimator::collision, problem.run.escape_radius, problem.run.seed, radius);
+    const LaneWalk lanes(geometry, scorer, problem.source, problem.albedo, problem.g,
+                         Estimator::collision, problem.run.escape_radius, problem.run.seed);
     expect_same_sums(one, lanes, book.size(), first, last);
   });
 }
 
 template <class Phase>
 void expect_same_paths(const SimulationSpec& spec, const Phase& phase) {
-  expect_same_paths(transport_problem(spec), InfiniteMedium{}, LaneWalk::Geometry::infinite_medium,
-                    phase);
+  expect_same_paths(transport_problem(spec), InfiniteMedium{}, phase);
 }
 
 // The searchlight's half-space, its fluence tally on: matched (eta = 1) or behind a Fresnel
@@ -99,9 +97,9 @@ void expect_same_paths_in_half_space(double albedo, double g, double eta, double
   spec.incidence_deg = incidence;
   const TransportProblem problem = transport_problem(spec);
   if (eta == 1.0) {
-    expect_same_paths(problem, HalfSpace<false>(eta), LaneWalk::Geometry::half_space, phase);
+    expect_same_paths(problem, HalfSpace<false>(eta), phase);
   } else {
-    expect_same_paths(problem, HalfSpace<true>(eta), LaneWalk::Geometry::fresnel_half_space, phase);
+    expect_same_paths(problem, HalfSpace<true>(eta), phase);
   }
 }
 
@@ -120,11 +118,9 @@ void expect_same_paths_in_the_sphere(double albedo, double g, double eta, double
   spec.light = light;
   const TransportProblem problem = transport_problem(spec);
   if (eta == 1.0) {
-    expect_same_paths(problem, Sphere<false>(radius, 1.0), LaneWalk::Geometry::sphere, phase, 1001,
-                      4004, radius);
+    expect_same_paths(problem, Sphere<false>(radius, 1.0), phase);
   } else {
-    expect_same_paths(problem, Sphere<true>(radius, eta), LaneWalk::Geometry::fresnel_sphere, phase,
-                      1001, 4004, radius);
+    expect_same_paths(problem, Sphere<true>(radius, eta), phase);
   }
 }
 
@@ -157,8 +153,8 @@ TEST(LaneWalk, FollowsTheOnePhotonWalkFromAPointSourceToAnEscapeRadius) {
 TEST(LaneWalk, FollowsTheOnePhotonWalkPastPhoton2To32) {
   // The photon index's high word is the second counter word.
   const std::uint64_t first = (std::uint64_t{1} << 32) - 300;
-  expect_same_paths(transport_problem(scene(0.9, 0.0)), InfiniteMedium{},
-                    LaneWalk::Geometry::infinite_medium, IsotropicPhase{}, first, first + 700);
+  expect_same_paths(transport_problem(scene(0.9, 0.0)), InfiniteMedium{}, IsotropicPhase{}, first,
+                    first + 700);
 }
 
 TEST(LaneWalk, FollowsTheOnePhotonWalkInTheHalfSpace) {
@@ -228,20 +224,21 @@ TEST(LaneWalk, RefusesWhatItDoesNotRun) {
   const TransportProblem problem = transport_problem(scene(0.9, 0.0));
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
-  EXPECT_THROW(LaneWalk(LaneWalk::Geometry::infinite_medium, 1.0, scorer, problem.source, 0.9, 0.0,
-                        Estimator::track_length, problem.run.escape_radius, 1),
+  EXPECT_THROW(LaneWalk(InfiniteMedium{}, scorer, problem.source, 0.9, 0.0, Estimator::track_length,
+                        problem.run.escape_radius, 1),
                std::invalid_argument);
-  // A slab without its stack, and the sphere's light on another geometry.
-  EXPECT_THROW(LaneWalk(LaneWalk::Geometry::layered_slab, 1.0, scorer, problem.source, 0.9, 0.0,
-                        Estimator::none, problem.run.escape_radius, 1),
+  // A slab without its weighting, and the sphere's light on another geometry.
+  const Slab slab({SlabLayer{}}, 1.0, 1.0);
+  EXPECT_THROW(LaneWalk(LaneGeometry(slab), scorer, problem.source, 0.9, 0.0, Estimator::none,
+                        problem.run.escape_radius, 1),
                std::invalid_argument);
   Source sphere_light = problem.source;
   sphere_light.kind = Source::Kind::sphere_light;
-  EXPECT_THROW(LaneWalk(LaneWalk::Geometry::half_space, 1.0, scorer, sphere_light, 0.9, 0.0,
-                        Estimator::none, problem.run.escape_radius, 1),
+  EXPECT_THROW(LaneWalk(HalfSpace<false>(1.0), scorer, sphere_light, 0.9, 0.0, Estimator::none,
+                        problem.run.escape_radius, 1),
                std::invalid_argument);
-  EXPECT_NO_THROW(LaneWalk(LaneWalk::Geometry::sphere, 1.0, scorer, sphere_light, 0.9, 0.0,
-                           Estimator::none, problem.run.escape_radius, 1, 2.0));
+  EXPECT_NO_THROW(LaneWalk(Sphere<false>(2.0, 1.0), scorer, sphere_light, 0.9, 0.0,
+                           Estimator::none, problem.run.escape_radius, 1));
 }
 
 }  // namespace

@@ -43,7 +43,6 @@ struct Kernel {
   template <class Geometry, class Phase, Estimator estimator,
             Weighting weighting = Weighting::analog, class Light = Source>
   BatchOutcome run(const Geometry& geometry, const Phase& phase, const Light& light) const {
-    constexpr std::optional<LaneWalk::Geometry> lanes = homogeneous_lanes<Geometry>();
     if constexpr (requires { object_boundary(geometry, light); } &&
                   weighting == Weighting::analog && estimator != Estimator::track_length) {
       if (const std::optional<ObjectBoundary> object = object_boundary(geometry, light)) {
@@ -56,35 +55,17 @@ struct Kernel {
       const LaneWalk walk(geometry, weighting, scorer, light, problem.run.escape_radius,
                           problem.run.seed);
       return run_batches(problem.run, book.size(), walk, progress, control);
-    } else if constexpr (std::is_same_v<Light, Source> && lanes.has_value() &&
+    } else if constexpr (std::is_same_v<Light, Source> && is_lane_geometry<Geometry> &&
                          weighting == Weighting::analog &&
                          estimator != Estimator::track_length) {
-      const LaneWalk walk(*lanes, problem.eta, scorer, light, problem.albedo, phase.mean_cosine(),
-                          estimator, problem.run.escape_radius, problem.run.seed, problem.radius);
+      const LaneWalk walk(geometry, scorer, light, problem.albedo, phase.mean_cosine(), estimator,
+                          problem.run.escape_radius, problem.run.seed);
       return run_batches(problem.run, book.size(), walk, progress, control);
     } else {
       const RandomWalk<Geometry, Phase, estimator, weighting, Light> walk(
           geometry, phase, light, scorer, problem.albedo, problem.run.escape_radius,
           problem.run.seed);
       return run_batches(problem.run, book.size(), walk, progress, control);
-    }
-  }
-
-  // The lane walk's name for a homogeneous geometry it runs; none for the others.
-  template <class Geometry>
-  static constexpr std::optional<LaneWalk::Geometry> homogeneous_lanes() {
-    if constexpr (std::is_same_v<Geometry, InfiniteMedium>) {
-      return LaneWalk::Geometry::infinite_medium;
-    } else if constexpr (std::is_same_v<Geometry, HalfSpace<false>>) {
-      return LaneWalk::Geometry::half_space;
-    } else if constexpr (std::is_same_v<Geometry, HalfSpace<true>>) {
-      return LaneWalk::Geometry::fresnel_half_space;
-    } else if constexpr (std::is_same_v<Geometry, Sphere<false>>) {
-      return LaneWalk::Geometry::sphere;
-    } else if constexpr (std::is_same_v<Geometry, Sphere<true>>) {
-      return LaneWalk::Geometry::fresnel_sphere;
-    } else {
-      return std::nullopt;
     }
   }
 

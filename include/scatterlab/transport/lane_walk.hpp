@@ -34,40 +34,44 @@
 // under implicit capture, its weight. The track-length estimator keeps RandomWalk.
 
 #include <cstdint>
-#include <optional>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "scatterlab/tally/scorer.hpp"
+#include "scatterlab/transport/half_space.hpp"
+#include "scatterlab/transport/infinite_medium.hpp"
 #include "scatterlab/transport/object_boundary.hpp"
 #include "scatterlab/transport/random_walk.hpp"
 #include "scatterlab/transport/slab.hpp"
+#include "scatterlab/transport/sphere.hpp"
 #include "scatterlab/transport/source.hpp"
 #include "scatterlab/transport/weighting.hpp"
 
 namespace scatterlab {
 
+// The geometries the lanes run, the one list of them (the engine runs a geometry on the lanes
+// when it is one of these, kernel.hpp): the infinite medium, the half-space and the sphere under
+// index-matched (eta = 1, no Fresnel arithmetic) or mismatched boundaries, the layered slab
+// (slab.hpp), whose layers hold their own media, and a convex object with its light
+// (object_boundary.hpp).
+using LaneGeometry = std::variant<InfiniteMedium, HalfSpace<false>, HalfSpace<true>,
+                                  Sphere<false>, Sphere<true>, Slab, ObjectBoundary>;
+
+template <class Geometry, class = LaneGeometry>
+inline constexpr bool is_lane_geometry = false;
+template <class Geometry, class... Listed>
+inline constexpr bool is_lane_geometry<Geometry, std::variant<Listed...>> =
+    (std::is_same_v<Geometry, Listed> || ...);
+
 class LaneWalk {
  public:
-  // The geometries it runs: the infinite medium, the half-space and the sphere of `radius` under
-  // index-matched (eta = 1, no Fresnel arithmetic) or mismatched boundaries (HalfSpace<false>,
-  // HalfSpace<true>(eta), Sphere<false>, Sphere<true>), the layered slab (slab.hpp), whose
-  // layers hold their own media, and a convex object with its light (object_boundary.hpp).
-  enum class Geometry {
-    infinite_medium,
-    half_space,
-    fresnel_half_space,
-    sphere,
-    fresnel_sphere,
-    layered_slab,
-    object
-  };
-
+  // A homogeneous geometry (not the slab or an object, which have their own constructors below).
   // g = 0 samples isotropically (random_walk.hpp's IsotropicPhase), else Henyey-Greenstein g.
   // `estimator` none or collision, `source` a beam, a point or, on a sphere, the sphere light
   // (std::invalid_argument otherwise).
-  LaneWalk(Geometry geometry, double eta, const Scorer& scorer, const Source& source, double albedo,
-           double g, Estimator estimator, double escape_radius, std::uint64_t seed,
-           double radius = 0.0);
+  LaneWalk(const LaneGeometry& geometry, const Scorer& scorer, const Source& source, double albedo,
+           double g, Estimator estimator, double escape_radius, std::uint64_t seed);
 
   // The layered slab, scored at absorption and exit (no volume estimator), analog or with
   // implicit capture.
@@ -89,17 +93,13 @@ class LaneWalk {
 
   // What the vector code reads (lane_walk.cpp).
   struct Setup {
-    Geometry geometry;
-    double eta;
+    LaneGeometry geometry;
     const Scorer* scorer;
-    Source source;
-    double albedo, g, escape_radius2;
-    double radius;  // the sphere's
+    Source source;  // unused for an object, whose light launches
+    double albedo, g, escape_radius2;  // a slab's layers hold their own albedo and g
     bool scores_collisions;
     std::uint64_t seed;
-    std::optional<Slab> slab;  // the layered slab's stack
     Weighting weighting = Weighting::analog;
-    std::optional<ObjectBoundary> object;  // the object's surface and light
   };
 
  private:
