@@ -27,9 +27,9 @@ using test_support::field_of;
 
 // A unit sphere seen from -y, with a small sphere light above whose radiance is `radiance`.
 RenderScene sphere_scene(double sigma_a, double sigma_s, double g, double eta, double radiance,
-                         int rings, int segments) {
+                         int rings, int segments, bool shading_normals = false) {
   RenderScene scene;
-  scene.mesh = make_sphere(1.0, rings, segments, false);  // flat facets: no shading normals
+  scene.mesh = make_sphere(1.0, rings, segments, shading_normals);
   scene.medium = Medium::from_coefficients(sigma_a, sigma_s, g, "mesh units");
   scene.eta = eta;
   scene.light.position = Vec3(0.3, 0.5, 4.0);
@@ -60,16 +60,18 @@ RenderSettings volumetric(std::uint64_t seed) {
 // absorption every path leaves), so every pixel sees exactly L_e, through any eta. The n^2
 // factors cancel on the way in and out. The tracer's weights are 1 (analog choices), so a pixel
 // deviates only by lost paths or an energy error; tolerance 4 sigma (sigma 0 when no path
-// deviates: then equality to rounding).
-void expect_furnace(double eta) {
+// deviates: then equality to rounding). A mesh with interpolated normals loses no path either:
+// the boundary is the facets' (volumetric_renderer.cpp, cross_boundary).
+void expect_furnace(double eta, bool shading_normals = false) {
   const double radiance = 2.5;
-  RenderScene scene = sphere_scene(0.0, 2.0, 0.5, eta, radiance, 16, 32);
+  RenderScene scene = sphere_scene(0.0, 2.0, 0.5, eta, radiance, 16, 32, shading_normals);
   scene.environment_radiance = radiance;
   scene.samples = 2000;
   scene.validate();
   const VolumetricResult result = render_volumetric(scene, volumetric(11));
   EXPECT_GT(result.counters.collisions, result.counters.paths);    // light did scatter
   EXPECT_GT(2 * result.counters.boundary, result.counters.paths);  // half the pixels see it
+  EXPECT_EQ(result.counters.lost, 0u);
   for (int c = 0; c < 3; ++c) {
     for (std::size_t k = 0; k < result.image.channels[c].values.size(); ++k) {
       const double value = result.image.channels[c].values[k];
@@ -85,6 +87,10 @@ TEST(RenderVolumetric, WhiteFurnaceWithoutRefraction) {
 
 TEST(RenderVolumetric, WhiteFurnaceThroughFresnelBoundary) {
   expect_furnace(1.5);
+}
+
+TEST(RenderVolumetric, WhiteFurnaceThroughInterpolatedNormals) {
+  expect_furnace(1.5, true);
 }
 
 // A purely absorbing sphere (albedo 0, eta = 1) against a uniform background of radiance L_e:

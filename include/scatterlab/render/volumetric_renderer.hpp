@@ -60,7 +60,7 @@ struct VolumetricCounters {
   std::uint64_t boundary = 0;     // reflections and refractions at the mesh
   std::uint64_t light_hits = 0;   // paths that scored by reaching the light
   std::uint64_t shadow_rays = 0;  // next-event estimates from the floor
-  std::uint64_t lost = 0;         // paths ended by a shading normal on the wrong side
+  std::uint64_t lost = 0;         // paths rounding let through the mesh or off a grazing facet
 };
 
 struct VolumetricResult {
