@@ -16,7 +16,7 @@ namespace scatterlab {
 namespace {
 
 void FigureOfMerit(benchmark::State& state, Estimator estimator) {
-  SimulationSpec spec;
+  InfiniteMediumSpec spec;
   spec.set_source(SourceKind::point);
   spec.tallies.radiance = false;
   spec.tallies.fluence_spherical = true;
@@ -24,8 +24,8 @@ void FigureOfMerit(benchmark::State& state, Estimator estimator) {
   spec.run.photons = 1'000'000;
   spec.run.batches = 16;
   spec.run.threads = 1;
-  SimulationOutput out;
-  for (auto _ : state) out = simulate(spec);
+  TransportOutput out;
+  for (auto _ : state) out = run_infinite_medium(spec);
   for (const char* name : {"absorbed", "fluence", "fluence_spherical"}) {
     const TallyResult* tally = find_tally(out.tallies, name);
     if (tally == nullptr) continue;

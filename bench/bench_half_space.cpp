@@ -22,8 +22,8 @@
 namespace scatterlab {
 namespace {
 
-SearchlightSpec half_space(double albedo, double g, double eta, bool fluence) {
-  SearchlightSpec spec;
+HalfSpaceSpec half_space(double albedo, double g, double eta, bool fluence) {
+  HalfSpaceSpec spec;
   spec.medium.albedo = albedo;
   spec.medium.g = g;
   spec.eta = eta;
@@ -32,7 +32,7 @@ SearchlightSpec half_space(double albedo, double g, double eta, bool fluence) {
 }
 
 template <class Phase, bool fresnel, bool fluence>
-void run_walk(benchmark::State& state, const Phase& phase, const SearchlightSpec& spec) {
+void run_walk(benchmark::State& state, const Phase& phase, const HalfSpaceSpec& spec) {
   const TransportProblem problem = transport_problem(spec);
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
@@ -46,7 +46,7 @@ void run_walk(benchmark::State& state, const Phase& phase, const SearchlightSpec
 
 // Picks the kernel the scene needs, as the engine does, outside the timed loop.
 template <class Phase>
-void HalfSpace(benchmark::State& state, Phase phase, SearchlightSpec spec) {
+void HalfSpace(benchmark::State& state, Phase phase, HalfSpaceSpec spec) {
   const bool fresnel = spec.eta != 1.0;
   if (fresnel && spec.tallies.fluence) return run_walk<Phase, true, true>(state, phase, spec);
   if (fresnel) return run_walk<Phase, true, false>(state, phase, spec);
@@ -55,7 +55,7 @@ void HalfSpace(benchmark::State& state, Phase phase, SearchlightSpec spec) {
 }
 
 // The same scenes on the lane walk (lane_walk.hpp), which the engine runs for them.
-void HalfSpaceLanes(benchmark::State& state, SearchlightSpec spec) {
+void HalfSpaceLanes(benchmark::State& state, HalfSpaceSpec spec) {
   const TransportProblem problem = transport_problem(spec);
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
@@ -71,12 +71,12 @@ void HalfSpaceLanes(benchmark::State& state, SearchlightSpec spec) {
 
 // The whole run through the batch runner on one thread, as `scatterlab searchlight` does it.
 void HalfSpaceWholeRun(benchmark::State& state) {
-  SearchlightSpec spec = half_space(0.99, 0.0, 1.33, false);
+  HalfSpaceSpec spec = half_space(0.99, 0.0, 1.33, false);
   spec.run.photons = 1'000'000;
   spec.run.threads = 1;
   std::uint64_t photons = 0, scatterings = 0;
   for (auto _ : state) {
-    const SearchlightOutput out = run_searchlight(spec);
+    const TransportOutput out = run_half_space(spec);
     photons += out.photons;
     scatterings += out.scattering_events;
   }

@@ -24,8 +24,8 @@
 namespace scatterlab {
 namespace {
 
-SimulationSpec scene(double g, double albedo, bool radiance, Estimator estimator) {
-  SimulationSpec spec;
+InfiniteMediumSpec scene(double g, double albedo, bool radiance, Estimator estimator) {
+  InfiniteMediumSpec spec;
   spec.medium.g = g;
   spec.medium.albedo = albedo;
   spec.tallies.radiance = radiance;
@@ -59,7 +59,7 @@ void BareLoop(benchmark::State& state, Phase phase, double albedo) {
 }
 
 template <class Phase, Estimator estimator>
-void run_walk(benchmark::State& state, const Phase& phase, const SimulationSpec& spec) {
+void run_walk(benchmark::State& state, const Phase& phase, const InfiniteMediumSpec& spec) {
   const TransportProblem problem = transport_problem(spec);
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
@@ -79,7 +79,7 @@ void run_walk(benchmark::State& state, const Phase& phase, const SimulationSpec&
 
 // Picks the kernel the scene needs, as the engine does, outside the timed loop.
 template <class Phase>
-void Walk(benchmark::State& state, Phase phase, SimulationSpec spec) {
+void Walk(benchmark::State& state, Phase phase, InfiniteMediumSpec spec) {
   if (spec.tallies.estimator == Estimator::collision) {
     run_walk<Phase, Estimator::collision>(state, phase, spec);
   } else {
@@ -89,7 +89,7 @@ void Walk(benchmark::State& state, Phase phase, SimulationSpec spec) {
 
 // The same scenes on the lane walk (lane_walk.hpp), which the engine runs for them; `lanes` in
 // the counters is the vector width the machine's instruction set gives.
-void Lanes(benchmark::State& state, SimulationSpec spec) {
+void Lanes(benchmark::State& state, InfiniteMediumSpec spec) {
   const TransportProblem problem = transport_problem(spec);
   const TallyBook book(problem.tallies, problem.split_by_order);
   const Scorer scorer(problem.axes, book);
@@ -101,7 +101,7 @@ void Lanes(benchmark::State& state, SimulationSpec spec) {
 
 // The lane walk's ceiling: its loop with no tally at all (no volume estimator, no declared score),
 // beside BareLoop, the one-photon ceiling.
-void LaneLoop(benchmark::State& state, SimulationSpec spec) {
+void LaneLoop(benchmark::State& state, InfiniteMediumSpec spec) {
   TransportProblem problem = transport_problem(spec);
   problem.tallies.clear();
   const TallyBook book(problem.tallies, false);
@@ -113,12 +113,12 @@ void LaneLoop(benchmark::State& state, SimulationSpec spec) {
 }
 
 void WholeRun(benchmark::State& state) {
-  SimulationSpec spec = scene(0.9, 0.5, true, Estimator::collision);
+  InfiniteMediumSpec spec = scene(0.9, 0.5, true, Estimator::collision);
   spec.run.photons = 10'000'000;  // batches of ~1.5e5 photons, as in the default job's regime
   spec.run.threads = static_cast<int>(state.range(0));
   std::uint64_t photons = 0, scatterings = 0;
   for (auto _ : state) {
-    const SimulationOutput out = simulate(spec);
+    const TransportOutput out = run_infinite_medium(spec);
     photons += out.photons;
     scatterings += out.scattering_events;
   }

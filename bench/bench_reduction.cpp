@@ -12,11 +12,11 @@
 
 namespace {
 
-using scatterlab::SimulationSpec;
+using scatterlab::InfiniteMediumSpec;
 
 // 0: the default grid (15 x 40 x 18 x 36 radiance); 1: a fine one (60 x 160 x 36 x 72).
 std::size_t cells_of(int grid) {
-  SimulationSpec spec;
+  InfiniteMediumSpec spec;
   if (grid == 1) {
     spec.grid.r.bins = 60;
     spec.grid.z.bins = 160;

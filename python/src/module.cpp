@@ -138,7 +138,7 @@ void run_scene(const std::string& toml, const std::string& origin, const std::st
     throw InputError("geometry.type", "\"mesh\" in the Python module",
                      "a sphere here; a mesh scene runs with scatterlab simulate --scene");
   }
-  auto* half_space = std::get_if<SearchlightSpec>(&scene.spec);
+  auto* half_space = std::get_if<HalfSpaceSpec>(&scene.spec);
   if (model_fluence && (half_space == nullptr || !half_space->tallies.fluence)) {
     throw InputError("model_fluence",
                      half_space == nullptr

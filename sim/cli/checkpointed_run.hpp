@@ -7,7 +7,7 @@
 //   return run_with_checkpoints("simulate", options, output, fingerprint(spec), spec.run.batches,
 //       log_interval, world,
 //       [&](const ProgressCallback& progress, const RunControl& control) {
-//         return simulate(spec, progress, control); },
+//         return run_infinite_medium(spec, progress, control); },
 //       [&](const std::filesystem::path& path, const TransportOutput& out) { ... write ... });
 
 #include <fmt/format.h>

@@ -154,7 +154,7 @@ void apply_tally_list(const std::string& list, TallyRequest& tallies) {
 
 // The half-space's --tallies: its one optional tally. The surface tallies (R_d(r), the exitant
 // radiance and the totals) cost one bin lookup per exit and are always on.
-void apply_tally_list(const std::string& list, SearchlightTallies& tallies) {
+void apply_tally_list(const std::string& list, HalfSpaceTallies& tallies) {
   if (list != "fluence" && list != "none") {
     throw InputError("--tallies", fmt::format("got \"{}\" for a half_space scene", list),
                      "fluence or none (R_d(r), the exitant radiance and the totals are always "
@@ -165,8 +165,8 @@ void apply_tally_list(const std::string& list, SearchlightTallies& tallies) {
 
 // The flags at the built-in spec of the command's geometry, which --help shows.
 SceneOptions default_options(std::string_view geometry) {
-  const SimulationSpec infinite;
-  const SearchlightSpec half_space;
+  const InfiniteMediumSpec infinite;
+  const HalfSpaceSpec half_space;
   const bool searchlight = geometry == "half_space";
   const Medium& medium = searchlight ? half_space.medium : infinite.medium;
   SceneOptions o;
@@ -209,7 +209,7 @@ void apply_flags(const CLI::App& command, const SceneOptions& o, const Scene& sc
   };
   std::visit(
       Overloaded{
-          [&](SimulationSpec& s) {
+          [&](InfiniteMediumSpec& s) {
             medium_flags(s.medium, s.material, nullptr);
             if (given("--source")) {
               s.set_source(o.source == "point" ? SourceKind::point : SourceKind::pencil_beam);
@@ -234,7 +234,7 @@ void apply_flags(const CLI::App& command, const SceneOptions& o, const Scene& sc
             if (given("--rho-bins")) grid.rho.bins = o.rho_bins;
             s.validate();
           },
-          [&](SearchlightSpec& s) {
+          [&](HalfSpaceSpec& s) {
             medium_flags(s.medium, s.material, &s.eta);
             if (given("--incidence")) s.incidence_deg = o.incidence;
             apply_run_options(command, o.run, s.run);
@@ -389,7 +389,7 @@ std::string shape_text(const TallyResult& t) {
   return text;
 }
 
-void print_summary(const std::string& command, const SimulationSpec& spec,
+void print_summary(const std::string& command, const InfiniteMediumSpec& spec,
                    const TransportOutput& out, const std::vector<ModelResult>&,
                    const std::string& path) {
   fmt::print("scatterlab {}: {} source, albedo {}, g {}, {} estimator\n", command,
@@ -408,7 +408,7 @@ void print_summary(const std::string& command, const SimulationSpec& spec,
   fmt::print("  wrote {}: {}\n", path, written);
 }
 
-void print_summary(const std::string& command, const SearchlightSpec& spec,
+void print_summary(const std::string& command, const HalfSpaceSpec& spec,
                    const TransportOutput& out, const std::vector<ModelResult>& models,
                    const std::string& path) {
   fmt::print("scatterlab {}: half-space, albedo {}, g {}, eta {}, incidence {} deg\n", command,

@@ -108,7 +108,7 @@ MonteCarloCurve curve(const std::vector<TallyResult>& tallies, const std::string
 // Grosjean beam (R_d(r) and phi(r, z), Bitterli's pencil plots).
 int run_searchlight_validation(const SearchlightValidateOptions& o) {
   const auto start = std::chrono::steady_clock::now();
-  SearchlightSpec spec;
+  HalfSpaceSpec spec;
   spec.medium.albedo = o.albedo;
   spec.medium.g = o.g;
   spec.eta = o.eta;
@@ -124,8 +124,8 @@ int run_searchlight_validation(const SearchlightValidateOptions& o) {
   spec.validate();
   ProgressReporter reporter("validate searchlight", "batches", o.log_interval);
   reporter.start(0, spec.run.batches);
-  const SearchlightOutput out =
-      run_searchlight(spec, [&reporter](const BatchProgress& done) { reporter.update(done); });
+  const TransportOutput out =
+      run_half_space(spec, [&reporter](const BatchProgress& done) { reporter.update(done); });
   reporter.finish();
   const MonteCarloCurve specular = curve(out.tallies, "specular_reflectance");
   const std::vector<double> r = spec.grid.r.edges(), z = spec.grid.z.edges();

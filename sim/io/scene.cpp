@@ -72,9 +72,9 @@ class SceneReader : public TomlReader {
   }
 
   // The infinite medium (scene.hpp): [medium], [source] type, [grid], [tallies], [run], [output].
-  SimulationSpec read_infinite(const toml::table& root, Scene& scene) const {
+  InfiniteMediumSpec read_infinite(const toml::table& root, Scene& scene) const {
     check_table(root, "");
-    SimulationSpec spec;
+    InfiniteMediumSpec spec;
     if (const auto* geometry = subtable(root, "geometry", "")) {
       check_table(*geometry, "geometry");
     }
@@ -93,9 +93,9 @@ class SceneReader : public TomlReader {
 
   // The searchlight's scene (scene.hpp): the same tables where they mean the same, plus
   // [geometry] eta (or [surface] eta) and [source] incidence_deg.
-  SearchlightSpec read_half_space(const toml::table& root, Scene& scene) const {
+  HalfSpaceSpec read_half_space(const toml::table& root, Scene& scene) const {
     check_table(root, "");
-    SearchlightSpec spec;
+    HalfSpaceSpec spec;
     if (const auto* medium = subtable(root, "medium", "")) {
       scene.material = read_medium(*medium, spec.medium, spec.material, &spec.eta);
     }
@@ -723,10 +723,10 @@ TransportOutput run_spec(const SceneSpec& spec, const ProgressCallback& progress
   return std::visit(
       [&](const auto& s) {
         using Spec = std::decay_t<decltype(s)>;
-        if constexpr (std::is_same_v<Spec, SimulationSpec>) {
-          return simulate(s, progress, control);
-        } else if constexpr (std::is_same_v<Spec, SearchlightSpec>) {
-          return run_searchlight(s, progress, control);
+        if constexpr (std::is_same_v<Spec, InfiniteMediumSpec>) {
+          return run_infinite_medium(s, progress, control);
+        } else if constexpr (std::is_same_v<Spec, HalfSpaceSpec>) {
+          return run_half_space(s, progress, control);
         } else if constexpr (std::is_same_v<Spec, LitObjectSpec>) {
           return run_lit_sphere(s, progress, control);  // refuses a mesh (lit_object.hpp)
         } else {

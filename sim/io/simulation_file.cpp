@@ -126,7 +126,7 @@ void write_run(hdf5::Group& parameters, const RunSettings& run) {
   parameters.write_uint64_attribute("seed", run.seed);
 }
 
-void write_parameters(hdf5::Group& root, const SimulationSpec& spec) {
+void write_parameters(hdf5::Group& root, const InfiniteMediumSpec& spec) {
   hdf5::Group parameters = root.create_group("parameters");
   parameters.write_string_attribute("source", to_string(spec.source));
   write_medium(parameters, spec.medium);
@@ -141,7 +141,7 @@ void write_parameters(hdf5::Group& root, const SimulationSpec& spec) {
 }
 
 // The half-space run: geometry, interface and beam first.
-void write_searchlight_parameters(hdf5::Group& root, const SearchlightSpec& spec) {
+void write_searchlight_parameters(hdf5::Group& root, const HalfSpaceSpec& spec) {
   hdf5::Group parameters = root.create_group("parameters");
   parameters.write_string_attribute("geometry", "half_space");
   parameters.write_string_attribute("source", "beam");
@@ -245,7 +245,7 @@ void write_layered_slab_parameters(hdf5::Group& root, const LayeredSlabSpec& spe
 
 // Grid lengths are in the medium's length unit, mean free paths by default (docs/architecture.md,
 // "Units"): the spec holds them in that unit, and the tallies come back from transport in it.
-void write_grid(hdf5::Group& root, const SimulationSpec& spec) {
+void write_grid(hdf5::Group& root, const InfiniteMediumSpec& spec) {
   hdf5::Group grid = root.create_group("grid");
   const std::string& length = spec.medium.length_unit;
   grid.write_bool_attribute("phi_folded", spec.grid.fold_phi);
@@ -258,7 +258,7 @@ void write_grid(hdf5::Group& root, const SimulationSpec& spec) {
 
 // r from the entry point and z depth in the medium's length unit; theta_o from the outward
 // normal, outside.
-void write_searchlight_grid(hdf5::Group& root, const SearchlightSpec& spec) {
+void write_searchlight_grid(hdf5::Group& root, const HalfSpaceSpec& spec) {
   hdf5::Group grid = root.create_group("grid");
   const std::string& length = spec.medium.length_unit;
   write_axis(grid, "r", spec.grid.r, length);
@@ -271,12 +271,12 @@ void write_searchlight_grid(hdf5::Group& root, const SearchlightSpec& spec) {
 }
 
 // Each geometry's /parameters and /grid (simulation_file.hpp).
-void describe(hdf5::Group& root, const SimulationSpec& spec) {
+void describe(hdf5::Group& root, const InfiniteMediumSpec& spec) {
   write_parameters(root, spec);
   write_grid(root, spec);
 }
 
-void describe(hdf5::Group& root, const SearchlightSpec& spec) {
+void describe(hdf5::Group& root, const HalfSpaceSpec& spec) {
   write_searchlight_parameters(root, spec);
   write_searchlight_grid(root, spec);
 }

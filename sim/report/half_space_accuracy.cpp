@@ -26,14 +26,14 @@ struct Scalar {
   double mean = 0.0, stderr_of_mean = 0.0;
 };
 
-Scalar scalar(const SearchlightOutput& out, const std::string& name) {
+Scalar scalar(const TransportOutput& out, const std::string& name) {
   const TallyResult& t = tally(out.tallies, name);
   return {t.mean[0], t.stderr_of_mean[0]};
 }
 
-SearchlightSpec small_spec(double albedo, double g, double eta, std::uint64_t photons,
-                           const Profile& profile) {
-  SearchlightSpec spec;
+HalfSpaceSpec small_spec(double albedo, double g, double eta, std::uint64_t photons,
+                         const Profile& profile) {
+  HalfSpaceSpec spec;
   spec.medium.albedo = albedo;
   spec.medium.g = g;
   spec.eta = eta;
@@ -78,9 +78,9 @@ Section half_space_convergence(const Profile& profile) {
   const int budgets = profile.quick ? 6 : 9;
   for (int b = 0; b < budgets; ++b) {
     const auto photons = static_cast<std::uint64_t>((profile.quick ? 2e4 : 1e5) * std::ldexp(1.0, b));
-    SearchlightSpec spec = small_spec(albedo, 0.0, 1.0, photons, profile);
+    HalfSpaceSpec spec = small_spec(albedo, 0.0, 1.0, photons, profile);
     spec.run.seed = profile.seed + static_cast<std::uint64_t>(b);
-    const SearchlightOutput out = run_searchlight(spec);
+    const TransportOutput out = run_half_space(spec);
     section.non_finite_values += count_non_finite(out.tallies);
     const Scalar r = scalar(out, "diffuse_reflectance");
     const double z = (r.mean - exact) / r.stderr_of_mean;
@@ -138,9 +138,9 @@ Section half_space_extremes(const Profile& profile) {
   const double scale = profile.quick ? 1.0 : 10.0;
   for (const Cell& c : cells) {
     const auto photons = static_cast<std::uint64_t>(scale * (c.albedo > 0.99 ? 5e3 : 2e4));
-    SearchlightSpec spec = small_spec(c.albedo, c.g, c.eta, photons, profile);
+    HalfSpaceSpec spec = small_spec(c.albedo, c.g, c.eta, photons, profile);
     spec.incidence_deg = c.incidence;
-    const SearchlightOutput out = run_searchlight(spec);
+    const TransportOutput out = run_half_space(spec);
     section.non_finite_values += count_non_finite(out.tallies);
     const double specular = scalar(out, "specular_reflectance").mean;
     const double energy = specular + scalar(out, "diffuse_reflectance").mean +

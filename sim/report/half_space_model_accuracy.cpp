@@ -61,7 +61,7 @@ Section half_space_model_accuracy(const Profile& profile) {
   for (const double albedo : albedos) {
     for (const double g : gs) {
       for (const double eta : etas) {
-        SearchlightSpec spec;
+        HalfSpaceSpec spec;
         spec.medium.albedo = albedo;
         spec.medium.g = g;
         spec.eta = eta;
@@ -71,7 +71,7 @@ Section half_space_model_accuracy(const Profile& profile) {
         spec.run.batches = 32;
         spec.run.seed = profile.seed + static_cast<std::uint64_t>(cells++);
         spec.run.threads = profile.threads;
-        const SearchlightOutput out = run_searchlight(spec);
+        const TransportOutput out = run_half_space(spec);
         section.non_finite_values += count_non_finite(out.tallies);
         const auto scalar = [&](const std::string& name) {
           const TallyResult& t = tally(out.tallies, name);

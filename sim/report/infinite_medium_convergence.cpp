@@ -83,7 +83,7 @@ Section infinite_medium_convergence(const Profile& profile) {
     std::vector<double> photons, seconds, errors;
     Accuracy last{};
     for (int b = 0; b < budgets; ++b) {
-      SimulationSpec spec;
+      InfiniteMediumSpec spec;
       spec.set_source(SourceKind::point);
       spec.medium.albedo = kAlbedo;
       spec.medium.g = 0.0;
@@ -93,7 +93,7 @@ Section infinite_medium_convergence(const Profile& profile) {
       spec.run.batches = 32;
       spec.run.seed = profile.seed + static_cast<std::uint64_t>(b);
       spec.run.threads = profile.threads;
-      const SimulationOutput out = simulate(spec);
+      const TransportOutput out = run_infinite_medium(spec);
       section.non_finite_values += count_non_finite(out.tallies);
       last = accuracy(tally(out.tallies, "fluence_spherical"), shells, exact);
       photons.push_back(static_cast<double>(spec.run.photons));

@@ -36,7 +36,7 @@ Section infinite_medium_extremes(const Profile& profile) {
   const double scale = profile.quick ? 1.0 : 10.0;
   for (double albedo : {0.0, 1e-6, 0.5, 0.99, 0.9999}) {
     for (double g : {-0.999, -1e-9, 0.0, 1e-9, 0.9, 0.999}) {
-      SimulationSpec spec;
+      InfiniteMediumSpec spec;
       spec.medium.albedo = albedo;
       spec.medium.g = g;
       spec.tallies.radiance = false;
@@ -47,7 +47,7 @@ Section infinite_medium_extremes(const Profile& profile) {
       spec.run.batches = 32;
       spec.run.seed = profile.seed;
       spec.run.threads = profile.threads;
-      const SimulationOutput out = simulate(spec);
+      const TransportOutput out = run_infinite_medium(spec);
       const int non_finite = count_non_finite(out.tallies);
       section.non_finite_values += non_finite;
 

@@ -17,7 +17,7 @@ std::string got(double value) {
   return fmt::format("got {}", value);
 }
 
-void check_grid(const SearchlightGrid& grid, const Medium& medium) {
+void check_grid(const HalfSpaceGrid& grid, const Medium& medium) {
   check_from_zero(grid.r, "r", "the distance from the entry point", "medium.length_unit");
   check_from_zero(grid.z, "z", "the surface", "medium.length_unit");
   check_length_axis_span(grid.r, "r", medium);
@@ -30,7 +30,7 @@ void check_grid(const SearchlightGrid& grid, const Medium& medium) {
   check_bins(grid.theta_o, "theta_o");
 }
 
-void check_map(const SearchlightGrid& grid, const Medium& medium) {
+void check_map(const HalfSpaceGrid& grid, const Medium& medium) {
   for (const auto& [axis, name] : {std::pair{&grid.x, "x"}, std::pair{&grid.y, "y"}}) {
     if (!(axis->min < axis->max)) {
       throw InputError(std::string("grid.") + name,
@@ -70,8 +70,8 @@ Vec3 incident_direction(double incidence_deg) {
 // The half-space's tallies, each declared once. Unscattered light only travels deeper: it never
 // leaves a half-space, so the unscattered surface tallies are zero by construction; they are
 // written so that every order sums.
-std::vector<TallyDeclaration> declare_tallies(const SearchlightSpec& spec, double specular) {
-  const SearchlightGrid& grid = spec.grid;
+std::vector<TallyDeclaration> declare_tallies(const HalfSpaceSpec& spec, double specular) {
+  const HalfSpaceGrid& grid = spec.grid;
   const Filter r = radius_filter(grid.r);
   std::vector<TallyDeclaration> tallies;
   tallies.push_back({"reflectance",
@@ -136,7 +136,7 @@ std::vector<TallyDeclaration> declare_tallies(const SearchlightSpec& spec, doubl
 
 }  // namespace
 
-void SearchlightSpec::validate() const {
+void HalfSpaceSpec::validate() const {
   medium.validate();
   check_length_unit(medium);
   // Real interfaces stay well inside (water 1.33, diamond 2.42, germanium 4 in the infrared);
@@ -154,7 +154,7 @@ void SearchlightSpec::validate() const {
   check_run(run, medium);
 }
 
-std::string fingerprint(const SearchlightSpec& spec) {
+std::string fingerprint(const HalfSpaceSpec& spec) {
   auto axis = [](const UniformAxis& a) {
     return fmt::format("{:a},{:a},{};", a.min, a.max, a.bins);
   };
@@ -171,9 +171,9 @@ std::string fingerprint(const SearchlightSpec& spec) {
                              : std::string()));
 }
 
-TransportProblem transport_problem(const SearchlightSpec& given) {
+TransportProblem transport_problem(const HalfSpaceSpec& given) {
   // Lengths into mfp (length_units.hpp): r, z and the escape radius; "mfp" specs as they are.
-  SearchlightSpec spec = given;
+  HalfSpaceSpec spec = given;
   if (given.medium.length_unit != "mfp") {
     const double mfp_per_unit = mfp_per_length_unit(given.medium);
     spec.grid.r = length_axis_in_mfp(given.grid.r, mfp_per_unit);
@@ -212,10 +212,10 @@ TransportProblem transport_problem(const SearchlightSpec& given) {
   return problem;
 }
 
-SearchlightOutput run_searchlight(const SearchlightSpec& spec, const ProgressCallback& progress,
-                                  const RunControl& control) {
+TransportOutput run_half_space(const HalfSpaceSpec& spec, const ProgressCallback& progress,
+                               const RunControl& control) {
   spec.validate();
-  SearchlightOutput out = transport(transport_problem(spec), progress, control);
+  TransportOutput out = transport(transport_problem(spec), progress, control);
   tallies_to_length_unit(out.tallies, spec.medium);  // back from mfp (length_units.hpp)
   return out;
 }

@@ -9,7 +9,7 @@ namespace scatterlab {
 namespace {
 
 // The infinite medium's tallies, each declared once: score, filters, units, meaning.
-std::vector<TallyDeclaration> declare_tallies(const SimulationSpec& spec) {
+std::vector<TallyDeclaration> declare_tallies(const InfiniteMediumSpec& spec) {
   const Grid& grid = spec.grid;
   const TallyRequest& want = spec.tallies;
   const std::string estimator =
@@ -78,7 +78,7 @@ std::vector<TallyDeclaration> declare_tallies(const SimulationSpec& spec) {
 }
 
 // The fields a memory error names: the bins of the tallies asked for, and what multiplies them.
-std::string size_fields(const SimulationSpec& spec) {
+std::string size_fields(const InfiniteMediumSpec& spec) {
   const TallyRequest& want = spec.tallies;
   std::string fields;
   auto add = [&fields](const std::string& more) { fields += (fields.empty() ? "" : ", ") + more; };
@@ -93,10 +93,10 @@ std::string size_fields(const SimulationSpec& spec) {
 
 }  // namespace
 
-TransportProblem transport_problem(const SimulationSpec& given) {
+TransportProblem transport_problem(const InfiniteMediumSpec& given) {
   // Lengths into mfp (length_units.hpp): the grid's r, z and rho and the escape radius. In "mfp"
   // the spec is used as it is.
-  SimulationSpec spec = given;
+  InfiniteMediumSpec spec = given;
   const double mfp_per_unit = mfp_per_length_unit(given.medium);
   if (given.medium.length_unit != "mfp") {
     spec.grid.r = length_axis_in_mfp(given.grid.r, mfp_per_unit);
@@ -124,10 +124,10 @@ TransportProblem transport_problem(const SimulationSpec& given) {
   return problem;
 }
 
-SimulationOutput simulate(const SimulationSpec& spec, const ProgressCallback& progress,
-                          const RunControl& control) {
+TransportOutput run_infinite_medium(const InfiniteMediumSpec& spec,
+                                    const ProgressCallback& progress, const RunControl& control) {
   spec.validate();
-  SimulationOutput out = transport(transport_problem(spec), progress, control);
+  TransportOutput out = transport(transport_problem(spec), progress, control);
   tallies_to_length_unit(out.tallies, spec.medium);  // back from mfp (length_units.hpp)
   return out;
 }

@@ -133,7 +133,7 @@ void check_run(const RunSettings& run, const Medium& medium) {
 
 }  // namespace
 
-void SimulationSpec::validate() const {
+void InfiniteMediumSpec::validate() const {
   check_medium(medium);
   if (source != SourceKind::pencil_beam && source != SourceKind::point) {
     throw InputError("source.type", fmt::format("got code {}", static_cast<int>(source)),
@@ -144,7 +144,7 @@ void SimulationSpec::validate() const {
   check_run(run, medium);
 }
 
-std::string fingerprint(const SimulationSpec& spec) {
+std::string fingerprint(const InfiniteMediumSpec& spec) {
   // Doubles in hexadecimal ({:a}) so that the text, and so the hash, is exact.
   auto axis = [](const UniformAxis& a) {
     return fmt::format("{:a},{:a},{};", a.min, a.max, a.bins);

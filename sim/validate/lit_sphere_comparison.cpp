@@ -94,7 +94,7 @@ LitSphereComparison compare_lit_sphere(const LitSphereCase& lit_case,
 
   // The half-space's own multiply-scattered R_d(r), out to the sphere's diameter, by the same
   // Monte Carlo: a BSSRDF built on it carries the BSSRDF's error alone.
-  SearchlightSpec half;
+  HalfSpaceSpec half;
   half.medium = lit_case.medium;
   half.eta = lit_case.eta;
   half.grid.r = UniformAxis{0.0, 2.0 * lit_case.radius, settings.profile_rings};
@@ -105,7 +105,7 @@ LitSphereComparison compare_lit_sphere(const LitSphereCase& lit_case,
   // BSSRDF's error bars (lit_sphere_exitance.hpp).
   half.run.photons = std::max<std::uint64_t>(settings.photons / 10, 10'000);
   half.validate();
-  const TransportOutput profile_run = run_searchlight(half);
+  const TransportOutput profile_run = run_half_space(half);
   result.transport_seconds += profile_run.wall_seconds;
   const double entered = 1.0 - scalar_estimate(profile_run.tallies, "specular_reflectance").mean;
   MonteCarloCurve measured = tally_curve(profile_run.tallies, "reflectance_multiple");

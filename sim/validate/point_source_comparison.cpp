@@ -33,7 +33,7 @@ RangeError relative_error(const std::vector<double>& model, const std::vector<do
 
 PointSourceComparison compare_point_source(double albedo,
                                            const PointSourceComparisonSettings& settings) {
-  SimulationSpec spec;
+  InfiniteMediumSpec spec;
   spec.set_source(SourceKind::point);
   spec.medium.albedo = albedo;
   spec.medium.g = 0.0;
@@ -44,7 +44,7 @@ PointSourceComparison compare_point_source(double albedo,
   spec.run.seed = settings.seed;
   spec.run.threads = settings.threads;
   spec.validate();
-  const SimulationOutput out = simulate(spec);
+  const TransportOutput out = run_infinite_medium(spec);
   const TallyResult* fluence = find_tally(out.tallies, "fluence_spherical");
   if (fluence == nullptr)
     throw std::logic_error("compare_point_source: no fluence_spherical tally");

@@ -22,7 +22,7 @@ std::string what_it_is(const std::string& model) {
 }
 
 // Why the run's conditions leave the models out; empty when they hold.
-std::string why_not_evaluated(const SimulationSpec& spec) {
+std::string why_not_evaluated(const InfiniteMediumSpec& spec) {
   if (spec.medium.g != 0.0) {
     return fmt::format(
         "not evaluated: these curves are for isotropic scattering (g = 0), and "
@@ -54,7 +54,7 @@ PointSourceCurves point_source_shell_averages(double albedo, const std::vector<d
   return curves;
 }
 
-std::vector<ModelResult> point_source_model_curves(const SimulationSpec& spec,
+std::vector<ModelResult> point_source_model_curves(const InfiniteMediumSpec& spec,
                                                    const std::vector<TallyResult>& tallies) {
   const TallyResult* fluence = find_tally(tallies, "fluence_spherical");
   if (spec.source != SourceKind::point || fluence == nullptr) return {};

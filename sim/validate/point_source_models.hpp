@@ -28,7 +28,7 @@ PointSourceCurves point_source_shell_averages(double albedo, const std::vector<d
 // infinite medium that scatters isotropically and absorbs: a run with g != 0, albedo 1 or an
 // escape radius (which stops photons the infinite medium would send back) gets, per model, a
 // group whose note says why it has no curve.
-std::vector<ModelResult> point_source_model_curves(const SimulationSpec& spec,
+std::vector<ModelResult> point_source_model_curves(const InfiniteMediumSpec& spec,
                                                    const std::vector<TallyResult>& tallies);
 
 }  // namespace scatterlab

@@ -11,12 +11,12 @@ namespace {
 
 // The models that belong beside a geometry's tallies: the point source's and the half-space's;
 // none for the others.
-std::vector<ModelResult> model_curves(const SimulationSpec& spec, const TransportOutput& out,
+std::vector<ModelResult> model_curves(const InfiniteMediumSpec& spec, const TransportOutput& out,
                                       bool) {
   return point_source_model_curves(spec, out.tallies);
 }
 
-std::vector<ModelResult> model_curves(const SearchlightSpec& spec, const TransportOutput& out,
+std::vector<ModelResult> model_curves(const HalfSpaceSpec& spec, const TransportOutput& out,
                                       bool model_fluence) {
   return searchlight_model_curves(
       spec, scalar_estimate(out.tallies, "specular_reflectance").mean, model_fluence);

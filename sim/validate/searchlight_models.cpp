@@ -24,9 +24,8 @@ ModelResult not_evaluated(const std::string& model, const std::string& why) {
 
 }  // namespace
 
-std::vector<ModelResult> searchlight_model_curves(const SearchlightSpec& spec,
-                                                  double specular_reflectance,
-                                                  bool with_fluence) {
+std::vector<ModelResult> searchlight_model_curves(const HalfSpaceSpec& spec,
+                                                  double specular_reflectance, bool with_fluence) {
   std::vector<ModelResult> models;
   const char* diffusion[] = {"dipole", "better_dipole", "quantized_diffusion",
                              "scatterlab_grosjean_beam"};

@@ -22,7 +22,7 @@ namespace scatterlab {
 // `with_fluence`: also each diffusion model's phi(r, z) cell averages (when the run tallies the
 // fluence). They are 2-D adaptive integrals, about 1 ms per cell and model: about a minute on
 // the default 200 x 100 grid, so they are asked for, not assumed.
-std::vector<ModelResult> searchlight_model_curves(const SearchlightSpec& spec,
+std::vector<ModelResult> searchlight_model_curves(const HalfSpaceSpec& spec,
                                                   double specular_reflectance,
                                                   bool with_fluence = false);
 

@@ -371,10 +371,10 @@ TEST_F(ExploreApiTest, FoldersThatAreNotThereAreRefusedByName) {
 }
 
 TEST_F(ExploreApiTest, ASearchlightFileIsReadWithItsErrorBars) {
-  SearchlightSpec spec;
+  HalfSpaceSpec spec;
   spec.run = RunSettings{2000, 4, 1, 1};
   spec.grid.r = UniformAxis{0.0, 5.0, 10};
-  const SearchlightOutput out = run_searchlight(spec);
+  const TransportOutput out = run_half_space(spec);
   fs::create_directories(open_ / "runs");
   write_simulation_file(open_ / "runs/half.h5", spec, out.tallies, run_provenance(out, "test"));
   const ExploreApi explorer = api();

@@ -95,7 +95,7 @@ void expect_estimate_covers(const Spec& spec, Run run) {
 
 TEST(MemoryEstimates, SimulationWithEveryTallySplitByOrder) {
   for (const int threads : {1, 2, 4}) {
-    SimulationSpec spec;
+    InfiniteMediumSpec spec;
     spec.tallies.split_by_order = true;
     spec.tallies.fluence_spherical = true;
     spec.source = SourceKind::point;
@@ -103,23 +103,23 @@ TEST(MemoryEstimates, SimulationWithEveryTallySplitByOrder) {
     spec.run.photons = 400;
     spec.run.batches = 8;
     spec.run.threads = threads;
-    expect_estimate_covers(spec, [](const auto& s) { return simulate(s); });
+    expect_estimate_covers(spec, [](const auto& s) { return run_infinite_medium(s); });
   }
 }
 
 TEST(MemoryEstimates, SimulationWithoutRadiance) {
-  SimulationSpec spec;
+  InfiniteMediumSpec spec;
   spec.tallies.radiance = false;
   spec.grid.r.bins = 2000;
   spec.grid.z.bins = 500;
   spec.run.photons = 200;
   spec.run.batches = 4;
   spec.run.threads = 2;
-  expect_estimate_covers(spec, [](const auto& s) { return simulate(s); });
+  expect_estimate_covers(spec, [](const auto& s) { return run_infinite_medium(s); });
 }
 
 TEST(MemoryEstimates, TrackLengthEstimatorWithItsCrossingLists) {
-  SimulationSpec spec;
+  InfiniteMediumSpec spec;
   spec.tallies.estimator = Estimator::track_length;
   spec.tallies.radiance = false;
   spec.grid.r.bins = 3000;
@@ -127,17 +127,17 @@ TEST(MemoryEstimates, TrackLengthEstimatorWithItsCrossingLists) {
   spec.run.photons = 200;
   spec.run.batches = 4;
   spec.run.threads = 3;
-  expect_estimate_covers(spec, [](const auto& s) { return simulate(s); });
+  expect_estimate_covers(spec, [](const auto& s) { return run_infinite_medium(s); });
 }
 
 TEST(MemoryEstimates, Searchlight) {
-  SearchlightSpec spec;
+  HalfSpaceSpec spec;
   spec.grid.r.bins = 1000;
   spec.grid.z.bins = 500;
   spec.run.photons = 200;
   spec.run.batches = 4;
   spec.run.threads = 2;
-  expect_estimate_covers(spec, [](const auto& s) { return run_searchlight(s); });
+  expect_estimate_covers(spec, [](const auto& s) { return run_half_space(s); });
 }
 
 }  // namespace

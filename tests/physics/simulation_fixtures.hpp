@@ -10,7 +10,7 @@
 
 namespace scatterlab::testing {
 
-inline const TallyResult& find_tally(const SimulationOutput& output, const std::string& name) {
+inline const TallyResult& find_tally(const TransportOutput& output, const std::string& name) {
   for (const TallyResult& t : output.tallies) {
     if (t.name == name) return t;
   }
@@ -19,17 +19,17 @@ inline const TallyResult& find_tally(const SimulationOutput& output, const std::
   return none;
 }
 
-inline double scalar(const SimulationOutput& output, const std::string& name) {
+inline double scalar(const TransportOutput& output, const std::string& name) {
   return find_tally(output, name).mean.at(0);
 }
 
-inline double scalar_error(const SimulationOutput& output, const std::string& name) {
+inline double scalar_error(const TransportOutput& output, const std::string& name) {
   return find_tally(output, name).stderr_of_mean.at(0);
 }
 
 // A lit object's totals (the sphere's or a mesh's): reflected at entry, exited and absorbed sum
 // to 1 photon by photon, and the orders of exited and absorbed to their totals.
-inline void expect_lit_object_balance(const SimulationOutput& out, const std::string& label) {
+inline void expect_lit_object_balance(const TransportOutput& out, const std::string& label) {
   EXPECT_NEAR(scalar(out, "reflected_at_entry") + scalar(out, "exited") + scalar(out, "absorbed"),
               1.0, 1e-12)
       << label;
@@ -42,8 +42,8 @@ inline void expect_lit_object_balance(const SimulationOutput& out, const std::st
 }
 
 // A small beam scene on the paper's grid, coarse in angle so tests run fast.
-inline SimulationSpec small_beam(double albedo, double g, std::uint64_t photons) {
-  SimulationSpec spec;
+inline InfiniteMediumSpec small_beam(double albedo, double g, std::uint64_t photons) {
+  InfiniteMediumSpec spec;
   spec.medium.albedo = albedo;
   spec.medium.g = g;
   spec.run.photons = photons;
@@ -54,7 +54,7 @@ inline SimulationSpec small_beam(double albedo, double g, std::uint64_t photons)
   return spec;
 }
 
-inline void expect_all_finite(const SimulationOutput& output) {
+inline void expect_all_finite(const TransportOutput& output) {
   for (const TallyResult& t : output.tallies) {
     for (std::size_t i = 0; i < t.size(); ++i) {
       ASSERT_TRUE(std::isfinite(t.mean[i]) && std::isfinite(t.stderr_of_mean[i]))

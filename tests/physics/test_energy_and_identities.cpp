@@ -27,10 +27,10 @@ class EstimatorTest : public ::testing::TestWithParam<Estimator> {};
 TEST_P(EstimatorTest, AbsorbedPowerFromFluenceIsOne) {
   // integral of sigma_a phi dV over the grid, plus what is absorbed outside it, is the incident
   // power: 1 within 4 sigma (sigma from the batch spread of both terms).
-  SimulationSpec spec = small_beam(0.5, 0.9, 2000000);
+  InfiniteMediumSpec spec = small_beam(0.5, 0.9, 2000000);
   spec.tallies.estimator = GetParam();
   spec.tallies.radiance = false;
-  const SimulationOutput out = simulate(spec);
+  const TransportOutput out = run_infinite_medium(spec);
   const TallyResult& fluence = find_tally(out, "fluence");
   double absorbed = 0.0, variance = 0.0;
   const double sigma_a = spec.medium.sigma_a();
@@ -50,9 +50,9 @@ TEST_P(EstimatorTest, AbsorbedPowerFromFluenceIsOne) {
 }
 
 TEST_P(EstimatorTest, RadianceIntegratedOverAnglesIsTheFluence) {
-  SimulationSpec spec = small_beam(0.7, 0.5, 50000);
+  InfiniteMediumSpec spec = small_beam(0.7, 0.5, 50000);
   spec.tallies.estimator = GetParam();
-  const SimulationOutput out = simulate(spec);
+  const TransportOutput out = run_infinite_medium(spec);
   const TallyResult& radiance = find_tally(out, "radiance");
   const TallyResult& fluence = find_tally(out, "fluence");
   const Grid& grid = spec.grid;
@@ -74,10 +74,10 @@ TEST_P(EstimatorTest, AbsorptionDepthMatchesTheFirstMoment) {
   // and is flown with probability albedo^n, so <z_abs> = sum_n (albedo g)^n = 1 / (1 - albedo g).
   for (double g : {-0.999, -1e-9, 0.0, 0.3, 0.9, 0.999}) {
     for (double albedo : {0.0, 1e-6, 0.5, 0.95}) {
-      SimulationSpec spec = small_beam(albedo, g, 100000);
+      InfiniteMediumSpec spec = small_beam(albedo, g, 100000);
       spec.tallies.estimator = GetParam();
       spec.tallies.radiance = false;
-      const SimulationOutput out = simulate(spec);
+      const TransportOutput out = run_infinite_medium(spec);
       expect_all_finite(out);
       const double expected = 1.0 / (1.0 - albedo * g);
       EXPECT_NEAR(scalar(out, "absorbed_mean_depth"), expected,
@@ -94,13 +94,13 @@ INSTANTIATE_TEST_SUITE_P(BothEstimators, EstimatorTest,
 TEST(Estimators, CollisionAndTrackLengthAgree) {
   // Independent runs (different seeds) of the two estimators: every fluence, flux and radiance
   // bin agrees within 5 combined sigma, and the mean squared z-score is near 1.
-  SimulationSpec spec = small_beam(0.5, 0.9, 300000);
+  InfiniteMediumSpec spec = small_beam(0.5, 0.9, 300000);
   spec.grid.r.bins = 6;
   spec.grid.z.bins = 8;
-  SimulationSpec track = spec;
+  InfiniteMediumSpec track = spec;
   track.tallies.estimator = Estimator::track_length;
   track.run.seed = 2;
-  const SimulationOutput a = simulate(spec), b = simulate(track);
+  const TransportOutput a = run_infinite_medium(spec), b = run_infinite_medium(track);
   for (const char* name : {"fluence", "flux", "radiance"}) {
     const TallyResult& x = find_tally(a, name);
     const TallyResult& y = find_tally(b, name);
@@ -121,14 +121,14 @@ TEST(Estimators, CollisionAndTrackLengthAgree) {
 
 TEST(Determinism, SameSeedIsBitwiseIdenticalOnOneAndTwoThreads) {
   for (Estimator estimator : {Estimator::collision, Estimator::track_length}) {
-    SimulationSpec spec = small_beam(0.8, 0.9, 20000);
+    InfiniteMediumSpec spec = small_beam(0.8, 0.9, 20000);
     spec.tallies.estimator = estimator;
     spec.tallies.split_by_order = true;
     spec.run.batches = 7;  // not a multiple of the thread count
-    SimulationSpec one = spec, two = spec;
+    InfiniteMediumSpec one = spec, two = spec;
     one.run.threads = 1;
     two.run.threads = 2;
-    const SimulationOutput a = simulate(one), b = simulate(two);
+    const TransportOutput a = run_infinite_medium(one), b = run_infinite_medium(two);
     ASSERT_EQ(a.tallies.size(), b.tallies.size());
     for (std::size_t k = 0; k < a.tallies.size(); ++k) {
       EXPECT_EQ(a.tallies[k].mean, b.tallies[k].mean) << a.tallies[k].name;
@@ -139,9 +139,9 @@ TEST(Determinism, SameSeedIsBitwiseIdenticalOnOneAndTwoThreads) {
 }
 
 TEST(ScatteringOrders, PartsAddUpToTheTotal) {
-  SimulationSpec spec = small_beam(0.6, 0.9, 50000);
+  InfiniteMediumSpec spec = small_beam(0.6, 0.9, 50000);
   spec.tallies.split_by_order = true;
-  const SimulationOutput out = simulate(spec);
+  const TransportOutput out = run_infinite_medium(spec);
   for (const char* name : {"radiance", "fluence", "flux"}) {
     const std::string base = name;
     const TallyResult& total = find_tally(out, base);
@@ -158,10 +158,10 @@ TEST(ScatteringOrders, PartsAddUpToTheTotal) {
 }
 
 TEST(EscapeRadius, AlbedoOneEndsOnlyByEscaping) {
-  SimulationSpec spec = small_beam(1.0, 0.9, 2000);
+  InfiniteMediumSpec spec = small_beam(1.0, 0.9, 2000);
   spec.run.escape_radius = 5.0;
   spec.tallies.radiance = false;
-  const SimulationOutput out = simulate(spec);
+  const TransportOutput out = run_infinite_medium(spec);
   expect_all_finite(out);
   EXPECT_EQ(scalar(out, "escaped"), 1.0);
   EXPECT_EQ(scalar(out, "absorbed"), 0.0);
@@ -171,10 +171,10 @@ TEST(EscapeRadius, AlbedoOneEndsOnlyByEscaping) {
 TEST(ExtremeCases, RunWithoutNanAndConserveEnergy) {
   for (double albedo : {0.0, 1e-6, 0.9999}) {
     for (double g : {-0.999, -1e-9, 0.0, 1e-9, 0.999}) {
-      SimulationSpec spec = small_beam(albedo, g, albedo > 0.99 ? 400 : 4000);
+      InfiniteMediumSpec spec = small_beam(albedo, g, albedo > 0.99 ? 400 : 4000);
       for (Estimator estimator : {Estimator::collision, Estimator::track_length}) {
         spec.tallies.estimator = estimator;
-        const SimulationOutput out = simulate(spec);
+        const TransportOutput out = run_infinite_medium(spec);
         expect_all_finite(out);
         EXPECT_DOUBLE_EQ(scalar(out, "absorbed") + scalar(out, "absorbed_outside_grid"), 1.0);
         const double expected = 1.0 / (1.0 - albedo * g);

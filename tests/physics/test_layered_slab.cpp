@@ -85,13 +85,13 @@ TEST(LayeredSlabTest, SemiInfiniteMismatchedAgainstGiovanelliAndHalfSpace) {
   expect_within(scalar(slab, "specular_reflectance") + scalar(slab, "diffuse_reflectance"),
                 scalar_error(slab, "diffuse_reflectance"), 0.2600, 0.0, 4.0, 5e-5);
 
-  SearchlightSpec half_space;
+  HalfSpaceSpec half_space;
   half_space.medium = Medium{0.9, 1.0, 0.0, "mfp"};
   half_space.eta = 1.5;
   half_space.tallies.fluence = false;
   half_space.run = spec.run;
   half_space.run.seed = 7;
-  const TransportOutput reference = run_searchlight(half_space);
+  const TransportOutput reference = run_half_space(half_space);
   expect_within(scalar(slab, "diffuse_reflectance"), scalar_error(slab, "diffuse_reflectance"),
                 scalar(reference, "diffuse_reflectance"),
                 scalar_error(reference, "diffuse_reflectance"), 4.0);

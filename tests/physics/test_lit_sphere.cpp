@@ -186,14 +186,14 @@ TEST(LitSphere, LargeSphereUnderAPoleBeamIsTheHalfSpace) {
   const double width = kPi * radius / spec.psi.bins;
   const TransportOutput curved = run_lit_sphere(spec);
 
-  SearchlightSpec flat;
+  HalfSpaceSpec flat;
   flat.medium = spec.medium;
   flat.eta = 1.3;
   flat.run = spec.run;
   flat.run.seed = 7;
   flat.grid.r = {0.0, 10.0 * width, 10};
   flat.tallies.fluence = false;
-  const TransportOutput plane = run_searchlight(flat);
+  const TransportOutput plane = run_half_space(flat);
 
   EXPECT_DOUBLE_EQ(scalar(curved, "reflected_at_entry"), scalar(plane, "specular_reflectance"));
   const TallyResult& exitance = find_tally(curved, "exitance");

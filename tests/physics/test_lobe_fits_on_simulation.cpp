@@ -20,8 +20,8 @@ const fit::ModelFits& model_fits(const fit::LobeFitRun& run, LobeModel model) {
 }
 
 // The radiance and flux of a simulated beam, as scatterlab fit reads them from its file.
-fit::RadianceLobes simulated_lobes(const SimulationSpec& spec) {
-  const SimulationOutput output = simulate(spec);
+fit::RadianceLobes simulated_lobes(const InfiniteMediumSpec& spec) {
+  const TransportOutput output = run_infinite_medium(spec);
   const TallyResult& radiance = testing::find_tally(output, "radiance");
   const TallyResult& flux = testing::find_tally(output, "flux");
   fit::RadianceLobes lobes;
@@ -38,7 +38,7 @@ fit::RadianceLobes simulated_lobes(const SimulationSpec& spec) {
 }
 
 TEST(LobeFitsOnSimulation, DoubleExponentialBeatsSgAndAnisotropyBeatsBoth) {
-  SimulationSpec spec = testing::small_beam(0.5, 0.9, 1'000'000);
+  InfiniteMediumSpec spec = testing::small_beam(0.5, 0.9, 1'000'000);
   spec.grid.r = {0.0, 1.5, 5};
   spec.grid.z = {-1.0, 3.0, 8};
   spec.grid.theta.bins = 18;
@@ -77,7 +77,7 @@ TEST(LobeFitsOnSimulation, DoubleExponentialBeatsSgAndAnisotropyBeatsBoth) {
 // with a second lobe, comes within 2x of it (as on the README's 1e8-photon beam, whose grid
 // this one shares in r and z).
 TEST(LobeFitsOnSimulation, SecondLobeReachesTheNoiseNearTheBeam) {
-  SimulationSpec spec = testing::small_beam(0.5, 0.9, 100'000'000);
+  InfiniteMediumSpec spec = testing::small_beam(0.5, 0.9, 100'000'000);
   spec.grid.r = {0.0, 0.4, 4};
   spec.grid.z = {1.0, 2.2, 12};
   spec.grid.theta.bins = 18;

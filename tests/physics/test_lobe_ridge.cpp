@@ -15,13 +15,13 @@ namespace {
 using fit::LobeModel;
 
 TEST(LobeRidge, FitsTheOnceScatteredLightOfTheBeamToTheNoise) {
-  SimulationSpec spec = testing::small_beam(0.5, 0.9, 8'000'000);
+  InfiniteMediumSpec spec = testing::small_beam(0.5, 0.9, 8'000'000);
   spec.grid.r = {0.0, 0.6, 6};
   spec.grid.z = {0.9, 1.2, 3};
   spec.grid.theta.bins = 18;
   spec.grid.phi.bins = 36;
   spec.tallies.split_by_order = true;
-  const SimulationOutput output = simulate(spec);
+  const TransportOutput output = run_infinite_medium(spec);
   const TallyResult& single = testing::find_tally(output, "radiance_single");
   const fit::LobeGrid grid(spec.grid.theta.edges(), spec.grid.phi.edges(), false);
   const std::size_t bin = (5 * 3 + 1) * grid.size();  // r = 0.5-0.6, z = 1.0-1.1

@@ -16,7 +16,7 @@ class PointSourceTest : public ::testing::TestWithParam<std::tuple<double, Estim
 
 TEST_P(PointSourceTest, ShellFluenceMatchesTheExactSolution) {
   const auto [albedo, estimator] = GetParam();
-  SimulationSpec spec;
+  InfiniteMediumSpec spec;
   spec.source = SourceKind::point;
   spec.medium.albedo = albedo;
   spec.medium.g = 0.0;
@@ -26,7 +26,7 @@ TEST_P(PointSourceTest, ShellFluenceMatchesTheExactSolution) {
   spec.run.photons = static_cast<std::uint64_t>(2e6 * (1.0 - albedo)) + 20000;
   spec.run.batches = 40;
   spec.run.threads = 2;
-  const SimulationOutput out = simulate(spec);
+  const TransportOutput out = run_infinite_medium(spec);
   const TallyResult& fluence = testing::find_tally(out, "fluence_spherical");
 
   // Shells [0.1, 10] (the first, [0, 0.1), holds the 1/rho^2 singularity and is left out):

@@ -18,7 +18,7 @@
 namespace scatterlab {
 namespace {
 
-const TallyResult& find(const SearchlightOutput& out, const std::string& name) {
+const TallyResult& find(const TransportOutput& out, const std::string& name) {
   for (const TallyResult& t : out.tallies) {
     if (t.name == name) return t;
   }
@@ -26,15 +26,15 @@ const TallyResult& find(const SearchlightOutput& out, const std::string& name) {
   static const TallyResult none{"", {}, {}, "", "", {0.0}, {0.0}};
   return none;
 }
-double value(const SearchlightOutput& out, const std::string& name) {
+double value(const TransportOutput& out, const std::string& name) {
   return find(out, name).mean.at(0);
 }
-double error(const SearchlightOutput& out, const std::string& name) {
+double error(const TransportOutput& out, const std::string& name) {
   return find(out, name).stderr_of_mean.at(0);
 }
 
-SearchlightSpec scene(double albedo, double g, double eta, std::uint64_t photons) {
-  SearchlightSpec spec;
+HalfSpaceSpec scene(double albedo, double g, double eta, std::uint64_t photons) {
+  HalfSpaceSpec spec;
   spec.medium.albedo = albedo;
   spec.medium.g = g;
   spec.eta = eta;
@@ -48,7 +48,7 @@ SearchlightSpec scene(double albedo, double g, double eta, std::uint64_t photons
   return spec;
 }
 
-double energy_total(const SearchlightOutput& out, const SearchlightSpec& spec) {
+double energy_total(const TransportOutput& out, const HalfSpaceSpec& spec) {
   double total = value(out, "specular_reflectance") + value(out, "diffuse_reflectance") +
                  value(out, "absorbed");
   if (std::isfinite(spec.run.escape_radius)) total += value(out, "escaped");
@@ -76,7 +76,7 @@ double single_scatter_reflectance(double albedo, double eta, double incidence_de
 TEST(Searchlight, DiffuseReflectanceMatchesChandrasekharWhenIndexMatched) {
   // 1e6 photons per albedo, normal incidence: R = 1 - H(1) sqrt(1 - w).
   for (double albedo : {0.3, 0.7, 0.9, 0.99}) {
-    const SearchlightOutput out = run_searchlight(scene(albedo, 0.0, 1.0, 1'000'000));
+    const TransportOutput out = run_half_space(scene(albedo, 0.0, 1.0, 1'000'000));
     const double exact = half_space_diffuse_reflectance(albedo);
     const double sigma = error(out, "diffuse_reflectance");
     EXPECT_NEAR(value(out, "diffuse_reflectance"), exact, 4.0 * sigma) << "albedo " << albedo;
@@ -86,9 +86,9 @@ TEST(Searchlight, DiffuseReflectanceMatchesChandrasekharWhenIndexMatched) {
 }
 
 TEST(Searchlight, ObliqueIndexMatchedReflectanceMatchesChandrasekhar) {
-  SearchlightSpec spec = scene(0.9, 0.0, 1.0, 500'000);
+  HalfSpaceSpec spec = scene(0.9, 0.0, 1.0, 500'000);
   spec.incidence_deg = 60.0;  // mu0 = 1/2
-  const SearchlightOutput out = run_searchlight(spec);
+  const TransportOutput out = run_half_space(spec);
   EXPECT_NEAR(value(out, "diffuse_reflectance"), half_space_diffuse_reflectance(0.9, 0.5),
               4.0 * error(out, "diffuse_reflectance"));
 }
@@ -99,9 +99,9 @@ TEST(Searchlight, OnceScatteredReflectanceMatchesItsClosedForm) {
   };
   for (const Case c :
        {Case{1.0, 0.0}, Case{1.33, 0.0}, Case{1.33, 50.0}, Case{2.5, 0.0}, Case{0.75, 30.0}}) {
-    SearchlightSpec spec = scene(0.8, 0.0, c.eta, 400'000);
+    HalfSpaceSpec spec = scene(0.8, 0.0, c.eta, 400'000);
     spec.incidence_deg = c.incidence;
-    const SearchlightOutput out = run_searchlight(spec);
+    const TransportOutput out = run_half_space(spec);
     const double exact = single_scatter_reflectance(0.8, c.eta, c.incidence);
     EXPECT_NEAR(value(out, "diffuse_reflectance_single"), exact,
                 4.0 * error(out, "diffuse_reflectance_single"))
@@ -116,9 +116,9 @@ TEST(Searchlight, OnceScatteredReflectanceMatchesItsClosedForm) {
 TEST(Searchlight, OnceScatteredProfileMatchesTheExactSingleScatterSolution) {
   // R_1(r) per ring from the refractive single-scatter solution (refract/) for an anisotropic
   // medium behind a Fresnel interface: every ring within 4 sigma, and the total.
-  SearchlightSpec spec = scene(0.9, 0.5, 1.33, 400'000);
+  HalfSpaceSpec spec = scene(0.9, 0.5, 1.33, 400'000);
   spec.grid.r = {0.0, 1.5, 15};  // once-scattered light leaves within a few tenths of a mfp
-  const SearchlightOutput out = run_searchlight(spec);
+  const TransportOutput out = run_half_space(spec);
   const std::vector<double> edges = spec.grid.r.edges();
   const SingleScatterReflectance exact =
       half_space_single_scatter_reflectance(spec.medium, spec.eta, edges);
@@ -148,10 +148,10 @@ TEST(Searchlight, EnergyBalancesAndNothingIsNaNInExtremeScenes) {
       {0.5, -0.5, 1.33, 89.9, 20000},
   };
   for (const Case& c : cases) {
-    SearchlightSpec spec = scene(c.albedo, c.g, c.eta, c.photons);
+    HalfSpaceSpec spec = scene(c.albedo, c.g, c.eta, c.photons);
     spec.incidence_deg = c.incidence;
     spec.tallies.fluence = true;
-    const SearchlightOutput out = run_searchlight(spec);
+    const TransportOutput out = run_half_space(spec);
     const std::string label = "albedo " + std::to_string(c.albedo) + ", g " + std::to_string(c.g) +
                               ", eta " + std::to_string(c.eta) + ", incidence " +
                               std::to_string(c.incidence);
@@ -166,28 +166,28 @@ TEST(Searchlight, EnergyBalancesAndNothingIsNaNInExtremeScenes) {
     EXPECT_NEAR(energy_total(out, spec), 1.0, 1e-12) << label;
   }
   // eta < 1 beyond the critical angle asin(0.75) = 48.6 deg: the beam is reflected whole.
-  SearchlightSpec spec = scene(0.99, 0.0, 0.75, 1000);
+  HalfSpaceSpec spec = scene(0.99, 0.0, 0.75, 1000);
   spec.incidence_deg = 80.0;
-  const SearchlightOutput out = run_searchlight(spec);
+  const TransportOutput out = run_half_space(spec);
   EXPECT_EQ(value(out, "specular_reflectance"), 1.0);
   EXPECT_EQ(value(out, "diffuse_reflectance"), 0.0);
 }
 
 TEST(Searchlight, ConservativeMediumNeedsAnEscapeRadiusAndThenBalances) {
-  SearchlightSpec spec = scene(1.0, 0.0, 1.33, 2000);
+  HalfSpaceSpec spec = scene(1.0, 0.0, 1.33, 2000);
   EXPECT_THROW(spec.validate(), InputError);
   spec.run.escape_radius = 30.0;
-  const SearchlightOutput out = run_searchlight(spec);
+  const TransportOutput out = run_half_space(spec);
   EXPECT_EQ(value(out, "absorbed"), 0.0);
   EXPECT_NEAR(energy_total(out, spec), 1.0, 1e-12);
   EXPECT_GT(value(out, "escaped"), 0.0);
 }
 
 TEST(Searchlight, OrdersSumToTheTotalAndSurfaceTalliesAgree) {
-  SearchlightSpec spec = scene(0.9, 0.5, 1.33, 200'000);
+  HalfSpaceSpec spec = scene(0.9, 0.5, 1.33, 200'000);
   spec.grid.r.max = 40.0;  // wide enough to hold nearly every exit
   spec.tallies.fluence = true;
-  const SearchlightOutput out = run_searchlight(spec);
+  const TransportOutput out = run_half_space(spec);
   for (const char* name : {"reflectance", "exitant_radiance", "fluence", "diffuse_reflectance"}) {
     const TallyResult& all = find(out, name);
     const TallyResult& zero = find(out, std::string(name) + "_unscattered");
@@ -225,11 +225,11 @@ TEST(Searchlight, OrdersSumToTheTotalAndSurfaceTalliesAgree) {
 
 TEST(Searchlight, AbsorptionFromTheFluenceMatchesTheAbsorbedPower) {
   // integral of sigma_a phi dV over a grid that holds nearly all of it = absorbed, 4 sigma.
-  SearchlightSpec spec = scene(0.5, 0.0, 1.33, 400'000);
+  HalfSpaceSpec spec = scene(0.5, 0.0, 1.33, 400'000);
   spec.grid.r = {0.0, 20.0, 40};
   spec.grid.z = {0.0, 20.0, 40};
   spec.tallies.fluence = true;
-  const SearchlightOutput out = run_searchlight(spec);
+  const TransportOutput out = run_half_space(spec);
   const TallyResult& fluence = find(out, "fluence");
   double absorbed = 0.0, bound = 0.0;
   for (std::size_t i = 0; i < fluence.size(); ++i) {
@@ -257,11 +257,11 @@ TEST(Searchlight, AbsorptionFromTheFluenceMatchesTheAbsorbedPower) {
 TEST(Searchlight, ExitanceMapIsTheSurfaceSeenFromAbove) {
   // One cell holding the whole surface: the map times its area is the diffuse reflectance, photon
   // for photon.
-  SearchlightSpec whole = scene(0.9, 0.5, 1.3, 20'000);
+  HalfSpaceSpec whole = scene(0.9, 0.5, 1.3, 20'000);
   whole.tallies.exitance_map = true;
   whole.grid.x = {-1e4, 1e4, 1};
   whole.grid.y = {-1e4, 1e4, 1};
-  const SearchlightOutput all = run_searchlight(whole);
+  const TransportOutput all = run_half_space(whole);
   EXPECT_NEAR(find(all, "exitance_map").mean.at(0) * 4e8, value(all, "diffuse_reflectance"), 1e-12);
 
   // Sums of the map over parts of the surface, with the sum of the cells' variances (an upper
@@ -280,11 +280,11 @@ TEST(Searchlight, ExitanceMapIsTheSurfaceSeenFromAbove) {
   };
   const int bins = 8;
   // Normal incidence: the four quadrants about the entry point hold the same light.
-  SearchlightSpec normal = scene(0.9, 0.5, 1.3, 200'000);
+  HalfSpaceSpec normal = scene(0.9, 0.5, 1.3, 200'000);
   normal.tallies.exitance_map = true;
   normal.grid.x = {-2.0, 2.0, bins};
   normal.grid.y = {-2.0, 2.0, bins};
-  const SearchlightOutput normal_out = run_searchlight(normal);
+  const TransportOutput normal_out = run_half_space(normal);
   const TallyResult& square = find(normal_out, "exitance_map");
   const auto q1 = part(square, bins, [](int i, int j) { return i >= 4 && j >= 4; });
   for (const auto& [name, quadrant] :
@@ -295,9 +295,9 @@ TEST(Searchlight, ExitanceMapIsTheSurfaceSeenFromAbove) {
   }
   // A beam at 60 degrees in the x-z plane: mirror images about y = 0, and more light on the side
   // it travels towards (+x) than behind it.
-  SearchlightSpec oblique = normal;
+  HalfSpaceSpec oblique = normal;
   oblique.incidence_deg = 60.0;
-  const SearchlightOutput oblique_out = run_searchlight(oblique);
+  const TransportOutput oblique_out = run_half_space(oblique);
   const TallyResult& halo = find(oblique_out, "exitance_map");
   const auto above = part(halo, bins, [](int, int j) { return j >= 4; });
   const auto below = part(halo, bins, [](int, int j) { return j < 4; });
@@ -308,12 +308,12 @@ TEST(Searchlight, ExitanceMapIsTheSurfaceSeenFromAbove) {
 }
 
 TEST(Searchlight, SameResultForAnyThreadCount) {
-  SearchlightSpec spec = scene(0.9, 0.3, 1.33, 20000);
+  HalfSpaceSpec spec = scene(0.9, 0.3, 1.33, 20000);
   spec.tallies.fluence = true;
   spec.run.threads = 1;
-  const SearchlightOutput one = run_searchlight(spec);
+  const TransportOutput one = run_half_space(spec);
   spec.run.threads = 2;
-  const SearchlightOutput two = run_searchlight(spec);
+  const TransportOutput two = run_half_space(spec);
   ASSERT_EQ(one.tallies.size(), two.tallies.size());
   for (std::size_t t = 0; t < one.tallies.size(); ++t) {
     EXPECT_EQ(one.tallies[t].mean, two.tallies[t].mean) << one.tallies[t].name;
@@ -322,7 +322,7 @@ TEST(Searchlight, SameResultForAnyThreadCount) {
 }
 
 TEST(Searchlight, RejectsBadInputNamingTheField) {
-  const auto field_of = [](SearchlightSpec spec) {
+  const auto field_of = [](HalfSpaceSpec spec) {
     try {
       spec.validate();
     } catch (const InputError& e) {
@@ -330,7 +330,7 @@ TEST(Searchlight, RejectsBadInputNamingTheField) {
     }
     return std::string("(accepted)");
   };
-  SearchlightSpec spec;
+  HalfSpaceSpec spec;
   EXPECT_EQ(field_of(spec), "(accepted)");
   spec.eta = 0.0;
   EXPECT_EQ(field_of(spec), "surface.eta");

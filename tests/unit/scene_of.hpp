@@ -1,6 +1,6 @@
 #pragma once
 // Tests of one geometry read a scene through the one reader (io/scene.hpp) and look at that
-// geometry's spec: read_as<SearchlightSpec>(text, origin) reads a file that names no geometry as
+// geometry's spec: read_as<HalfSpaceSpec>(text, origin) reads a file that names no geometry as
 // a half-space, and fails the test (std::bad_variant_access) when the file names another.
 
 #include <filesystem>
@@ -25,7 +25,7 @@ struct SceneOf {
 
 template <class Spec>
 constexpr std::string_view geometry_of() {
-  if constexpr (std::is_same_v<Spec, SearchlightSpec>) return "half_space";
+  if constexpr (std::is_same_v<Spec, HalfSpaceSpec>) return "half_space";
   if constexpr (std::is_same_v<Spec, LitObjectSpec>) return "sphere";
   if constexpr (std::is_same_v<Spec, LayeredSlabSpec>) return "slab";
   return "infinite";

@@ -81,7 +81,7 @@ void expect_same_paths(const TransportProblem& problem, const Geometry& geometry
 }
 
 template <class Phase>
-void expect_same_paths(const SimulationSpec& spec, const Phase& phase) {
+void expect_same_paths(const InfiniteMediumSpec& spec, const Phase& phase) {
   expect_same_paths(transport_problem(spec), InfiniteMedium{}, phase);
 }
 
@@ -90,7 +90,7 @@ void expect_same_paths(const SimulationSpec& spec, const Phase& phase) {
 template <class Phase>
 void expect_same_paths_in_half_space(double albedo, double g, double eta, double incidence,
                                      const Phase& phase) {
-  SearchlightSpec spec;
+  HalfSpaceSpec spec;
   spec.medium.albedo = albedo;
   spec.medium.g = g;
   spec.eta = eta;
@@ -124,8 +124,8 @@ void expect_same_paths_in_the_sphere(double albedo, double g, double eta, double
   }
 }
 
-SimulationSpec scene(double albedo, double g) {
-  SimulationSpec spec;
+InfiniteMediumSpec scene(double albedo, double g) {
+  InfiniteMediumSpec spec;
   spec.medium.albedo = albedo;
   spec.medium.g = g;
   spec.tallies.radiance = true;  // fluence, flux and radiance, split by order
@@ -143,7 +143,7 @@ TEST(LaneWalk, FollowsTheOnePhotonWalkHenyeyGreenstein) {
 }
 
 TEST(LaneWalk, FollowsTheOnePhotonWalkFromAPointSourceToAnEscapeRadius) {
-  SimulationSpec spec = scene(0.95, 0.3);
+  InfiniteMediumSpec spec = scene(0.95, 0.3);
   spec.set_source(SourceKind::point);
   spec.tallies.radiance = true;
   spec.run.escape_radius = 4.0;  // most photons escape before they are absorbed

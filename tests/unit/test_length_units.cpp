@@ -49,7 +49,7 @@ TEST(LengthUnits, UnknownUnitOrMfpWithSigmaTIsRefused) {
   EXPECT_EQ(field_of(Medium{0.5, 2.0, 0.0, "furlong"}), "medium.length_unit");
   EXPECT_EQ(field_of(Medium{0.5, 2.0, 0.0, "cm"}), "(accepted)");
   // The searchlight, which refused sigma_t != 1 before units, names the unit too.
-  SearchlightSpec spec;
+  HalfSpaceSpec spec;
   spec.medium = Medium{0.9, 2.0, 0.0, "mfp"};
   try {
     spec.validate();
@@ -83,12 +83,12 @@ void expect_scaled(const std::vector<TallyResult>& mm, const std::vector<TallyRe
 }
 
 TEST(LengthUnits, SimulateInMillimetresIsTheMfpRunScaled) {
-  SimulationSpec mfp;
+  InfiniteMediumSpec mfp;
   mfp.medium = Medium{0.8, 1.0, 0.5, "mfp"};
   mfp.run = RunSettings{20'000, 8, 3, 2};
   mfp.run.escape_radius = 6.0;
   mfp.tallies.radiance = false;
-  SimulationSpec mm = mfp;
+  InfiniteMediumSpec mm = mfp;
   const double sigma_t = 2.0;  // 1/mm: 1 mfp = 0.5 mm
   mm.medium = in_mm(sigma_t);
   mm.grid.r.max = mfp.grid.r.max / sigma_t;
@@ -96,8 +96,8 @@ TEST(LengthUnits, SimulateInMillimetresIsTheMfpRunScaled) {
   mm.grid.z.max = mfp.grid.z.max / sigma_t;
   mm.grid.rho.max = mfp.grid.rho.max / sigma_t;
   mm.run.escape_radius = mfp.run.escape_radius / sigma_t;
-  const SimulationOutput a = simulate(mm);
-  const SimulationOutput b = simulate(mfp);
+  const TransportOutput a = run_infinite_medium(mm);
+  const TransportOutput b = run_infinite_medium(mfp);
   expect_scaled(a.tallies, b.tallies, sigma_t);
   // The mean absorption depth is a length: mm = mfp / sigma_t.
   const TallyResult* depth = find_tally(a.tallies, "absorbed_mean_depth");
@@ -107,19 +107,19 @@ TEST(LengthUnits, SimulateInMillimetresIsTheMfpRunScaled) {
 }
 
 TEST(LengthUnits, SearchlightAcceptsSigmaTInCentimetres) {
-  SearchlightSpec mfp;
+  HalfSpaceSpec mfp;
   mfp.medium = Medium{0.9, 1.0, 0.3, "mfp"};
   mfp.run = RunSettings{20'000, 8, 5, 2};
   mfp.grid.r.bins = 20;
   mfp.grid.z.bins = 10;
-  SearchlightSpec cm = mfp;
+  HalfSpaceSpec cm = mfp;
   const double sigma_t = 4.0;  // 1/cm
   cm.medium = Medium{0.9, sigma_t, 0.3, "cm"};
   cm.grid.r.max = mfp.grid.r.max / sigma_t;
   cm.grid.z.max = mfp.grid.z.max / sigma_t;
   ASSERT_NO_THROW(cm.validate());
-  const SearchlightOutput a = run_searchlight(cm);
-  const SearchlightOutput b = run_searchlight(mfp);
+  const TransportOutput a = run_half_space(cm);
+  const TransportOutput b = run_half_space(mfp);
   ASSERT_EQ(a.tallies.size(), b.tallies.size());
   for (std::size_t t = 0; t < a.tallies.size(); ++t) {
     double factor = 0.0;
@@ -134,7 +134,7 @@ TEST(LengthUnits, SearchlightAcceptsSigmaTInCentimetres) {
 
 // A scene in mm reads its grid keys in mm; the material's unit is the table's.
 TEST(LengthUnits, SceneGridKeysAreInTheMediumsUnit) {
-  const SimulationSpec spec = std::get<SimulationSpec>(
+  const InfiniteMediumSpec spec = std::get<InfiniteMediumSpec>(
       parse_scene("[medium]\nmaterial = \"skimmilk\"\nchannel = \"green\"\n[grid]\nr = { max = 4, "
                   "bins = 8 }\n",
                   "t")

@@ -173,7 +173,7 @@ class LobeFitsFileTest : public ::testing::Test {
   void write_file() { write_file(path_, 0.5, 0.9); }
 
   void write_file(const fs::path& path, double albedo, double g) {
-    SimulationSpec spec;
+    InfiniteMediumSpec spec;
     spec.medium.albedo = albedo;
     spec.medium.g = g;
     spec.grid.r = {0.0, 1.0, 2};
@@ -362,7 +362,7 @@ TEST_F(LobeFitsFileTest, ASweepDirectoryGivesOneTableAgainstAlbedoAndG) {
   const fs::path bad = directory_ / "bad-sweep";
   fs::create_directories(bad);
   write_file(bad / "a.h5", 0.5, 0.9);
-  write_simulation_file(bad / "b.h5", SimulationSpec{}, {}, Provenance{});
+  write_simulation_file(bad / "b.h5", InfiniteMediumSpec{}, {}, Provenance{});
   EXPECT_THROW(fit::fit_field(bad, directory_ / "bad.csv", {LobeModel::sg}, {}, 3, 1), InputError);
   EXPECT_FALSE(hdf5::File::open_read_only(bad / "a.h5").root().has_member("fits"));
   EXPECT_FALSE(fs::exists(directory_ / "bad.csv"));
@@ -370,7 +370,7 @@ TEST_F(LobeFitsFileTest, ASweepDirectoryGivesOneTableAgainstAlbedoAndG) {
 
 TEST_F(LobeFitsFileTest, FilesWithoutRadianceAreInputErrors) {
   const fs::path other = directory_ / "no-radiance.h5";
-  SimulationSpec spec;
+  InfiniteMediumSpec spec;
   write_simulation_file(other, spec, {}, Provenance{});
   try {
     fit::read_radiance_lobes(other);

@@ -15,8 +15,8 @@ namespace scatterlab {
 namespace {
 
 // A small beam: 12 batches, coarse angles; a few tens of milliseconds.
-SimulationSpec small_run(int threads) {
-  SimulationSpec spec;
+InfiniteMediumSpec small_run(int threads) {
+  InfiniteMediumSpec spec;
   spec.run.photons = 12'000;
   spec.run.batches = 12;
   spec.run.seed = 7;
@@ -31,7 +31,7 @@ bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
-void expect_same_tallies(const SimulationOutput& expected, const SimulationOutput& actual) {
+void expect_same_tallies(const TransportOutput& expected, const TransportOutput& actual) {
   ASSERT_EQ(expected.tallies.size(), actual.tallies.size());
   for (std::size_t i = 0; i < expected.tallies.size(); ++i) {
     const TallyResult& e = expected.tallies[i];
@@ -45,14 +45,14 @@ void expect_same_tallies(const SimulationOutput& expected, const SimulationOutpu
 }
 
 // Runs `spec` on `ranks` threads-as-ranks and returns the root's output.
-SimulationOutput run_on_ranks(const SimulationSpec& spec, int ranks,
-                              const RunState* resume = nullptr) {
-  std::vector<SimulationOutput> outputs(static_cast<std::size_t>(ranks));
+TransportOutput run_on_ranks(const InfiniteMediumSpec& spec, int ranks,
+                             const RunState* resume = nullptr) {
+  std::vector<TransportOutput> outputs(static_cast<std::size_t>(ranks));
   testing::run_ranks(ranks, [&](Communicator& communicator) {
     RunControl control;
     control.communicator = &communicator;
     control.resume_from = resume;
-    outputs[static_cast<std::size_t>(communicator.rank())] = simulate(spec, {}, control);
+    outputs[static_cast<std::size_t>(communicator.rank())] = run_infinite_medium(spec, {}, control);
   });
   for (std::size_t rank = 1; rank < outputs.size(); ++rank) {
     EXPECT_TRUE(outputs[rank].tallies.empty()) << "rank " << rank << " holds tallies";
@@ -63,38 +63,38 @@ SimulationOutput run_on_ranks(const SimulationSpec& spec, int ranks,
 // Stops once `stop_at` of the batches are done and returns the state saved on stopping. On one
 // thread the stop is deterministic: the progress after batch k raises the flag, and batch k + 1 is
 // cut before its first photon.
-RunState interrupted(const SimulationSpec& spec, double stop_at, SimulationOutput* output) {
+RunState interrupted(const InfiniteMediumSpec& spec, double stop_at, TransportOutput* output) {
   std::atomic<bool> stop{false};
   RunState saved;
   RunControl control;
   control.stop_requested = &stop;
   control.save_checkpoint = [&saved](const RunState& state) { saved = state; };
-  *output = simulate(
+  *output = run_infinite_medium(
       spec, [&](const BatchProgress& done) { stop = stop || done.fraction() >= stop_at; }, control);
   return saved;
 }
 
 TEST(DistributedRuns, AnyRanksAndThreadsGiveTheSameBits) {
-  const SimulationOutput one = simulate(small_run(1));
-  expect_same_tallies(one, simulate(small_run(2)));
+  const TransportOutput one = run_infinite_medium(small_run(1));
+  expect_same_tallies(one, run_infinite_medium(small_run(2)));
   expect_same_tallies(one, run_on_ranks(small_run(1), 2));
   expect_same_tallies(one, run_on_ranks(small_run(2), 2));
   // 3 ranks x 2 threads: groups of 3 batches, ranks owning uneven cell slices.
-  const SimulationOutput three = run_on_ranks(small_run(2), 3);
+  const TransportOutput three = run_on_ranks(small_run(2), 3);
   expect_same_tallies(one, three);
   EXPECT_EQ(three.ranks, 3);
   EXPECT_EQ(three.threads, 2);
 }
 
 TEST(DistributedRuns, MoreRanksThanBatchesStillFoldEveryBatch) {
-  SimulationSpec spec = small_run(1);
+  InfiniteMediumSpec spec = small_run(1);
   spec.run.batches = 3;
-  expect_same_tallies(simulate(spec), run_on_ranks(spec, 4));
+  expect_same_tallies(run_infinite_medium(spec), run_on_ranks(spec, 4));
 }
 
 TEST(Checkpoints, StoppedRunResumesToTheSameBits) {
-  const SimulationOutput uninterrupted = simulate(small_run(2));
-  SimulationOutput partial;
+  const TransportOutput uninterrupted = run_infinite_medium(small_run(2));
+  TransportOutput partial;
   const RunState state = interrupted(small_run(1), 0.3, &partial);
   // Progress reports 4 of 12 batches and raises the flag; the runner cuts batch 4 before its
   // first photon and abandons it: 4 batches.
@@ -107,7 +107,7 @@ TEST(Checkpoints, StoppedRunResumesToTheSameBits) {
   // Resumed with another thread count, and on two ranks.
   RunControl control;
   control.resume_from = &state;
-  const SimulationOutput resumed = simulate(small_run(3), {}, control);
+  const TransportOutput resumed = run_infinite_medium(small_run(3), {}, control);
   EXPECT_TRUE(resumed.complete(small_run(3)));
   expect_same_tallies(uninterrupted, resumed);
   expect_same_tallies(uninterrupted, run_on_ranks(small_run(1), 2, &state));
@@ -116,7 +116,7 @@ TEST(Checkpoints, StoppedRunResumesToTheSameBits) {
 // A resumed run knows what the earlier run did and how long it took, so that its rates and its
 // file count the whole run; its progress says which batches were resumed.
 TEST(Checkpoints, ResumedRunCountsTheEarlierRunsWork) {
-  SimulationOutput partial;
+  TransportOutput partial;
   RunState state = interrupted(small_run(1), 0.3, &partial);
   EXPECT_GT(state.wall_seconds, 0.0);
   EXPECT_LE(state.wall_seconds, partial.wall_seconds);
@@ -124,7 +124,7 @@ TEST(Checkpoints, ResumedRunCountsTheEarlierRunsWork) {
   RunControl control;
   control.resume_from = &state;
   BatchProgress first{};
-  const SimulationOutput resumed = simulate(
+  const TransportOutput resumed = run_infinite_medium(
       small_run(1),
       [&first](const BatchProgress& done) {
         if (first.batches == 0) first = done;
@@ -142,12 +142,12 @@ TEST(Checkpoints, ResumedRunCountsTheEarlierRunsWork) {
 }
 
 TEST(Checkpoints, PartialRunIsTheMeanOfItsBatches) {
-  SimulationSpec first_four = small_run(2);
+  InfiniteMediumSpec first_four = small_run(2);
   first_four.run.photons = 4'000;  // batches 0-3 of the 12-batch run, photon for photon
   first_four.run.batches = 4;
-  SimulationOutput partial;
+  TransportOutput partial;
   interrupted(small_run(1), 0.3, &partial);
-  expect_same_tallies(simulate(first_four), partial);
+  expect_same_tallies(run_infinite_medium(first_four), partial);
 }
 
 TEST(Checkpoints, SavedEveryKBatchesButNotAtTheEnd) {
@@ -157,16 +157,16 @@ TEST(Checkpoints, SavedEveryKBatchesButNotAtTheEnd) {
   control.save_checkpoint = [&](const RunState& state) {
     saved_at.push_back(state.batches_folded);
   };
-  const SimulationOutput out = simulate(small_run(2), {}, control);
+  const TransportOutput out = run_infinite_medium(small_run(2), {}, control);
   EXPECT_EQ(saved_at, (std::vector<std::uint64_t>{4, 8}));
-  expect_same_tallies(simulate(small_run(1)), out);
+  expect_same_tallies(run_infinite_medium(small_run(1)), out);
 }
 
 TEST(Checkpoints, FailedSaveStopsTheRunWithTheError) {
   RunControl control;
   control.checkpoint.every_batches = 2;
   control.save_checkpoint = [](const RunState&) { throw std::runtime_error("disk full"); };
-  EXPECT_THROW(simulate(small_run(2), {}, control), std::runtime_error);
+  EXPECT_THROW(run_infinite_medium(small_run(2), {}, control), std::runtime_error);
 }
 
 class CheckpointFileTest : public ::testing::Test {
@@ -183,7 +183,7 @@ class CheckpointFileTest : public ::testing::Test {
 };
 
 TEST_F(CheckpointFileTest, RoundTripIsExact) {
-  SimulationOutput partial;
+  TransportOutput partial;
   const RunState state = interrupted(small_run(1), 0.5, &partial);
   const auto path = default_checkpoint_path(directory_ / "run.h5");
   EXPECT_EQ(path.filename(), "run.h5.checkpoint");
@@ -201,9 +201,9 @@ TEST_F(CheckpointFileTest, RoundTripIsExact) {
 
 TEST_F(CheckpointFileTest, AnotherRunsCheckpointIsRefused) {
   const auto path = directory_ / "run.h5.checkpoint";
-  SimulationOutput partial;
+  TransportOutput partial;
   write_checkpoint(path, fingerprint(small_run(2)), interrupted(small_run(1), 0.5, &partial));
-  SimulationSpec other_seed = small_run(2);
+  InfiniteMediumSpec other_seed = small_run(2);
   other_seed.run.seed = 8;
   try {
     read_checkpoint(path, fingerprint(other_seed));
@@ -219,7 +219,7 @@ TEST(Fingerprint, NamesTheRunNotHowItRan) {
   const std::string base = fingerprint(small_run(1));
   EXPECT_EQ(base.size(), 16u);
   EXPECT_EQ(base, fingerprint(small_run(4)));  // threads never change a result
-  SimulationSpec seed = small_run(1), albedo = small_run(1), bins = small_run(1);
+  InfiniteMediumSpec seed = small_run(1), albedo = small_run(1), bins = small_run(1);
   seed.run.seed = 8;
   albedo.medium.albedo = 0.5000000001;
   bins.grid.r.bins = 16;

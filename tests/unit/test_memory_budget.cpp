@@ -112,7 +112,7 @@ TEST(MemoryBudget, OverTheLimitIsOneErrorNamingFieldsAndFigure) {
 // A grid within every per-axis limit (1e5 bins) whose fluence alone is 1e10 cells, 80 GB per
 // array: refused with the figure before the first buffer, never std::bad_alloc.
 TEST(MemoryBudget, SimulationGridWithinAxisLimitsButOverMemoryIsRefused) {
-  SimulationSpec spec;
+  InfiniteMediumSpec spec;
   spec.tallies.radiance = false;
   spec.tallies.flux = false;
   spec.grid.r.bins = 100000;
@@ -123,9 +123,10 @@ TEST(MemoryBudget, SimulationGridWithinAxisLimitsButOverMemoryIsRefused) {
   ASSERT_NO_THROW(spec.validate());
   const MemoryEstimate need = transport_memory(transport_problem(spec), 1, false);
   EXPECT_GT(need.bytes(), 6 * 80'000'000'000ull);  // a buffer per thread and five arrays
-  EXPECT_EQ(field_of([&] { simulate(spec); }), "grid.r.bins x grid.z.bins, tallies, run.threads");
+  EXPECT_EQ(field_of([&] { run_infinite_medium(spec); }),
+            "grid.r.bins x grid.z.bins, tallies, run.threads");
   const ScopedMemoryLimit limit(512 * MiB);
-  SimulationSpec paper;
+  InfiniteMediumSpec paper;
   paper.run.photons = 1000;
   paper.run.batches = 10;
   EXPECT_EQ(field_of([&] { check_transport_memory(transport_problem(paper), 1, false); }), "");
@@ -137,7 +138,7 @@ TEST(MemoryBudget, SimulationGridWithinAxisLimitsButOverMemoryIsRefused) {
 }
 
 TEST(MemoryBudget, EveryThreadAndRankAddsItsBuffers) {
-  SimulationSpec spec;
+  InfiniteMediumSpec spec;
   spec.run.batches = 64;
   spec.run.threads = 1;
   const std::uint64_t one = transport_memory(transport_problem(spec), 1, false).bytes();
@@ -152,19 +153,19 @@ TEST(MemoryBudget, EveryThreadAndRankAddsItsBuffers) {
 }
 
 TEST(MemoryBudget, SearchlightFluenceOverMemoryIsRefused) {
-  SearchlightSpec spec;
+  HalfSpaceSpec spec;
   spec.grid.r.bins = 100000;
   spec.grid.z.bins = 100000;
   spec.run.photons = 1000;
   spec.run.batches = 10;
   spec.run.threads = 1;
   ASSERT_NO_THROW(spec.validate());
-  EXPECT_EQ(field_of([&] { run_searchlight(spec); }),
+  EXPECT_EQ(field_of([&] { run_half_space(spec); }),
             "grid.r.bins x grid.z.bins (fluence), grid.theta_o.bins, run.threads");
 }
 
 TEST(RunLength, PhotonsStayExactAsDoubles) {
-  SimulationSpec spec;
+  InfiniteMediumSpec spec;
   spec.medium.albedo = 0.0;
   spec.run.photons = max_photons;
   EXPECT_EQ(field_of([&] { spec.validate(); }), "");
@@ -179,7 +180,7 @@ TEST(RunLength, ExpectedEventsPerPhotonAreBounded) {
   EXPECT_DOUBLE_EQ(expected_events_per_photon(1.0, 100.0), 10001.0);
   EXPECT_DOUBLE_EQ(expected_events_per_photon(0.99, 1000.0), 1.0 / (1.0 - 0.99));
 
-  SimulationSpec spec;  // albedo 1 with an escape radius of 1e30 mfp: ~1e60 events per photon
+  InfiniteMediumSpec spec;  // albedo 1 with an escape radius of 1e30 mfp: ~1e60 events per photon
   spec.medium.albedo = 1.0;
   spec.run.photons = 1000;
   spec.run.batches = 10;
@@ -197,7 +198,7 @@ TEST(RunLength, ExpectedEventsPerPhotonAreBounded) {
   spec.run.photons = 1000;
   EXPECT_EQ(field_of([&] { spec.validate(); }), "");
 
-  SearchlightSpec half_space;
+  HalfSpaceSpec half_space;
   half_space.medium.albedo = 1.0;
   half_space.run.photons = 1000;
   half_space.run.batches = 10;
@@ -236,7 +237,7 @@ TEST(SweepSize, TheLimitItselfIsAccepted) {
   const std::vector<SweepPoint> points =
       parse_sweep("[run]\nseed = " + seeds + "]\n", "seeds.toml");
   ASSERT_EQ(points.size(), max_sweep_points);
-  EXPECT_EQ(std::get<SimulationSpec>(points.back().scene.spec).run.seed, max_sweep_points);
+  EXPECT_EQ(std::get<InfiniteMediumSpec>(points.back().scene.spec).run.seed, max_sweep_points);
   EXPECT_EQ(field_of([&] { parse_sweep("[run]\nseed = " + seeds + ",0]\n", "seeds.toml"); }),
             "run.seed");
 }

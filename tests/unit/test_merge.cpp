@@ -62,8 +62,8 @@ class MergeTest : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(directory_); }
 
-  static SimulationSpec spec(std::uint64_t seed, std::uint32_t batches) {
-    SimulationSpec s;
+  static InfiniteMediumSpec spec(std::uint64_t seed, std::uint32_t batches) {
+    InfiniteMediumSpec s;
     s.run.photons = 500ull * batches;
     s.run.batches = batches;
     s.run.seed = seed;
@@ -72,9 +72,9 @@ class MergeTest : public ::testing::Test {
     return s;
   }
 
-  fs::path write(const std::string& name, const SimulationSpec& s,
-                 SimulationOutput* out = nullptr) {
-    const SimulationOutput result = simulate(s);
+  fs::path write(const std::string& name, const InfiniteMediumSpec& s,
+                 TransportOutput* out = nullptr) {
+    const TransportOutput result = run_infinite_medium(s);
     const fs::path path = directory_ / name;
     write_simulation_file(path, s, result.tallies,
                           {"test", "test", iso8601_now(), 1.0, result.photons,
@@ -97,7 +97,7 @@ class MergeTest : public ::testing::Test {
 };
 
 TEST_F(MergeTest, PoolsBatchesAsTheHandFormulaSays) {
-  SimulationOutput one, two;
+  TransportOutput one, two;
   const fs::path a = write("a.h5", spec(1, 4), &one);
   const fs::path b = write("b.h5", spec(2, 6), &two);
   const MergeSummary summary = merge_simulation_files({a, b}, directory_ / "merged.h5", "merge");
@@ -143,7 +143,7 @@ TEST_F(MergeTest, PoolsBatchesAsTheHandFormulaSays) {
 
 TEST_F(MergeTest, RefusesMismatchedParametersGridsTalliesAndSeeds) {
   const fs::path a = write("a.h5", spec(1, 4));
-  SimulationSpec albedo = spec(2, 4), grid = spec(3, 4), tallies = spec(4, 4);
+  InfiniteMediumSpec albedo = spec(2, 4), grid = spec(3, 4), tallies = spec(4, 4);
   albedo.medium.albedo = 0.6;
   grid.grid.z.bins = 20;
   tallies.tallies.flux = false;
@@ -158,8 +158,8 @@ TEST_F(MergeTest, RefusesMismatchedParametersGridsTalliesAndSeeds) {
 // FILES, nothing written.
 TEST_F(MergeTest, RefusesPartialInconsistentAndUnknownInputs) {
   const fs::path a = write("a.h5", spec(1, 4));
-  const SimulationSpec b = spec(2, 4);
-  const SimulationOutput out = simulate(b);
+  const InfiniteMediumSpec b = spec(2, 4);
+  const TransportOutput out = run_infinite_medium(b);
   const auto written = [&](const std::string& name, std::uint64_t photons,
                            std::optional<std::uint64_t> batches_done) {
     const fs::path path = directory_ / name;

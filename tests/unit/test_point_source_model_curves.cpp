@@ -15,8 +15,8 @@
 namespace scatterlab {
 namespace {
 
-SimulationSpec point_source(double albedo, double g) {
-  SimulationSpec spec;
+InfiniteMediumSpec point_source(double albedo, double g) {
+  InfiniteMediumSpec spec;
   spec.set_source(SourceKind::point);
   spec.medium.albedo = albedo;
   spec.medium.g = g;
@@ -25,7 +25,7 @@ SimulationSpec point_source(double albedo, double g) {
 }
 
 // The fluence_spherical tally of such a run, as transport hands it over (values do not matter).
-std::vector<TallyResult> tallies_of(const SimulationSpec& spec, const std::string& units) {
+std::vector<TallyResult> tallies_of(const InfiniteMediumSpec& spec, const std::string& units) {
   const std::size_t shells = static_cast<std::size_t>(spec.grid.rho.bins);
   return {{"fluence_spherical",
            {"rho"},
@@ -37,7 +37,7 @@ std::vector<TallyResult> tallies_of(const SimulationSpec& spec, const std::strin
 }
 
 TEST(PointSourceModelCurves, TheThreeModelsOnTheRunsShells) {
-  const SimulationSpec spec = point_source(0.7, 0.0);
+  const InfiniteMediumSpec spec = point_source(0.7, 0.0);
   const auto models = point_source_model_curves(spec, tallies_of(spec, "W mfp^-2 per W incident"));
   ASSERT_EQ(models.size(), 3u);
   for (const ModelResult& m : models) {
@@ -57,7 +57,7 @@ TEST(PointSourceModelCurves, TheThreeModelsOnTheRunsShells) {
 
 TEST(PointSourceModelCurves, InTheRunsLengthUnit) {
   // sigma_t = 2 / mm: the shell [0.5, 1) mm is [1, 2) mfp, and 1 mfp^-2 is 4 mm^-2.
-  SimulationSpec spec = point_source(0.9, 0.0);
+  InfiniteMediumSpec spec = point_source(0.9, 0.0);
   spec.medium.sigma_t = 2.0;
   spec.medium.length_unit = "mm";
   spec.grid.rho = {0.0, 2.0, 4};
@@ -71,7 +71,7 @@ TEST(PointSourceModelCurves, ANoteWhereTheModelsDoNotHold) {
   for (const auto& [spec, field] :
        {std::pair{point_source(0.7, 0.5), std::string("g")},
         std::pair{point_source(0.7, 0.0), std::string("escape radius")}}) {
-    SimulationSpec run = spec;
+    InfiniteMediumSpec run = spec;
     if (field == "escape radius") run.run.escape_radius = 3.0;
     const auto models = point_source_model_curves(run, tallies_of(run, "W mfp^-2 per W incident"));
     ASSERT_EQ(models.size(), 3u) << field;
@@ -83,7 +83,7 @@ TEST(PointSourceModelCurves, ANoteWhereTheModelsDoNotHold) {
 }
 
 TEST(PointSourceModelCurves, NoneForTheBeam) {
-  SimulationSpec beam;
+  InfiniteMediumSpec beam;
   beam.medium.g = 0.0;
   EXPECT_TRUE(point_source_model_curves(beam, tallies_of(point_source(0.5, 0.0), "")).empty());
 }

@@ -24,7 +24,7 @@ using testing::SceneOf;
 const std::filesystem::path scenes_dir =
     std::filesystem::path(SCATTERLAB_SOURCE_DIR) / "data" / "scenes";
 
-void expect_same_spec(const SimulationSpec& a, const SimulationSpec& b) {
+void expect_same_spec(const InfiniteMediumSpec& a, const InfiniteMediumSpec& b) {
   EXPECT_EQ(a.medium.albedo, b.medium.albedo);
   EXPECT_EQ(a.medium.sigma_t, b.medium.sigma_t);
   EXPECT_EQ(a.medium.g, b.medium.g);
@@ -49,8 +49,8 @@ void expect_same_spec(const SimulationSpec& a, const SimulationSpec& b) {
   EXPECT_EQ(a.run.escape_radius, b.run.escape_radius);
 }
 
-SceneOf<SimulationSpec> parse(std::string_view text) {
-  return read_as<SimulationSpec>(text, "test.toml");
+SceneOf<InfiniteMediumSpec> parse(std::string_view text) {
+  return read_as<InfiniteMediumSpec>(text, "test.toml");
 }
 
 // The error parsing `text` raises; fails the test when there is none.
@@ -72,8 +72,8 @@ std::string message_of(std::string_view text) {
   return error_of(text).what();
 }
 
-TEST(SimulationSpec, DefaultsAreThePapersCase) {
-  const SimulationSpec spec;
+TEST(InfiniteMediumSpec, DefaultsAreThePapersCase) {
+  const InfiniteMediumSpec spec;
   EXPECT_EQ(spec.medium.albedo, 0.5);
   EXPECT_EQ(spec.medium.g, 0.9);
   EXPECT_EQ(spec.medium.sigma_t, 1.0);
@@ -86,16 +86,16 @@ TEST(SimulationSpec, DefaultsAreThePapersCase) {
   EXPECT_NO_THROW(spec.validate());
 }
 
-TEST(SimulationSpec, NamesOfEnums) {
+TEST(InfiniteMediumSpec, NamesOfEnums) {
   EXPECT_EQ(to_string(SourceKind::pencil_beam), "beam");
   EXPECT_EQ(to_string(SourceKind::point), "point");
   EXPECT_EQ(to_string(Estimator::collision), "collision");
   EXPECT_EQ(to_string(Estimator::track_length), "track_length");
 }
 
-TEST(SimulationSpec, ValidateNamesTheFirstBadField) {
+TEST(InfiniteMediumSpec, ValidateNamesTheFirstBadField) {
   const auto field_of_invalid = [](auto change) {
-    SimulationSpec spec;
+    InfiniteMediumSpec spec;
     change(spec);
     try {
       spec.validate();
@@ -104,35 +104,37 @@ TEST(SimulationSpec, ValidateNamesTheFirstBadField) {
     }
     return std::string("<none>");
   };
-  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.grid.r.min = 0.5; }), "grid.r.min");
-  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.grid.z.max = -1.0; }), "grid.z.max");
-  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.grid.theta.max = 3.0; }), "grid.theta.max");
-  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.grid.fold_phi = true; }), "grid.phi.max");
-  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.grid.rho.max = 0.0; }), "grid.rho.max");
-  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.grid.theta.bins = 100'001; }),
+  EXPECT_EQ(field_of_invalid([](InfiniteMediumSpec& s) { s.grid.r.min = 0.5; }), "grid.r.min");
+  EXPECT_EQ(field_of_invalid([](InfiniteMediumSpec& s) { s.grid.z.max = -1.0; }), "grid.z.max");
+  EXPECT_EQ(field_of_invalid([](InfiniteMediumSpec& s) { s.grid.theta.max = 3.0; }),
+            "grid.theta.max");
+  EXPECT_EQ(field_of_invalid([](InfiniteMediumSpec& s) { s.grid.fold_phi = true; }),
+            "grid.phi.max");
+  EXPECT_EQ(field_of_invalid([](InfiniteMediumSpec& s) { s.grid.rho.max = 0.0; }), "grid.rho.max");
+  EXPECT_EQ(field_of_invalid([](InfiniteMediumSpec& s) { s.grid.theta.bins = 100'001; }),
             "grid.theta.bins");
-  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) {
+  EXPECT_EQ(field_of_invalid([](InfiniteMediumSpec& s) {
               s.grid.r.bins = s.grid.z.bins = s.grid.theta.bins = s.grid.phi.bins = 200;
             }),
             "grid");
-  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) {
+  EXPECT_EQ(field_of_invalid([](InfiniteMediumSpec& s) {
               s.run.batches = 11;
               s.run.photons = 10;
             }),
             "run.batches");
-  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.run.threads = -1; }), "run.threads");
-  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.run.escape_radius = 0.0; }),
+  EXPECT_EQ(field_of_invalid([](InfiniteMediumSpec& s) { s.run.threads = -1; }), "run.threads");
+  EXPECT_EQ(field_of_invalid([](InfiniteMediumSpec& s) { s.run.escape_radius = 0.0; }),
             "run.escape_radius");
-  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.tallies.fluence_spherical = true; }),
+  EXPECT_EQ(field_of_invalid([](InfiniteMediumSpec& s) { s.tallies.fluence_spherical = true; }),
             "tallies.fluence_spherical");
-  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) {
+  EXPECT_EQ(field_of_invalid([](InfiniteMediumSpec& s) {
               s.tallies.radiance = s.tallies.fluence = s.tallies.flux = false;
             }),
             "tallies");
-  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) { s.medium.length_unit = "furlong"; }),
+  EXPECT_EQ(field_of_invalid([](InfiniteMediumSpec& s) { s.medium.length_unit = "furlong"; }),
             "medium.length_unit");
   // A huge radiance grid is fine when the radiance tally is off.
-  EXPECT_EQ(field_of_invalid([](SimulationSpec& s) {
+  EXPECT_EQ(field_of_invalid([](InfiniteMediumSpec& s) {
               s.grid.r.bins = s.grid.z.bins = s.grid.theta.bins = s.grid.phi.bins = 200;
               s.tallies.radiance = false;
             }),
@@ -141,7 +143,7 @@ TEST(SimulationSpec, ValidateNamesTheFirstBadField) {
 
 TEST(Scene, EmptyFileGivesTheDefaults) {
   const auto scene = parse("");
-  expect_same_spec(scene.spec, SimulationSpec{});
+  expect_same_spec(scene.spec, InfiniteMediumSpec{});
   EXPECT_FALSE(scene.output_path.has_value());
 }
 
@@ -182,7 +184,7 @@ TEST(Scene, EveryTableParses) {
     [output]
     path = "out/run.h5"
   )");
-  const SimulationSpec& spec = scene.spec;
+  const InfiniteMediumSpec& spec = scene.spec;
   EXPECT_EQ(spec.medium.albedo, 0.8);
   EXPECT_EQ(spec.medium.sigma_t, 2.5);
   EXPECT_EQ(spec.medium.g, -0.3);
@@ -348,11 +350,11 @@ TEST(Scene, SyntaxErrorGivesTheLine) {
 }
 
 TEST(Scene, ShippedScenesParse) {
-  const auto paper = load_as<SimulationSpec>(scenes_dir / "paper-beam.toml");
-  expect_same_spec(paper.spec, SimulationSpec{});
+  const auto paper = load_as<InfiniteMediumSpec>(scenes_dir / "paper-beam.toml");
+  expect_same_spec(paper.spec, InfiniteMediumSpec{});
   EXPECT_EQ(paper.output_path, "paper-beam.h5");
 
-  const auto point = load_as<SimulationSpec>(scenes_dir / "point-source.toml");
+  const auto point = load_as<InfiniteMediumSpec>(scenes_dir / "point-source.toml");
   EXPECT_EQ(point.spec.source, SourceKind::point);
   EXPECT_EQ(point.spec.medium.g, 0.0);
   EXPECT_EQ(point.spec.medium.albedo, 0.9);
@@ -395,7 +397,7 @@ TEST(Scene, SyntaxErrorInAFileNamesTheFile) {
 
 std::string searchlight_field_of(std::string_view text) {
   try {
-    read_as<SearchlightSpec>(text, "half.toml");
+    read_as<HalfSpaceSpec>(text, "half.toml");
   } catch (const InputError& error) {
     return error.field();
   }
@@ -404,8 +406,8 @@ std::string searchlight_field_of(std::string_view text) {
 }
 
 TEST(SearchlightScene, ShippedFileSpellsOutTheDefaults) {
-  const SceneOf<SearchlightSpec> scene = load_as<SearchlightSpec>(scenes_dir / "searchlight.toml");
-  const SearchlightSpec defaults;
+  const SceneOf<HalfSpaceSpec> scene = load_as<HalfSpaceSpec>(scenes_dir / "searchlight.toml");
+  const HalfSpaceSpec defaults;
   EXPECT_EQ(scene.spec.medium.albedo, defaults.medium.albedo);
   EXPECT_EQ(scene.spec.medium.g, defaults.medium.g);
   EXPECT_EQ(scene.spec.eta, defaults.eta);
@@ -421,7 +423,7 @@ TEST(SearchlightScene, ShippedFileSpellsOutTheDefaults) {
 }
 
 TEST(SearchlightScene, ReadsEveryTable) {
-  const SceneOf<SearchlightSpec> scene = read_as<SearchlightSpec>(
+  const SceneOf<HalfSpaceSpec> scene = read_as<HalfSpaceSpec>(
       "[medium]\nalbedo = 0.8\ng = -0.3\n[surface]\neta = 2.5\n[source]\nincidence_deg = 40\n"
       "[grid]\nr = { max = 4, bins = 8 }\nz = { max = 2, bins = 4 }\ntheta_o = { bins = 9 }\n"
       "[tallies]\nfluence = false\n[run]\nphotons = 1e4\nbatches = 8\n",
@@ -469,7 +471,7 @@ TEST(Scene, MaterialSetsTheMediumInItsUnit) {
       "[medium]\nmaterial = \"apple\"\nchannel = [\"red\", \"green\", \"blue\"]\n", "t");
   ASSERT_EQ(sweep.size(), 3u);
   EXPECT_EQ(sweep[2].label, "channel=blue");
-  EXPECT_NEAR(std::get<SimulationSpec>(sweep[2].scene.spec).medium.sigma_a(), 0.046, 1e-12);
+  EXPECT_NEAR(std::get<InfiniteMediumSpec>(sweep[2].scene.spec).medium.sigma_a(), 0.046, 1e-12);
 }
 
 TEST(Scene, MaterialBadInputNamesTheField) {
@@ -487,14 +489,14 @@ TEST(Scene, MaterialBadInputNamesTheField) {
 
 // The searchlight takes the material's eta unless the scene gives one.
 TEST(SearchlightScene, MaterialBringsItsEtaAndUnit) {
-  const SceneOf<SearchlightSpec> milk = read_as<SearchlightSpec>(
+  const SceneOf<HalfSpaceSpec> milk = read_as<HalfSpaceSpec>(
       "[medium]\nmaterial = \"regular_milk\"\nchannel = \"red\"\n[grid]\nr = { max = 20 }\n", "t");
   EXPECT_DOUBLE_EQ(milk.spec.eta, 1.33);
   EXPECT_FALSE(milk.eta_given);
   EXPECT_EQ(milk.spec.medium.length_unit, "mm");
   EXPECT_DOUBLE_EQ(milk.spec.medium.g, 0.75);
   EXPECT_EQ(milk.spec.grid.r.max, 20.0);
-  const SceneOf<SearchlightSpec> matched = read_as<SearchlightSpec>(
+  const SceneOf<HalfSpaceSpec> matched = read_as<HalfSpaceSpec>(
       "[medium]\nmaterial = \"apple\"\nchannel = \"red\"\n[geometry]\neta = 1.0\n", "t");
   EXPECT_DOUBLE_EQ(matched.spec.eta, 1.0);
   EXPECT_TRUE(matched.eta_given);
@@ -507,19 +509,19 @@ TEST(GeometryTable, ChoosesTheGeometryOnce) {
   const auto spec_of = [](std::string_view text, std::string_view default_geometry) {
     return parse_scene(text, "test.toml", Validation::on_read, default_geometry).spec;
   };
-  EXPECT_TRUE(std::holds_alternative<SimulationSpec>(spec_of("", "infinite")));
-  EXPECT_TRUE(std::holds_alternative<SearchlightSpec>(spec_of("", "half_space")));
-  EXPECT_TRUE(std::holds_alternative<SimulationSpec>(
+  EXPECT_TRUE(std::holds_alternative<InfiniteMediumSpec>(spec_of("", "infinite")));
+  EXPECT_TRUE(std::holds_alternative<HalfSpaceSpec>(spec_of("", "half_space")));
+  EXPECT_TRUE(std::holds_alternative<InfiniteMediumSpec>(
       spec_of("[geometry]\ntype = \"infinite\"\n", "half_space")));
-  EXPECT_TRUE(std::holds_alternative<SearchlightSpec>(
+  EXPECT_TRUE(std::holds_alternative<HalfSpaceSpec>(
       spec_of("[geometry]\ntype = \"half_space\"\n", "infinite")));
   EXPECT_TRUE(std::holds_alternative<LitObjectSpec>(
       spec_of("[geometry]\ntype = \"sphere\"\n", "half_space")));
   EXPECT_EQ(field_of("[geometry]\ntype = \"cube\"\n"), "geometry.type");
   EXPECT_EQ(field_of("[geometry]\neta = 1.3\n"), "geometry.eta");  // no surface to have an index
 
-  const SceneOf<SearchlightSpec> half =
-      read_as<SearchlightSpec>("[geometry]\ntype = \"half_space\"\neta = 1.45\n", "half.toml");
+  const SceneOf<HalfSpaceSpec> half =
+      read_as<HalfSpaceSpec>("[geometry]\ntype = \"half_space\"\neta = 1.45\n", "half.toml");
   EXPECT_EQ(half.spec.eta, 1.45);
   EXPECT_EQ(searchlight_field_of("[geometry]\neta = 0\n"), "geometry.eta");
   EXPECT_EQ(searchlight_field_of("[geometry]\neta = 1.3\n[surface]\neta = 1.4\n"), "surface.eta");
@@ -530,13 +532,13 @@ TEST(SceneValidation, ByTheCallerLeavesAPartialSpecToBeFilledIn) {
   // (the command line reads with on_read: its scene files must be valid on their own).
   EXPECT_EQ(field_of("[medium]\nalbedo = 1\n"), "run.escape_radius");
   auto scene =
-      read_as<SimulationSpec>("[medium]\nalbedo = 1\n", "scene.toml", Validation::by_caller);
+      read_as<InfiniteMediumSpec>("[medium]\nalbedo = 1\n", "scene.toml", Validation::by_caller);
   EXPECT_THROW(scene.spec.validate(), InputError);
   scene.spec.run.escape_radius = 5.0;
   EXPECT_NO_THROW(scene.spec.validate());
 
-  SceneOf<SearchlightSpec> half =
-      read_as<SearchlightSpec>("[medium]\nalbedo = 1\n", "half.toml", Validation::by_caller);
+  SceneOf<HalfSpaceSpec> half =
+      read_as<HalfSpaceSpec>("[medium]\nalbedo = 1\n", "half.toml", Validation::by_caller);
   half.spec.run.escape_radius = 5.0;
   EXPECT_NO_THROW(half.spec.validate());
   // Reading errors are not validation: they stop the read either way.

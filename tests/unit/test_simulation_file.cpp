@@ -39,8 +39,8 @@ class SimulationFileTest : public test_support::ScratchDirectoryTest {
   }
 };
 
-SimulationSpec small_spec() {
-  SimulationSpec spec;
+InfiniteMediumSpec small_spec() {
+  InfiniteMediumSpec spec;
   spec.medium = Medium{0.8, 2.0, 0.9, "mm"};
   spec.source = SourceKind::point;
   spec.grid.r = {0.0, 1.5, 3};
@@ -106,7 +106,7 @@ Provenance small_provenance() {
 
 TEST_F(SimulationFileTest, RoundTripKeepsLayoutValuesAndAttributes) {
   const fs::path path = directory_ / "run.h5";
-  const SimulationSpec spec = small_spec();
+  const InfiniteMediumSpec spec = small_spec();
   const std::vector<TallyResult> tallies = small_tallies();
   write_simulation_file(path, spec, tallies, small_provenance());
 
@@ -192,7 +192,7 @@ TEST_F(SimulationFileTest, RoundTripKeepsLayoutValuesAndAttributes) {
 // attachments themselves are read back by xarray in tests/python.
 TEST_F(SimulationFileTest, TallyDimensionsHaveScalesOfBinCentres) {
   const fs::path path = directory_ / "run.h5";
-  const SimulationSpec spec = small_spec();
+  const InfiniteMediumSpec spec = small_spec();
   std::vector<TallyResult> tallies = small_tallies();
   tallies.push_back(array_tally("flux", {"r", "z", "component"}, {3, 4, 2}));
   write_simulation_file(path, spec, tallies, small_provenance());
@@ -221,7 +221,7 @@ TEST_F(SimulationFileTest, TallyDimensionsHaveScalesOfBinCentres) {
 
 TEST_F(SimulationFileTest, DefaultsOmitInfiniteEscapeRadiusAndName) {
   const fs::path path = directory_ / "defaults.h5";
-  SimulationSpec spec;
+  InfiniteMediumSpec spec;
   spec.medium.g = 0.0;
   write_simulation_file(path, spec, {scalar_tally("absorbed", 1.0, 0.0)}, small_provenance());
 
@@ -240,7 +240,7 @@ TEST_F(SimulationFileTest, DefaultsOmitInfiniteEscapeRadiusAndName) {
 
 TEST_F(SimulationFileTest, PaperSizedRadianceRoundTripsThroughCompression) {
   const fs::path path = directory_ / "large.h5";
-  const SimulationSpec spec;  // the paper's grid: 15 x 40 x 18 x 36 bins
+  const InfiniteMediumSpec spec;  // the paper's grid: 15 x 40 x 18 x 36 bins
   const TallyResult radiance = array_tally(
       "radiance", {"r", "z", "theta", "phi"},
       {static_cast<std::size_t>(spec.grid.r.bins), static_cast<std::size_t>(spec.grid.z.bins),

@@ -25,18 +25,18 @@ TEST(Sweep, EveryCombinationInFileOrderLastFastest) {
   EXPECT_EQ(labels(points),
             (std::vector<std::string>{"albedo=0.5_g=0", "albedo=0.5_g=0.9", "albedo=0.5_g=-0.3",
                                       "albedo=0.9_g=0", "albedo=0.9_g=0.9", "albedo=0.9_g=-0.3"}));
-  EXPECT_EQ(std::get<SimulationSpec>(points[4].scene.spec).medium.albedo, 0.9);
-  EXPECT_EQ(std::get<SimulationSpec>(points[4].scene.spec).medium.g, 0.9);
-  EXPECT_EQ(std::get<SimulationSpec>(points[5].scene.spec).medium.g, -0.3);
+  EXPECT_EQ(std::get<InfiniteMediumSpec>(points[4].scene.spec).medium.albedo, 0.9);
+  EXPECT_EQ(std::get<InfiniteMediumSpec>(points[4].scene.spec).medium.g, 0.9);
+  EXPECT_EQ(std::get<InfiniteMediumSpec>(points[5].scene.spec).medium.g, -0.3);
   for (const SweepPoint& point : points)
-    EXPECT_EQ(std::get<SimulationSpec>(point.scene.spec).run.photons, 10000u);
+    EXPECT_EQ(std::get<InfiniteMediumSpec>(point.scene.spec).run.photons, 10000u);
 }
 
 TEST(Sweep, FileWithoutListsIsOnePointWithoutLabel) {
   const auto points = parse_sweep("[medium]\nalbedo = 0.7\n", "one.toml");
   ASSERT_EQ(points.size(), 1u);
   EXPECT_EQ(points[0].label, "");
-  EXPECT_EQ(std::get<SimulationSpec>(points[0].scene.spec).medium.albedo, 0.7);
+  EXPECT_EQ(std::get<InfiniteMediumSpec>(points[0].scene.spec).medium.albedo, 0.7);
 }
 
 TEST(Sweep, KeysSharingTheirLastPartAreLabelledInFull) {
@@ -101,8 +101,8 @@ TEST(Sweep, EveryGeometrySweepsItsOwnKeys) {
   const auto half = parse_sweep("[geometry]\neta = [1, 1.3]\n[source]\nincidence_deg = [0, 60]\n",
                                 "half.toml", Validation::on_read, "half_space");
   ASSERT_EQ(half.size(), 4u);
-  EXPECT_EQ(std::get<SearchlightSpec>(half[3].scene.spec).incidence_deg, 60.0);
-  EXPECT_EQ(std::get<SearchlightSpec>(half[3].scene.spec).eta, 1.3);
+  EXPECT_EQ(std::get<HalfSpaceSpec>(half[3].scene.spec).incidence_deg, 60.0);
+  EXPECT_EQ(std::get<HalfSpaceSpec>(half[3].scene.spec).eta, 1.3);
 }
 
 // A key whose value is a vector is one value as a list of numbers, and is swept by a list of

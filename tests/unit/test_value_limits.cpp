@@ -80,25 +80,25 @@ TEST(ValueLimits, SeedsAreWhatATomlIntegerHolds) {
 }
 
 TEST(ValueLimits, GridsWhoseBinsUnderflowOrOverflowAreRefused) {
-  SimulationSpec spec;
+  InfiniteMediumSpec spec;
   EXPECT_EQ(field_of([&] { spec.validate(); }), "");
   spec.grid.r.max = 1e-300;  // rings of zero area: NaN fluence
   EXPECT_EQ(field_of([&] { spec.validate(); }), "grid.r.max");
   spec.grid.r.max = 1e13;
   EXPECT_EQ(field_of([&] { spec.validate(); }), "grid.r.max");
-  spec = SimulationSpec{};
+  spec = InfiniteMediumSpec{};
   spec.grid.z.min = -1e308;  // bins of infinite width
   spec.grid.z.max = 1e308;
   EXPECT_EQ(field_of([&] { spec.validate(); }), "grid.z.min");
-  spec = SimulationSpec{};
+  spec = InfiniteMediumSpec{};
   spec.grid.rho.max = 1e-200;  // shells of zero volume
   EXPECT_EQ(field_of([&] { spec.validate(); }), "grid.rho.max");
 
-  SearchlightSpec half;
+  HalfSpaceSpec half;
   EXPECT_EQ(field_of([&] { half.validate(); }), "");
   half.grid.r.max = 1e-300;
   EXPECT_EQ(field_of([&] { half.validate(); }), "grid.r.max");
-  half = SearchlightSpec{};
+  half = HalfSpaceSpec{};
   half.grid.z.max = 1e300;
   EXPECT_EQ(field_of([&] { half.validate(); }), "grid.z.max");
 }
@@ -122,7 +122,7 @@ TEST(ValueLimits, AnEscapeRadiusThatOverflowsInMfpIsRefused) {
   EXPECT_EQ(field_of([&] { check_escape_radius_span(1e300, mm); }), "run.escape_radius");
   EXPECT_EQ(field_of([&] { check_escape_radius_span(1e290, mm); }), "");
   EXPECT_EQ(field_of([&] { check_escape_radius_span(HUGE_VAL, mm); }), "");  // none: inf
-  SimulationSpec spec;
+  InfiniteMediumSpec spec;
   spec.medium = Medium{1.0, 1e10, 0.0, "mm"};
   spec.run.escape_radius = 1e300;
   EXPECT_EQ(field_of([&] { spec.validate(); }), "run.escape_radius");

@@ -85,7 +85,7 @@ enum class Validation { on_read, by_caller };
 
 // One geometry's spec, the alternative geometry.type chose: the infinite medium, the half-space,
 // a lit object (a sphere, or a mesh) or a layered slab.
-using SceneSpec = std::variant<SimulationSpec, SearchlightSpec, LitObjectSpec, LayeredSlabSpec>;
+using SceneSpec = std::variant<InfiniteMediumSpec, HalfSpaceSpec, LitObjectSpec, LayeredSlabSpec>;
 
 // The geometry.type values ("sphere" and "mesh" are both a LitObjectSpec).
 inline constexpr std::array<std::string_view, 5> scene_geometries = {"infinite", "half_space",

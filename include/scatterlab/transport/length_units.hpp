@@ -5,7 +5,7 @@
 // medium.length_unit: "mfp" (the default, sigma_t = 1) or a physical unit ("um", "mm", "cm",
 // "m"). Transport always runs in mean free paths: a length L in the spec's unit is L sigma_t mfp
 // (1 mfp = 1 / sigma_t). So the specs' transport_problem scales their lengths by sigma_t on the
-// way in, and simulate / run_searchlight convert each tally on the way out by its length
+// way in, and simulate / run_half_space convert each tally on the way out by its length
 // dimension k (the power of "mfp" in its units string): a value q per mfp^k is q sigma_t^-k per
 // unit^k. In "mfp" nothing is scaled, so those runs are bit for bit what they always were.
 

@@ -20,7 +20,7 @@ namespace scatterlab {
 
 // Bins of the half-space tallies. The defaults reach ~10 mfp, where R_d(r) of an albedo-0.99
 // medium has fallen by about four decades: enough for the log plots that compare models.
-struct SearchlightGrid {
+struct HalfSpaceGrid {
   UniformAxis r{0.0, 10.0, 200};  // distance from the entry point
   UniformAxis z{0.0, 10.0, 100};  // depth below the surface
   UniformAxis theta_o{0.0, 0.5 * std::numbers::pi,
@@ -31,7 +31,7 @@ struct SearchlightGrid {
   UniformAxis y{-5.0, 5.0, 100};
 };
 
-struct SearchlightTallies {
+struct HalfSpaceTallies {
   // phi(r, z) by the collision estimator costs a bin lookup per event; the surface tallies
   // (R_d(r), exitant radiance, totals) cost one per exit and are always on.
   bool fluence = true;
@@ -40,19 +40,19 @@ struct SearchlightTallies {
   bool exitance_map = false;
 };
 
-// The relative indices a searchlight accepts (SearchlightSpec::validate).
+// The relative indices a searchlight accepts (HalfSpaceSpec::validate).
 inline constexpr double min_eta = 0.1;
 inline constexpr double max_eta = 10.0;
 
-struct SearchlightSpec {
+struct HalfSpaceSpec {
   // Defaults: a nearly conservative isotropic medium (albedo 0.99, g = 0), the regime the
   // diffusion models are built for, behind the interface index 1.3 that Jensen et al. 2001 use
   // for all their measured materials.
   Medium medium{0.99, 1.0, 0.0, "mfp"};
   double eta = 1.3;            // relative index n_medium / n_outside, in [min_eta, max_eta]
   double incidence_deg = 0.0;  // angle of the beam from the inward normal, in [0, 90)
-  SearchlightGrid grid;
-  SearchlightTallies tallies;
+  HalfSpaceGrid grid;
+  HalfSpaceTallies tallies;
   RunSettings run{10'000'000, 64, 1, 0};
   std::optional<MaterialOrigin> material;  // set when the medium came from a measured table
 
@@ -62,19 +62,16 @@ struct SearchlightSpec {
 
 // What shapes the tallies (medium, interface, beam, grid, tallies, run): equal for a run and its
 // resumption, different for any other run (run_settings.hpp, fingerprint_of).
-std::string fingerprint(const SearchlightSpec& spec);
-
-using SearchlightOutput = TransportOutput;
+std::string fingerprint(const HalfSpaceSpec& spec);
 
 // The engine's problem for this spec: the half-space geometry, the refracted beam, the declared
 // tallies (per unit incident power: scaled by the power that entered) and the run.
-TransportProblem transport_problem(const SearchlightSpec& spec);
+TransportProblem transport_problem(const HalfSpaceSpec& spec);
 
 // Runs the spec on the transport engine. Bitwise identical for any number of threads and ranks, and
 // when resumed (batch_runner.hpp); `control` carries the ranks, checkpoints and stop requests. Only
 // the root rank gets tallies.
-SearchlightOutput run_searchlight(const SearchlightSpec& spec,
-                                  const ProgressCallback& progress = {},
-                                  const RunControl& control = {});
+TransportOutput run_half_space(const HalfSpaceSpec& spec, const ProgressCallback& progress = {},
+                               const RunControl& control = {});
 
 }  // namespace scatterlab

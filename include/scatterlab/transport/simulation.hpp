@@ -48,7 +48,7 @@ struct TallyRequest {
   Estimator estimator = Estimator::collision;
 };
 
-struct SimulationSpec {
+struct InfiniteMediumSpec {
   Medium medium;
   SourceKind source = SourceKind::pencil_beam;
   Grid grid;
@@ -70,7 +70,7 @@ struct SimulationSpec {
 // 16 hex digits naming everything that determines the tallies bit for bit: medium, source, grid,
 // tallies, photons, batches, seed and escape radius; not threads or ranks, which never change a
 // result. Checkpoints and sweeps use it to recognise the same run.
-std::string fingerprint(const SimulationSpec& spec);
+std::string fingerprint(const InfiniteMediumSpec& spec);
 
 std::string to_string(SourceKind source);
 

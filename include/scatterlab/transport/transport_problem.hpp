@@ -1,7 +1,7 @@
 #pragma once
 // What the transport engine runs: one medium in one geometry, a source, the declared tallies
-// and how many photons. Every command's spec (the infinite medium's SimulationSpec, the
-// searchlight's SearchlightSpec) becomes one of these; the engine picks the one compiled kernel
+// and how many photons. Every command's spec (the infinite medium's InfiniteMediumSpec, the
+// searchlight's HalfSpaceSpec) becomes one of these; the engine picks the one compiled kernel
 // it needs (engine.hpp). Lengths are in mean free paths (sigma_t = 1), but in a slab, whose layers
 // each have their own sigma_t, in the spec's length unit.
 
