@@ -58,8 +58,13 @@ void ProgressReporter::update(const BatchProgress& progress) {
   last_ = now;
   const double seconds = std::chrono::duration<double>(now - start_).count();
   const WorkPace photons{progress.photons_done, 0, progress.photons_resumed, seconds};
+  // Events per photon say why a run is slow: a nearly conservative medium's photons take 1e5.
+  const std::string events =
+      progress.events_per_photon > 0.0
+          ? fmt::format(", {:.3g} events/photon", progress.events_per_photon)
+          : "";
   report({progress.batches_done, progress.batches, progress.batches_resumed, seconds},
-         fmt::format(", {:.2g} photons/s", photons.units_per_second()));
+         fmt::format(", {:.2g} photons/s{}", photons.units_per_second(), events));
 }
 
 void ProgressReporter::report(const WorkPace& pace, const std::string& rate) {

@@ -4,7 +4,7 @@
 // (batch jobs, `| tee`, cluster logs) one plain line as it starts, then one every --log-interval
 // seconds, e.g.
 //
-//   simulate: 12/64 batches, 1.9e6 photons/s, 41 s elapsed, ETA 3 min
+//   simulate: 12/64 batches, 1.9e6 photons/s, 38.2 events/photon, 41 s elapsed, ETA 3 min
 //
 // Rates and the ETA count this process's work only (core/work_pace.hpp): after --resume, the
 // batches done by the earlier run are neither fast nor slow. update() costs a clock read unless
@@ -32,7 +32,7 @@ class ProgressReporter {
   // 10 s"), so that a log shows at once that the job runs and how much it holds.
   void start(std::uint64_t done, std::uint64_t total);
   void update(std::uint64_t done, std::uint64_t total);
-  // Batches, with photons per second.
+  // Batches, with photons per second and scattering events per photon.
   void update(const BatchProgress& progress);
   void finish();  // clears the bar
 

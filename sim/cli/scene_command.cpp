@@ -27,6 +27,7 @@
 #include "run_figures.hpp"
 #include "run_options.hpp"
 #include "scatterlab/core/error.hpp"
+#include "scatterlab/core/work_pace.hpp"
 #include "scatterlab/io/output_plan.hpp"
 #include "scatterlab/io/scene.hpp"
 #include "scatterlab/io/scene_schema.hpp"
@@ -507,6 +508,26 @@ int run_one(PlannedRun run, const std::string& command, const SceneOptions& o,
       });
 }
 
+// A run that may take long says so before it starts. The time is at a cost per event typical of
+// the lane walk on one core (the README's benchmarks: 8-25 ns; the one-photon walk's 30-130).
+constexpr double typical_ns_per_event = 20.0;
+constexpr double long_run_seconds = 600.0;
+
+void warn_if_long(const std::string& command, const PlannedRun& run, int ranks) {
+  const TransportProblem problem = transport_problem(run.spec);
+  const double per_photon = events_per_photon_bound(problem);
+  const double events = per_photon * static_cast<double>(problem.run.photons);
+  const int threads = batch_threads(problem.run) * ranks;
+  const double seconds = events * typical_ns_per_event * 1e-9 / threads;
+  if (!std::isfinite(seconds) || seconds < long_run_seconds) return;
+  fmt::print(stderr,
+             "{}: {} may take long: up to {:.3g} events a photon (albedo {}), {:.3g} in all, "
+             "about {} at {:g} ns an event on {} thread{}; fewer photons, a lower albedo or a "
+             "smaller run.escape_radius shorten it\n",
+             command, run.output.string(), per_photon, problem.albedo, events,
+             duration_text(seconds), typical_ns_per_event, threads, threads == 1 ? "" : "s");
+}
+
 int run_scene_command(const CLI::App& command, const SceneOptions& o, const std::string& name,
                       std::string_view default_geometry, const LongRunOptions& long_run,
                       double log_interval, const std::string& command_line, World& world) {
@@ -516,6 +537,9 @@ int run_scene_command(const CLI::App& command, const SceneOptions& o, const std:
   // Every run's memory before any starts (engine.hpp): a sweep is refused whole, not halfway.
   for (const PlannedRun& run : runs) {
     check_transport_memory(transport_problem(run.spec), world.size(), long_run.resume);
+  }
+  if (world.is_root()) {
+    for (const PlannedRun& run : runs) warn_if_long(name, run, world.size());
   }
   OutputPlan plan;
   if (!o.scene.empty()) plan.input("--scene", o.scene);

@@ -301,10 +301,22 @@ class BatchScheduler {
         fold_batch(b, group_sums + (b - first) * slice_);
       }
       scatterings_ += batch_scatterings;
+      // This rank's own batch of the group, for the events per photon of the progress line.
+      if (const std::uint64_t own = first + rank_; own < end_of_group) {
+        const BatchRange range = batch_range(photons_, batches_, own);
+        own_photons_ += range.last - range.first;
+        own_events_ += batch_scatterings;
+      }
       done_ = end_of_group;
       std::lock_guard<std::mutex> lock(progress_mutex_);
-      latest_ = {done_, batches_, start_, batch_range(photons_, batches_, done_).first,
-                 batch_range(photons_, batches_, start_).first};
+      latest_ = {done_,
+                 batches_,
+                 start_,
+                 batch_range(photons_, batches_, done_).first,
+                 batch_range(photons_, batches_, start_).first,
+                 own_photons_ > 0 ? static_cast<double>(own_events_) /
+                                        static_cast<double>(own_photons_)
+                                  : 0.0};
       unreported_ = true;
     }
     if (flags & kCheckpointFlag) checkpoint();
@@ -510,6 +522,7 @@ class BatchScheduler {
   std::vector<double> received_;  // a group's slices from every rank
   std::vector<std::size_t> receive_counts_;
   std::uint64_t scatterings_ = 0;
+  std::uint64_t own_photons_ = 0, own_events_ = 0;  // this rank's batches folded by this process
   // This process's time in the walk, summed over threads, and its events (ring_mutex_).
   double walk_seconds_ = 0.0;
   std::uint64_t walk_events_ = 0;

@@ -6,6 +6,7 @@
 #include "scatterlab/transport/half_space.hpp"
 #include "scatterlab/transport/infinite_medium.hpp"
 #include "scatterlab/transport/kernel.hpp"
+#include "scatterlab/transport/run_settings.hpp"
 #include "scatterlab/transport/slab.hpp"
 #include "scatterlab/transport/sphere.hpp"
 
@@ -82,6 +83,11 @@ MemoryEstimate transport_memory(const TransportProblem& problem, int ranks, bool
 void check_transport_memory(const TransportProblem& problem, int ranks, bool resuming) {
   check_memory(transport_memory(problem, ranks, resuming), problem.size_fields,
                "fewer bins or tallies, or fewer threads");
+}
+
+double events_per_photon_bound(const TransportProblem& problem) {
+  if (problem.geometry == GeometryKind::slab) return 0.0;
+  return expected_events_per_photon(problem.albedo, problem.run.escape_radius);
 }
 
 TransportOutput transport(const TransportProblem& problem, const ProgressCallback& progress,

@@ -8,7 +8,8 @@
 #   read), and --memory-limit values that are not sizes;
 #   files whose datasets declare more than the file holds (8 TB in a few kB);
 #   photon counts past 2^53, albedo 1 with an escape radius of 1e30 mfp and albedos so near 1 that
-#   the run would take years, sweeps of millions of points.
+#   the run would take years, sweeps of millions of points; a run of a quarter of an hour says so
+#   before it starts.
 # And a run within the limit still runs; an allocation that fails anyway is one line, exit 1.
 set -u
 exe=$(realpath "$1")
@@ -130,6 +131,16 @@ expect_refused "albedo 1 - 1e-10, 1e8 photons" run.photons \
   simulate --photons 1e8 --albedo 0.9999999999 --out t.h5
 expect_refused "albedo 1, escape radius 1e6 mfp, 1e8 photons" run.photons \
   simulate --photons 1e8 --albedo 1 --escape-radius 1e6 --out t.h5
+# Long but possible: albedo 1 - 1e-6 takes up to 1e6 events a photon, 2e11 for 2e5 photons, about
+# 17 min on 4 threads at 20 ns an event. It says so before it starts (its first line), then runs;
+# killed here after two seconds.
+timeout -s KILL 2 "$exe" searchlight --albedo 0.999999 --photons 2e5 --threads 4 --out long.h5 \
+  >long.out 2>long.err
+expected="searchlight: long.h5 may take long: up to 1e+06 events a photon (albedo 0.999999), "
+expected+="2e+11 in all, about 17 min at 20 ns an event on 4 threads"
+if [ "$(head -1 long.err | cut -c1-${#expected})" = "$expected" ]; then pass; else
+  fail "a long run's warning before it starts: $(head -3 long.err)"
+fi
 # 1000 x 1000 values: a million points, counted from the lists before one is made.
 {
   printf '[medium]\nalbedo = ['

@@ -10,7 +10,7 @@ source "$(dirname "$0")/harness.sh"
 
 # A second or more on one thread, in 24 batches.
 run=(simulate --photons 12000000 --batches 24 --threads 1 --seed 5 --theta-bins 6 --phi-bins 8)
-line='^simulate: [0-9]+/24 batches, [0-9.e+-]+ photons/s, [0-9.]+ (s|min|h) elapsed, ETA ([0-9.]+ (s|min|h)|--)$'
+line='^simulate: [0-9]+/24 batches, [0-9.e+-]+ photons/s, [0-9.e+-]+ events/photon, [0-9.]+ (s|min|h) elapsed, ETA ([0-9.]+ (s|min|h)|--)$'
 
 # Lines every 0.05 s, off a terminal (standard error is a file here): one as the run starts, then
 # a line after the first batch and after the first batch to end after each interval, so between
@@ -31,6 +31,17 @@ if [ "$(head -1 default.err)" = "simulate: 0/24 batches, started; a line every 1
   [ "$(tail -n +2 default.err | grep -cvE "$line")" -eq 0 ]; then pass; else
   fail "default progress: $(cat default.err)"; fi
 if grep -q "batches," logged.out; then fail "progress on standard output: $(cat logged.out)"; else pass; fi
+# Each line's events per photon is that of the batches done: within 1 % of the whole run's (the
+# summary's scattering events over its photons), with half a million photons a batch.
+if python3 - logged.out logged.err <<'PY'
+import re, sys
+summary, err = open(sys.argv[1]).read(), open(sys.argv[2]).read()
+m = re.search(r"([0-9]+) photons in .*?([0-9.e+]+) scattering events", summary)
+whole = float(m.group(2)) / float(m.group(1))
+lines = [float(v) for v in re.findall(r"([0-9.e+-]+) events/photon", err)]
+assert lines and all(abs(v / whole - 1) < 0.01 for v in lines), (whole, lines)
+PY
+then pass; else fail "events per photon of the progress lines against the summary's"; fi
 
 # 0: no lines.
 "$exe" "${run[@]}" --out quiet.h5 --log-interval 0 >quiet.out 2>quiet.err || fail "quiet run"

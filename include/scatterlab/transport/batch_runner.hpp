@@ -53,6 +53,8 @@ struct BatchProgress {
   std::uint64_t batches_resumed = 0;
   std::uint64_t photons_done = 0;
   std::uint64_t photons_resumed = 0;
+  // Scattering events per photon of the batches this process has folded (0 before the first).
+  double events_per_photon = 0.0;
 
   double fraction() const {
     return static_cast<double>(batches_done) / static_cast<double>(batches);

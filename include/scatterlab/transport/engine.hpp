@@ -53,6 +53,15 @@ MemoryEstimate transport_memory(const TransportProblem& problem, int ranks, bool
 // allocates; commands call it for every run they plan before any of them starts.
 void check_transport_memory(const TransportProblem& problem, int ranks, bool resuming);
 
+// At most how many events (collisions) a photon of `problem` takes on average, known before any
+// photon runs. Each collision absorbs a fraction 1 - albedo of what reaches it (analog
+// absorption), so a photon absorbed with probability A collides A / (1 - albedo) times on
+// average: at most 1 / (1 - albedo), reached in the infinite medium, whose escape radius bounds
+// it too (run_settings.hpp, expected_events_per_photon). Infinite at albedo 1 without an escape
+// radius. 0 for a slab, whose layers each have their albedo and whose implicit capture ends
+// photons by roulette: not estimated.
+double events_per_photon_bound(const TransportProblem& problem);
+
 // Bitwise identical for any thread and rank count, and when resumed (batch_runner.hpp).
 // Throws std::invalid_argument for a problem no kernel runs (the track-length estimator in a
 // geometry with a surface); specs validate their fields before they get here.
