@@ -25,11 +25,21 @@ constexpr double sqrt_two_pi = std::numbers::sqrt2 * sqrt_pi;
 // squared length; the grid's lengths scale with the extended source's depth 1 / sigma_t').
 //
 // Step h = ln q of the midpoint rule in u = ln t: its error falls as C exp(-pi^2 / h) (header).
-// Measured C (tests/unit/test_quantized_diffusion.cpp and albedos down to 0.01): ~100 for most
-// annuli, up to ~2e3 for the outermost annulus [5, 10] / sigma_t' of strongly absorbing media
-// (r sigma_tr ~ 12 makes the integrand peaked in u). h = pi^2 / ln(kSpectralMargin / eps) keeps
-// that part ~40 times below eps or more: q = 1.85, 1.61, 1.48 at eps = 1e-2, 1e-4, 1e-6.
+// Measured C (tests/unit/test_quantized_diffusion.cpp): ~100 for most annuli. h = pi^2 /
+// ln(kSpectralMargin / eps) keeps that part ~40 times below eps or more: q = 1.85, 1.61, 1.48 at
+// eps = 1e-2, 1e-4, 1e-6.
+//
+// Far from the beam in an absorbing medium the integrand is a narrow peak in u: at distance r,
+// F ~ exp(-r^2 / (4 D t) - sigma_a t) peaks where the two terms are equal, and there its second
+// derivative in u is -r sigma_tr (sigma_tr = sqrt(sigma_a / D)), so F is a Gaussian of variance
+// 1 / (r sigma_tr) in u, whose peak value exp(-r sigma_tr) is small against F elsewhere in the
+// strip. The rule's relative error on such a Gaussian is ~ 2 exp(-2 pi^2 / (h^2 r sigma_tr)) (the
+// same bound on the strip of half-width 2 pi / (h r sigma_tr), where it is least), which the step
+// above left at 13 eps on the ring [9.9, 10] / sigma_t' at albedo 0.01 (r sigma_tr = 17). So h is
+// also at most pi sqrt(2 / (X ln(kPeakMargin / eps))) with X = r_max sigma_tr: 0.01-0.03 eps on
+// every ring out to r_max, for a few more Gaussians (up to 135 at eps = 1e-4, from 121).
 constexpr double kSpectralMargin = 1e5;
+constexpr double kPeakMargin = 1e3;
 // The smallest annulus edge the accuracy is stated for, r_min = 1e-3 / sigma_t'. Below the
 // first node the rule is cut: [0, t_1') is one Gaussian (exact for the t^(-1/2) flux term, see
 // below), and the cut costs the midpoint rule an end correction h^2 / 24 F'(u_1') ~ h^2 / 48 F
@@ -141,7 +151,10 @@ QuantizedDiffusion quantized_diffusion(const HalfSpaceMedium& medium, double rel
 
   const double sigma_a = medium.sigma_a, d = m.diffusion;
   const double time_unit = 1.0 / (s * s * d);  // t = time_unit * tau
-  const double h = pi * pi / std::log(kSpectralMargin / relative_tolerance);
+  const double peak = kMaxRadius / s * std::sqrt(sigma_a / d);  // r_max sigma_tr
+  const double h =
+      std::min(pi * pi / std::log(kSpectralMargin / relative_tolerance),
+               pi * std::sqrt(2.0 / (peak * std::log(kPeakMargin / relative_tolerance))));
   const double ratio = std::exp(h);  // q
   const double tau_1 = (kMinRadius * relative_tolerance) * (kMinRadius * relative_tolerance);
   const double reach = (kMaxRadius + 1.0) / s + m.image_offset;

@@ -63,7 +63,9 @@
 // The sum stops once v >= 100 (11 / sigma_t' + d_e)^2 and the remaining total, bounded by
 // F(t) min(2 t, 1 / sigma_a) (the total's integrand falls as t^(-3/2) exp(-sigma_a t) there),
 // is below relative_tolerance / 8 of the continuum total. With eps = relative_tolerance:
-// h = pi^2 / ln(1e5 / eps) (q = 1.85, 1.61, 1.48 at eps = 1e-2, 1e-4, 1e-6) and
+// h = pi^2 / ln(1e5 / eps) (q = 1.85, 1.61, 1.48 at eps = 1e-2, 1e-4, 1e-6), or less in an
+// absorbing medium, whose far annuli need h <= pi sqrt(2 / (X ln(1e3 / eps))), X = 10 sigma_tr /
+// sigma_t' (the peak of their time integrand, quantized_diffusion.cpp), and
 // t_1 = (1e-3 eps)^2 / (sigma_t'^2 D) (the midpoint rule's end correction at t_1',
 // ~ h^2 / 48 F(t_1'), is then below eps / 100 of the innermost annulus stated below).
 //
@@ -71,13 +73,14 @@
 // 1e-3 / sigma_t', and the total, agree with that limit to `relative_tolerance`. Found by
 // tests/unit/test_quantized_diffusion.cpp (albedo 0.5-1, g 0-0.9, eta 1-1.5, edges 0-10 mfp):
 // worst 0.083 eps at eps = 1e-3 and 0.074 eps at 1e-4, both the total at albedo 1 (the cut
-// tail); annulus averages within 0.025 eps (albedos down to 0.01 too); fluence cell averages
-// within 4e-9 at eps = 1e-4. Beyond 10 / sigma_t' the accuracy is not stated.
+// tail); annulus averages within 0.03 eps, rings 0.1 / sigma_t' wide out to 10 / sigma_t' and
+// albedos down to 0.01 included (eps = 1e-2 to 1e-6); fluence cell averages within 4e-9 at
+// eps = 1e-4. Beyond 10 / sigma_t' the accuracy is not stated.
 //
-// Cost (Release, measured on a loaded 2-core machine): 54-65 Gaussians at eps = 1e-2, 88-121
-// at 1e-4, 131-194 at 1e-6; construction 2-10 us; a point value or the total 17-50 us (4 erfcx
-// per Gaussian); 8 annulus averages 35-130 us; a 3 x 3 grid of fluence cells 0.6-3 ms (an
-// adaptive z integral per Gaussian and z cell).
+// Cost (Release, measured on a loaded 2-core machine): 54-90 Gaussians at eps = 1e-2, 88-135
+// at 1e-4, 131-194 at 1e-6 (the most in strongly absorbing media); construction 2-10 us; a point
+// value or the total 17-50 us (4 erfcx per Gaussian); 8 annulus averages 35-130 us; a 3 x 3 grid
+// of fluence cells 0.6-3 ms (an adaptive z integral per Gaussian and z cell).
 //
 // Units as models/dipole.hpp: lengths in the medium's unit, R_d and phi in 1 / length^2 per
 // unit power entering the medium (multiply by the entry transmittance for a tally per unit
