@@ -53,6 +53,7 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
           {"half_space_convergence", report::half_space_convergence},
           {"half_space_extremes", report::half_space_extremes},
           {"half_space_models", report::half_space_model_accuracy},
+          {"model_continua", report::model_continua},
           {"lobe_fits", report::lobe_fit_accuracy},
           {"refractive_solver", report::refractive_solver_accuracy}});
   std::string names;

@@ -291,4 +291,50 @@ std::vector<double> quantized_diffusion_fluence_cell_average(const QuantizedDiff
   return average;
 }
 
+QuantizedDiffusionContinuum::QuantizedDiffusionContinuum(const HalfSpaceMedium& medium)
+    : s_(medium.reduced_sigma_t()),
+      strength_(medium.reduced_albedo() * medium.reduced_albedo()),
+      cutoff_(50.0 / s_),            // exp(-50) = 2e-22 of the sources lie deeper
+      base_(better_dipole(medium)),  // Grosjean's D and the better dipole's boundary
+      image_offset_(base_.image_height - base_.source_depth) {}  // 4 A D
+
+DipoleModel QuantizedDiffusionContinuum::at(double depth) const {
+  DipoleModel d = base_;
+  d.strength = 1.0;
+  d.source_depth = depth;
+  d.image_height = depth + image_offset_;
+  return d;
+}
+
+template <class F>
+double QuantizedDiffusionContinuum::depth_integral(F f, std::vector<double> breaks) const {
+  for (const double b : {0.0, cutoff_, 1.0 / s_, 5.0 / s_}) breaks.push_back(b);
+  std::erase_if(breaks, [this](double b) { return !(b >= 0.0 && b <= cutoff_); });
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+  QuadratureOptions options;
+  options.rel_tol = 1e-10;  // 1e-4 of the smallest relative_tolerance the sum accepts
+  options.abs_tol = 1e-300;
+  const auto g = [&](double z) { return strength_ * s_ * std::exp(-s_ * z) * f(z); };
+  return integrate_adaptive(g, breaks, options).value;
+}
+
+double QuantizedDiffusionContinuum::total() const {
+  return depth_integral([&](double z) { return dipole_total_reflectance(at(z)); }, {});
+}
+
+double QuantizedDiffusionContinuum::annulus_average(double r0, double r1) const {
+  const double integral =
+      depth_integral([&](double z) { return dipole_reflectance_annulus_integral(at(z), r0, r1); },
+                     {0.25 * r0, r0, 4.0 * r0, r1});
+  return integral / (pi * (r1 * r1 - r0 * r0));
+}
+
+double QuantizedDiffusionContinuum::fluence_cell_average(double r0, double r1, double z0,
+                                                         double z1) const {
+  const std::vector<double> re{r0, r1}, ze{z0, z1};
+  return depth_integral([&](double z) { return dipole_fluence_cell_average(at(z), re, ze)[0]; },
+                        {z0, z1, 0.5 * (z0 + z1), z1 + r1});
+}
+
 }  // namespace scatterlab

@@ -190,8 +190,7 @@ HWY_INLINE auto stays_inside(const HalfSpace<fresnel>&, const LaneWalk::Setup&, 
   return hn::Not(hn::Lt(z, hn::Zero(D())));
 }
 template <bool fresnel>
-HWY_INLINE auto stays_inside(const Sphere<fresnel>& sphere, const LaneWalk::Setup&, V x, V y,
-                             V z) {
+HWY_INLINE auto stays_inside(const Sphere<fresnel>& sphere, const LaneWalk::Setup&, V x, V y, V z) {
   const D d;
   const V r2 = hn::MulAdd(x, x, hn::MulAdd(y, y, hn::Mul(z, z)));
   return hn::Lt(r2, hn::Set(d, sphere.radius() * sphere.radius() * (1.0 - 1e-12)));
@@ -542,10 +541,12 @@ LaneWalk::LaneWalk(const LaneGeometry& geometry, const Scorer& scorer, const Sou
              estimator == Estimator::collision, seed, Weighting::analog} {
   refuse_track_length(estimator);
   if (std::holds_alternative<Slab>(geometry)) {
-    throw std::invalid_argument("LaneWalk: a layered slab takes the constructor with its weighting");
+    throw std::invalid_argument(
+        "LaneWalk: a layered slab takes the constructor with its weighting");
   }
   if (std::holds_alternative<ObjectBoundary>(geometry)) {
-    throw std::invalid_argument("LaneWalk: an object takes the constructor without a source (its light launches)");
+    throw std::invalid_argument(
+        "LaneWalk: an object takes the constructor without a source (its light launches)");
   }
   refuse_sphere_light_off_the_sphere(geometry, source);
 }

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "../../sim/models/erfcx.hpp"
+#include "models/erfcx.hpp"
 #include "scatterlab/core/constants.hpp"
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/quadrature.hpp"
@@ -22,60 +22,7 @@
 namespace scatterlab {
 namespace {
 
-// The continuum: first collisions at depth z' with density s exp(-s z') (s = sigma_t'), each a
-// better-dipole source of strength alpha'^2 at z' with its image at z' + d_e (header).
-struct Continuum {
-  double s = 1.0, strength = 0.0, cutoff = 50.0;
-  DipoleModel base;  // D, sigma_tr, C_phi, C_E of the better dipole
-  double image_offset = 0.0;
-
-  explicit Continuum(const HalfSpaceMedium& medium) {
-    s = medium.reduced_sigma_t();
-    strength = medium.reduced_albedo() * medium.reduced_albedo();
-    base = better_dipole(medium);  // Grosjean's D and the better dipole's boundary
-    image_offset = base.image_height - base.source_depth;  // 4 A D
-    cutoff = 50.0 / s;  // exp(-50) = 2e-22 of the sources lie deeper
-  }
-
-  DipoleModel at(double depth) const {
-    DipoleModel d = base;
-    d.strength = 1.0;
-    d.source_depth = depth;
-    d.image_height = depth + image_offset;
-    return d;
-  }
-
-  // int_0^cutoff alpha'^2 s exp(-s z') f(z') dz', breaking the range at the given depths.
-  template <class F>
-  double depth_integral(F f, std::vector<double> breaks) const {
-    for (const double b : {0.0, cutoff, 1.0 / s, 5.0 / s}) breaks.push_back(b);
-    std::erase_if(breaks, [this](double b) { return !(b >= 0.0 && b <= cutoff); });
-    std::sort(breaks.begin(), breaks.end());
-    breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
-    QuadratureOptions options;
-    options.rel_tol = 1e-10;  // 1e-6 of the smallest tolerance tested
-    options.abs_tol = 1e-300;
-    const auto g = [&](double z) { return strength * s * std::exp(-s * z) * f(z); };
-    return integrate_adaptive(g, breaks, options).value;
-  }
-
-  double total() const {
-    return depth_integral([&](double z) { return dipole_total_reflectance(at(z)); }, {});
-  }
-
-  double annulus_average(double r0, double r1) const {
-    const double integral =
-        depth_integral([&](double z) { return dipole_reflectance_annulus_integral(at(z), r0, r1); },
-                       {0.25 * r0, r0, 4.0 * r0, r1});
-    return integral / (pi * (r1 * r1 - r0 * r0));
-  }
-
-  double fluence_cell_average(double r0, double r1, double z0, double z1) const {
-    const std::vector<double> re{r0, r1}, ze{z0, z1};
-    return depth_integral([&](double z) { return dipole_fluence_cell_average(at(z), re, ze)[0]; },
-                          {z0, z1, 0.5 * (z0 + z1), z1 + r1});
-  }
-};
+using Continuum = QuantizedDiffusionContinuum;  // the independent evaluation
 
 double relative_error(double value, double reference) {
   return std::abs(value - reference) / std::abs(reference);

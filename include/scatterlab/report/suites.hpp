@@ -34,6 +34,11 @@ Section half_space_extremes(const Profile& profile);
 // and near / far errors, with the bound R_dr <= 1 checked.
 Section half_space_model_accuracy(const Profile& profile);
 
+// The models that approximate a continuum against it (quantized diffusion's Gaussians against
+// its depth integral), on every ring out to the last its accuracy is stated for, at several
+// tolerances: the worst error against the tolerance asked.
+Section model_continua(const Profile& profile);
+
 // Lobe fits against synthetic lobes of known parameters: parameter error against the
 // quadrature order of the bin averages, and time per fit.
 Section lobe_fit_accuracy(const Profile& profile);

@@ -44,8 +44,8 @@
 #include "scatterlab/transport/object_boundary.hpp"
 #include "scatterlab/transport/random_walk.hpp"
 #include "scatterlab/transport/slab.hpp"
-#include "scatterlab/transport/sphere.hpp"
 #include "scatterlab/transport/source.hpp"
+#include "scatterlab/transport/sphere.hpp"
 #include "scatterlab/transport/weighting.hpp"
 
 namespace scatterlab {
