@@ -513,8 +513,8 @@ int run_one(PlannedRun run, const std::string& command, const SceneOptions& o,
 constexpr double typical_ns_per_event = 20.0;
 constexpr double long_run_seconds = 600.0;
 
-void warn_if_long(const std::string& command, const PlannedRun& run, int ranks) {
-  const TransportProblem problem = transport_problem(run.spec);
+void warn_if_long(const std::string& command, const std::filesystem::path& output,
+                  const TransportProblem& problem, int ranks) {
   const double per_photon = events_per_photon_bound(problem);
   const double events = per_photon * static_cast<double>(problem.run.photons);
   const int threads = batch_threads(problem.run) * ranks;
@@ -524,8 +524,8 @@ void warn_if_long(const std::string& command, const PlannedRun& run, int ranks) 
              "{}: {} may take long: up to {:.3g} events a photon (albedo {}), {:.3g} in all, "
              "about {} at {:g} ns an event on {} thread{}; fewer photons, a lower albedo or a "
              "smaller run.escape_radius shorten it\n",
-             command, run.output.string(), per_photon, problem.albedo, events,
-             duration_text(seconds), typical_ns_per_event, threads, threads == 1 ? "" : "s");
+             command, output.string(), per_photon, problem.albedo, events, duration_text(seconds),
+             typical_ns_per_event, threads, threads == 1 ? "" : "s");
 }
 
 int run_scene_command(const CLI::App& command, const SceneOptions& o, const std::string& name,
@@ -535,11 +535,16 @@ int run_scene_command(const CLI::App& command, const SceneOptions& o, const std:
   const std::vector<PlannedRun>& runs = run_plan.runs;
   const std::string& directory = run_plan.directory;
   // Every run's memory before any starts (engine.hpp): a sweep is refused whole, not halfway.
+  std::vector<TransportProblem> problems;
   for (const PlannedRun& run : runs) {
-    check_transport_memory(transport_problem(run.spec), world.size(), long_run.resume);
+    problems.push_back(transport_problem(run.spec));
+    check_transport_memory(problems.back(), world.size(), long_run.resume);
   }
+  // Then, with every run admitted, those that may take long say so.
   if (world.is_root()) {
-    for (const PlannedRun& run : runs) warn_if_long(name, run, world.size());
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      warn_if_long(name, runs[i].output, problems[i], world.size());
+    }
   }
   OutputPlan plan;
   if (!o.scene.empty()) plan.input("--scene", o.scene);

@@ -89,6 +89,7 @@ Section model_continua(const Profile& profile) {
             const double error =
                 relative_error(average[k], continuum.annulus_average(edges[k], edges[k + 1]));
             if (!std::isfinite(average[k])) ++section.non_finite_values;
+            // Written so that a NaN error counts as the worst.
             if (!(error <= ring.error)) ring = {error, fmt::format("{} ring {}", where, k)};
           }
           const double error = relative_error(model_total, continuum.total());
