@@ -2,8 +2,10 @@
 
 Every run's file holds ``/tallies/NAME/{mean,stderr}`` with attributes ``units``,
 ``description`` and ``dims`` (``"r,z"``), and ``/grid/AXIS``, the bin *edges* of each axis
-(N + 1 of them) with their ``units``. A dimension with no edges in ``/grid`` (the slab's
-``layer``, a scattering ``order``, a vector ``component``) is numbered 0, 1, ...
+(N + 1 of them) with their ``units``. A tally a scene declares (``[[tally]]``) brings its own
+axes, ``/tallies/NAME/axes/AXIS``, which stand in for ``/grid``'s: its ``t`` (time of flight) is
+in seconds. A dimension with no edges (the slab's ``layer``, a scattering ``order``, a vector
+``component``) is numbered 0, 1, ...
 """
 
 from __future__ import annotations
@@ -161,8 +163,12 @@ def _tally(name: str, group, grid: dict[str, Axis], stderr: bool = True) -> Tall
     err = np.asarray(group["stderr"][()], dtype=float) if stderr else None
     dims = tuple(d for d in str(attrs.get("dims", "")).split(",") if d)
     edges, units = {}, {}
+    own = group["axes"] if stderr and "axes" in group else {}
     for i, dim in enumerate(dims):
         axis = grid.get(dim)
+        if dim in own:  # a declared tally's own axis
+            axis = Axis(dim, np.asarray(own[dim][()], dtype=float),
+                        str(_text(own[dim].attrs.get("units", ""))))
         if axis is not None and axis.edges.size == mean.shape[i] + 1:
             edges[dim], units[dim] = axis.edges, axis.units
     return Tally(name, mean, err, str(attrs.get("units", "")),

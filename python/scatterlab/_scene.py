@@ -6,7 +6,8 @@ the scene ``[medium] albedo = 0.9``, ``[run] photons = 1e5``, parsed by the same
 every error names its field the same way. A keyword is either
 
 * a table of the scene given whole as a dict: ``medium={"albedo": 0.9, "g": 0.5}``,
-  ``grid={"r": {"max": 2, "bins": 20}}``, ``layers=[{...}, ...]`` for the slab's ``[[layers]]``;
+  ``grid={"r": {"max": 2, "bins": 20}}``, ``layers=[{...}, ...]`` for the slab's ``[[layers]]``,
+  ``tally=[{"name": ..., "score": ..., "filters": {...}}, ...]`` for declared tallies;
 * or a key of one table, by its own name: ``albedo=0.9`` is ``medium.albedo``; ``r={"max": 2,
   "bins": 20}`` is ``grid.r``. Which table holds which key is KEY_TABLES below, per geometry,
   read at import from the program's one table of scene keys (``scatterlab scene --keys``). Two
@@ -46,9 +47,9 @@ def _key_tables() -> tuple[tuple[str, ...], dict[str, dict[str, str]]]:
             tables.append(table)
         for geometry in geometries:
             keys = key_tables.setdefault(geometry, {})
-            # geometry= and source= name their type; [[layers]], [mesh] and [output] are whole
-            # tables (layers=[{...}], out=).
-            if key != "type" and table not in ("layers", "mesh", "output"):
+            # geometry= and source= name their type; [[layers]], [[tally]], [mesh] and
+            # [output] are whole tables (layers=[{...}], tally=[{...}], out=).
+            if key != "type" and table not in ("layers", "tally", "mesh", "output"):
                 keys.setdefault(key, table)
     return tuple(tables), key_tables
 
@@ -104,7 +105,7 @@ def apply_keys(doc: dict, geometry: str | None, keys: dict[str, Any]) -> str:
         if key in ("geometry", "source") and isinstance(value, str):
             _merge(doc, {key: {"type": value}})
         elif key in TABLES:
-            if key == "layers":
+            if key in ("layers", "tally"):  # arrays of tables
                 doc[key] = value
             elif isinstance(value, dict):
                 _merge(doc, {key: value})

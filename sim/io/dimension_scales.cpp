@@ -10,12 +10,15 @@
 namespace scatterlab {
 namespace {
 
-// The scale of dimension `name` (n bins) in `group`: bin centres of /grid/<name>, or indices.
+// The scale of dimension `name` (n bins) in `group`: bin centres of the group's own axis
+// (axes/<name>, a declared tally's) or of /grid/<name>, or indices.
 hdf5::Dataset write_scale(const hdf5::Group& root, hdf5::Group& group, const std::string& name,
                           std::size_t n) {
-  const std::string axis = "grid/" + name;
-  if (root.has_member(axis)) {
-    const hdf5::Dataset edges_dataset = root.open_dataset(axis);
+  const bool owned = group.has_member("axes") && group.open_group("axes").has_member(name);
+  const std::string axis = owned ? "axes/" + name : "grid/" + name;
+  const hdf5::Group& holder = owned ? group : root;
+  if (holder.has_member(axis)) {
+    const hdf5::Dataset edges_dataset = holder.open_dataset(axis);
     const hdf5::Array edges = edges_dataset.read();
     bool finite = edges.values.size() == n + 1;
     for (const double edge : edges.values) finite = finite && std::isfinite(edge);
@@ -25,8 +28,9 @@ hdf5::Dataset write_scale(const hdf5::Group& root, hdf5::Group& group, const std
         centres[i] = 0.5 * (edges.values[i] + edges.values[i + 1]);
       hdf5::Dataset scale = group.write_dataset(name, centres);
       scale.write_string_attribute("units", edges_dataset.read_string_attribute("units"));
-      scale.write_string_attribute("description",
-                                   fmt::format("bin centres of {}; the edges are /{}", name, axis));
+      scale.write_string_attribute(
+          "description", fmt::format("bin centres of {}; the edges are {}", name,
+                                     owned ? group.path_in_file() + "/" + axis : "/" + axis));
       scale.make_dimension_scale(name);
       return scale;
     }

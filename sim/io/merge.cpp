@@ -516,6 +516,13 @@ MergeSummary merge_simulation_files(const std::vector<fs::path>& paths, const fs
             dataset, std::string(dataset) == "mean" ? mean.values : error, mean.shape);
         copy_attributes(source, target);
       }
+      if (from.has_member("axes")) {  // a declared tally's own axes (tally_result.hpp)
+        const hdf5::Group axes = from.open_group("axes");
+        hdf5::Group copy = node.create_group("axes");
+        for (const std::string& axis : axes.member_names()) {
+          copy_dataset(axes.open_dataset(axis), copy, axis);
+        }
+      }
     }
   }
   if (keep_models) copy_models(first.file, root);

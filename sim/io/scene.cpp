@@ -60,6 +60,12 @@ class SceneReader : public TomlReader {
     } else {
       scene.spec = read_infinite(root, scene);
     }
+    std::visit([&](auto& spec) { spec.declared_tallies = read_declared_tallies(root); },
+               scene.spec);
+    // A mesh's spec is validated by the caller, once it holds the mesh.
+    if (validation_ == Validation::on_read && geometry != "mesh") {
+      std::visit([](const auto& spec) { spec.validate(); }, scene.spec);
+    }
     return scene;
   }
 
@@ -87,7 +93,6 @@ class SceneReader : public TomlReader {
     if (const auto* tallies = subtable(root, "tallies", "")) read_tallies(*tallies, spec.tallies);
     if (const auto* run = subtable(root, "run", "")) read_run(*run, spec.run);
     scene.output_path = read_output(root);
-    if (validation_ == Validation::on_read) spec.validate();
     return spec;
   }
 
@@ -146,7 +151,6 @@ class SceneReader : public TomlReader {
     }
     if (const auto* run = subtable(root, "run", "")) read_run(*run, spec.run);
     scene.output_path = read_output(root);
-    if (validation_ == Validation::on_read) spec.validate();
     return spec;
   }
 
@@ -242,7 +246,6 @@ class SceneReader : public TomlReader {
     }
     if (const auto* run = subtable(root, "run", "")) read_run(*run, spec.run);
     scene.output_path = read_output(root);
-    if (validation_ == Validation::on_read && !mesh) spec.validate();
     return spec;
   }
 
@@ -286,7 +289,6 @@ class SceneReader : public TomlReader {
     }
     if (const auto* run = subtable(root, "run", "")) read_run(*run, spec.run, &spec.weighting);
     scene.output_path = read_output(root);
-    if (validation_ == Validation::on_read) spec.validate();
     return spec;
   }
 
@@ -355,9 +357,14 @@ class SceneReader : public TomlReader {
   }
 
   // A table's keys, checked against the schema's for this geometry (io/scene_schema.hpp); a
-  // layer's ("layers[2]") are those of every layer.
+  // layer's ("layers[2]") are those of every layer, a tally's those of every tally.
   void check_table(const toml::table& table, const std::string& path) const {
-    check_names(table, path, scene_table_keys(geometry_, path.substr(0, path.find('['))));
+    std::string schema_path = path;  // "tally[2].filters" is "tally.filters" in the schema
+    for (std::size_t open = schema_path.find('['); open != std::string::npos;
+         open = schema_path.find('[', open)) {
+      schema_path.erase(open, schema_path.find(']', open) + 1 - open);
+    }
+    check_names(table, path, scene_table_keys(geometry_, schema_path));
   }
 
   Validation validation_;
@@ -470,6 +477,73 @@ class SceneReader : public TomlReader {
     if (const auto bins = integer_as<int>(*table, "bins", path, 1, "an integer in [1, 100000]")) {
       axis.bins = *bins;
     }
+  }
+
+  // [[tally]]: the tallies a scene declares (transport/declared_tally.hpp), each with a name, a
+  // score, an optional group_index and filters = { r = {...}, z = {...}, t = {...} }.
+  std::vector<DeclaredTally> read_declared_tallies(const toml::table& root) const {
+    std::vector<DeclaredTally> tallies;
+    const toml::node* node = root.get("tally");
+    if (node == nullptr) return tallies;
+    const std::string_view accepted =
+        "an array of tables [[tally]], each with name, score and filters";
+    const toml::array* list = node->as_array();
+    if (list == nullptr || list->empty()) wrong_type(*node, "tally", accepted);
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const toml::table* table = (*list)[i].as_table();
+      if (table == nullptr) wrong_type((*list)[i], "tally", accepted);
+      const std::string path = fmt::format("tally[{}]", i + 1);
+      check_table(*table, path);
+      DeclaredTally tally;
+      const auto require = [&](std::string_view key, std::string_view what) {
+        throw InputError(dotted(path, key), "is missing", std::string(what));
+      };
+      const std::string_view names = "1 to 64 letters, digits and _";
+      if (const auto name = string(*table, "name", path, names)) {
+        tally.name = *name;
+      } else {
+        require("name", names);
+      }
+      const std::string_view scores =
+          "\"exitance\", \"transmittance\", \"fluence\" or \"absorbed\"";
+      if (const auto score = string(*table, "score", path, scores)) {
+        const std::optional<DeclaredScore> known = declared_score(*score);
+        if (!known) wrong_type(*table->get("score"), dotted(path, "score"), scores);
+        tally.score = *known;
+      } else {
+        require("score", scores);
+      }
+      tally.group_index = number(*table, "group_index", path, "a refractive index in [0.1, 10]");
+      if (const toml::table* filters = subtable(*table, "filters", path)) {
+        const std::string at_filters = dotted(path, "filters");
+        check_table(*filters, at_filters);
+        read_filter(*filters, at_filters, "r", 0.0, tally.r);
+        read_filter(*filters, at_filters, "z", std::nullopt, tally.z);
+        read_filter(*filters, at_filters, "t", 0.0, tally.t);
+      }
+      tallies.push_back(std::move(tally));
+    }
+    return tallies;
+  }
+
+  // A declared tally's filter: max and bins, and min (`min` when the file gives none; r and t
+  // start at 0, z must say where).
+  void read_filter(const toml::table& filters, const std::string& path, std::string_view name,
+                   std::optional<double> min, std::optional<UniformAxis>& axis) const {
+    const toml::table* table = subtable(filters, name, path);
+    if (table == nullptr) return;
+    const std::string at_axis = dotted(path, name);
+    check_table(*table, at_axis);
+    const std::string_view unit =
+        name == "t" ? "a finite number, in seconds" : "a finite number, in the scene's length unit";
+    const auto given_min = number(*table, "min", at_axis, unit);
+    const auto max = number(*table, "max", at_axis, unit);
+    const auto bins = integer_as<int>(*table, "bins", at_axis, 1, "an integer in [1, 100000]");
+    if (!given_min && !min)
+      throw InputError(dotted(at_axis, "min"), "is missing", std::string(unit));
+    if (!max) throw InputError(dotted(at_axis, "max"), "is missing", std::string(unit));
+    if (!bins) throw InputError(dotted(at_axis, "bins"), "is missing", "an integer in [1, 100000]");
+    axis = UniformAxis{given_min.value_or(min.value_or(0.0)), *max, *bins};
   }
 
   void read_grid(const toml::table& table, Grid& grid) const {

@@ -18,6 +18,8 @@ using enum SceneValue;
 constexpr std::string_view kAll = "infinite half_space sphere mesh slab";
 constexpr std::string_view kMedium = "infinite half_space sphere mesh";
 constexpr std::string_view kObject = "sphere mesh";
+// The geometries whose scenes declare tallies ([[tally]]).
+constexpr std::string_view kDeclaring = "infinite half_space sphere slab";
 
 // Every key of every geometry (io/scene.hpp). The readers' numbers are checked for their ranges
 // by each spec's validate(); `accepted` says the same in words.
@@ -128,6 +130,32 @@ constexpr std::array kKeys = std::to_array<SceneKey>({
     {"grid.azimuth.bins", "sphere", integer, "an integer in [1, 100000]",
      "azimuth bins about z from +x, over [0, 2 pi]"},
 
+    {"tally.name", kDeclaring, string, "1 to 64 letters, digits and _",
+     "a declared tally's name (transport/declared_tally.hpp), unique in the file"},
+    {"tally.score", kDeclaring, string, "\"exitance\" \"transmittance\" \"fluence\" \"absorbed\"",
+     "what it adds up: light leaving through the lit surface, through a slab's far side, the "
+     "fluence rate at collisions, or the power absorbed",
+     true},
+    {"tally.group_index", "infinite", number, "a refractive index in [0.1, 10]",
+     "the medium's group index, for the time of flight (the infinite medium has no index)"},
+    {"tally.filters.r.min", kDeclaring, number, "a finite number >= 0 (0 by default)",
+     "bins of the distance from the beam axis, in the length unit"},
+    {"tally.filters.r.max", kDeclaring, number, "a finite number > min",
+     "bins of the distance from the beam axis, in the length unit"},
+    {"tally.filters.r.bins", kDeclaring, integer, "an integer in [1, 100000]",
+     "bins of the distance from the beam axis"},
+    {"tally.filters.z.min", kDeclaring, number, "a finite number",
+     "bins of depth, in the length unit"},
+    {"tally.filters.z.max", kDeclaring, number, "a finite number > min",
+     "bins of depth, in the length unit"},
+    {"tally.filters.z.bins", kDeclaring, integer, "an integer in [1, 100000]", "bins of depth"},
+    {"tally.filters.t.min", kDeclaring, number, "a finite number >= 0 (0 by default)",
+     "bins of the time of flight since the light entered, in seconds"},
+    {"tally.filters.t.max", kDeclaring, number, "a finite number > min",
+     "bins of the time of flight since the light entered, in seconds"},
+    {"tally.filters.t.bins", kDeclaring, integer, "an integer in [1, 100000]",
+     "bins of the time of flight"},
+
     {"tallies.radiance", "infinite", boolean, "true or false", "L(r, z, theta, phi)"},
     {"tallies.fluence", "infinite half_space", boolean, "true or false", "fluence phi(r, z)"},
     {"tallies.flux", "infinite", boolean, "true or false", "vector irradiance E(r, z)"},
@@ -232,7 +260,7 @@ std::string node_schema(const Node& node, bool array_of_tables) {
   if (node.key != nullptr) return value_schema(*node.key);
   std::string properties;
   for (const std::string& name : node.order) {
-    const bool layers = name == "layers";
+    const bool layers = name == "layers" || name == "tally";  // arrays of tables
     properties += fmt::format("{}{}: {}", properties.empty() ? "" : ", ", json_string(name),
                               node_schema(node.children.at(name), layers));
   }

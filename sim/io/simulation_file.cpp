@@ -314,6 +314,12 @@ void write_tallies(hdf5::Group& root, const std::vector<TallyResult>& tallies) {
         .write_string_attribute("units", tally.units);
     node.write_dataset("stderr", tally.stderr_of_mean, tally.shape)
         .write_string_attribute("units", tally.units);
+    if (tally.axes.empty()) continue;
+    // A declared tally's own axes, which stand in for /grid's (tally_result.hpp).
+    hdf5::Group axes = node.create_group("axes");
+    for (const TallyAxis& axis : tally.axes) {
+      axes.write_dataset(axis.dim, axis.edges).write_string_attribute("units", axis.units);
+    }
   }
 }
 
@@ -390,6 +396,8 @@ std::string string_or_empty(const hdf5::Object& object, const char* name) {
   return object.has_attribute(name) ? object.read_string_attribute(name) : std::string();
 }
 
+AxisSummary summarize_axis(const hdf5::Group& grid, const std::string& name);
+
 TallySummary summarize_tally(const hdf5::Group& tallies, const std::string& name) {
   const hdf5::Group node = tallies.open_group(name);
   const hdf5::Dataset mean_dataset = node.open_dataset("mean");
@@ -418,6 +426,12 @@ TallySummary summarize_tally(const hdf5::Group& tallies, const std::string& name
     if (value != 0.0) ++summary.nonzero_bins;
   }
   summary.median_relative_stderr = relative_standard_error(mean.values, stderr_of_mean.values);
+  if (node.has_member("axes")) {
+    const hdf5::Group axes = node.open_group("axes");
+    for (const std::string& axis : axes.member_names()) {
+      summary.axes.push_back(summarize_axis(axes, axis));
+    }
+  }
   if (summary.is_scalar() && !stderr_of_mean.values.empty()) {
     summary.scalar_stderr = stderr_of_mean.values.front();
   }
@@ -466,14 +480,18 @@ void check_tally_shapes(const hdf5::Group& root, const hdf5::Group& grid) {
                         name, part, shape.size(), dims.size()));
       }
       for (std::size_t d = 0; d < dims.size(); ++d) {
-        if (!grid.has_member(dims[d])) continue;
-        const std::vector<std::size_t> axis = grid.open_dataset(dims[d]).shape();
+        // A tally's own axis (/tallies/<name>/axes/<dim>) stands in for /grid's.
+        const std::string own = "axes/" + dims[d];
+        const bool owned = node.has_member("axes") && node.open_group("axes").has_member(dims[d]);
+        if (!owned && !grid.has_member(dims[d])) continue;
+        const std::vector<std::size_t> axis =
+            (owned ? node.open_dataset(own) : grid.open_dataset(dims[d])).shape();
         const std::size_t edges = axis.size() == 1 ? axis[0] : 0;
         if (shape[d] + 1 != edges) {
-          throw std::runtime_error(
-              fmt::format("is damaged: /tallies/{}/{} has {} bins along {} "
-                          "but /grid/{} has {} edges",
-                          name, part, shape[d], dims[d], dims[d], edges));
+          throw std::runtime_error(fmt::format(
+              "is damaged: /tallies/{}/{} has {} bins along {} but {} has {} edges", name, part,
+              shape[d], dims[d],
+              owned ? fmt::format("/tallies/{}/{}", name, own) : "/grid/" + dims[d], edges));
         }
       }
     }
@@ -568,6 +586,10 @@ std::string tally_text(const TallySummary& tally) {
   if (!tally.units.empty()) text += ", " + tally.units;
   text += "\n";
   if (!tally.description.empty()) text += "      " + tally.description + "\n";
+  for (const AxisSummary& axis : tally.axes) {
+    text += fmt::format("      {} {} bins in [{:.6g}, {:.6g}] {}\n", axis.name, axis.bins, axis.min,
+                        axis.max, axis.units);
+  }
   if (tally.is_scalar()) {
     text += "      " + estimate_text({tally.mean_sum, tally.scalar_stderr}) + "\n";
   } else if (tally.nonzero_bins == 0) {

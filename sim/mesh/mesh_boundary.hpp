@@ -200,6 +200,7 @@ class MeshBoundary {
       exit.triangle = at.triangle;
       exit.x = position.x();
       exit.y = position.y();
+      exit.remaining = flight - at.distance;
       // Light that leaves a convex object is not followed: its direction outside is not needed.
       if (convex()) return true;
       if constexpr (fresnel) {

@@ -22,16 +22,30 @@ std::vector<double> per_bin(const UniformAxis& axis, Measure&& measure) {
 }  // namespace
 
 Filter radius_filter(const UniformAxis& r) {
-  return {
-      {"r"}, {count(r)}, per_bin(r, [](double r0, double r1) { return pi * (r1 * r1 - r0 * r0); })};
+  return {{"r"},
+          {count(r)},
+          per_bin(r, [](double r0, double r1) { return pi * (r1 * r1 - r0 * r0); }),
+          {Coordinate::r, AxisLookup(r), 0.0}};
 }
 
 Filter length_filter(const std::string& name, const UniformAxis& axis) {
-  return {{name}, {count(axis)}, std::vector<double>(count(axis), axis.width())};
+  return {{name}, {count(axis)}, std::vector<double>(count(axis), axis.width()), {}};
+}
+
+Filter depth_filter(const UniformAxis& z) {
+  Filter f = length_filter("z", z);
+  f.binning = {Coordinate::z, AxisLookup(z), 0.0};
+  return f;
+}
+
+Filter time_filter(const UniformAxis& t, double seconds_per_path) {
+  Filter f = length_filter("t", t);
+  f.binning = {Coordinate::t, AxisLookup(t), seconds_per_path};
+  return f;
 }
 
 Filter direction_filter(const UniformAxis& theta, const UniformAxis& phi, bool fold_phi) {
-  Filter f{{"theta", "phi"}, {count(theta), count(phi)}, {}};
+  Filter f{{"theta", "phi"}, {count(theta), count(phi)}, {}, {}};
   f.measures.reserve(count(theta) * count(phi));
   for (int k = 0; k < theta.bins; ++k) {
     const double band = std::cos(theta.edge(k)) - std::cos(theta.edge(k + 1));
@@ -42,30 +56,37 @@ Filter direction_filter(const UniformAxis& theta, const UniformAxis& phi, bool f
 }
 
 Filter shell_filter(const UniformAxis& rho) {
-  return {{"rho"}, {count(rho)}, per_bin(rho, [](double a, double b) {
-            return 4.0 / 3.0 * pi * (b * b * b - a * a * a);
-          })};
+  return {{"rho"},
+          {count(rho)},
+          per_bin(rho, [](double a, double b) { return 4.0 / 3.0 * pi * (b * b * b - a * a * a); }),
+          {}};
 }
 
 Filter exit_angle_filter(const UniformAxis& theta_o) {
-  return {{"theta_o"}, {count(theta_o)}, per_bin(theta_o, [](double t0, double t1) {
-            const double s0 = std::sin(t0), s1 = std::sin(t1);
-            return pi * (s1 * s1 - s0 * s0);
-          })};
+  return {{"theta_o"},
+          {count(theta_o)},
+          per_bin(theta_o,
+                  [](double t0, double t1) {
+                    const double s0 = std::sin(t0), s1 = std::sin(t1);
+                    return pi * (s1 * s1 - s0 * s0);
+                  }),
+          {}};
 }
 
 Filter exit_solid_angle_filter(const UniformAxis& theta_o) {
-  return {{"theta_o"}, {count(theta_o)}, per_bin(theta_o, [](double t0, double t1) {
-            return 2.0 * pi * (std::cos(t0) - std::cos(t1));
-          })};
+  return {{"theta_o"},
+          {count(theta_o)},
+          per_bin(theta_o,
+                  [](double t0, double t1) { return 2.0 * pi * (std::cos(t0) - std::cos(t1)); }),
+          {}};
 }
 
 Filter layer_filter(std::size_t layers) {
-  return {{"layer"}, {layers}, std::vector<double>(layers, 1.0)};
+  return {{"layer"}, {layers}, std::vector<double>(layers, 1.0), {}};
 }
 
 Filter sphere_patch_filter(const UniformAxis& psi, const UniformAxis& azimuth, double radius) {
-  Filter f{{"psi", "azimuth"}, {count(psi), count(azimuth)}, {}};
+  Filter f{{"psi", "azimuth"}, {count(psi), count(azimuth)}, {}, {}};
   for (int k = 0; k < psi.bins; ++k) {
     const double band = std::cos(psi.edge(k)) - std::cos(psi.edge(k + 1));
     f.measures.insert(f.measures.end(), count(azimuth), radius * radius * band * azimuth.width());
@@ -74,11 +95,11 @@ Filter sphere_patch_filter(const UniformAxis& psi, const UniformAxis& azimuth, d
 }
 
 Filter triangle_filter(const std::vector<double>& areas) {
-  return {{"triangle"}, {areas.size()}, areas};
+  return {{"triangle"}, {areas.size()}, areas, {}};
 }
 
 Filter component_filter(std::size_t components) {
-  return {{"component"}, {components}, std::vector<double>(components, 1.0)};
+  return {{"component"}, {components}, std::vector<double>(components, 1.0), {}};
 }
 
 }  // namespace scatterlab

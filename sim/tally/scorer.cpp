@@ -106,8 +106,13 @@ Scorer::Scorer(const TallyAxes& axes, const TallyBook& book)
   if ((absorbed_in_grid_ == absent) != (absorbed_outside_grid_ == absent)) {
     throw std::invalid_argument("Scorer: absorbed_in_grid and absorbed_outside_grid go together");
   }
-  for (const TallyDeclaration& d : book.declarations()) {
-    if (d.score == Score::absorbed) absorbed_by_order_ = d.by_order && split_;
+  for (std::size_t i = 0; i < book.declarations().size(); ++i) {
+    const TallyDeclaration& d = book.declarations()[i];
+    if (!d.chained) {
+      if (d.score == Score::absorbed) absorbed_by_order_ = d.by_order && split_;
+      continue;
+    }
+    add_chain(d, book.offset_of(i));
   }
   fluence_only_ =
       fluence_ != absent && flux_ == absent && radiance_ == absent && fluence_spherical_ == absent;
@@ -262,6 +267,36 @@ void Scorer::flight_cylindrical(double* buffer, std::vector<double>& crossings, 
       add_radiance(buffer, radiance_ + cell * angles + theta_offset, block, cos_phi,
                    angular_momentum, span);
     }
+  }
+}
+
+void Scorer::add_chain(const TallyDeclaration& d, std::size_t offset) {
+  Chain chain{offset, {}};
+  std::size_t stride = 1;
+  for (auto f = d.filters.rbegin(); f != d.filters.rend(); ++f) {
+    if (f->binning.coordinate == Coordinate::none) {
+      throw std::invalid_argument("Scorer: a filter of chained tally " + d.name +
+                                  " does not bin events");
+    }
+    chain.links.insert(chain.links.begin(), ChainLink{f->binning, stride});
+    stride *= f->bins();
+  }
+  switch (d.score) {
+    case Score::exit:
+      exit_chains_.push_back(std::move(chain));
+      break;
+    case Score::transmitted:
+      transmitted_chains_.push_back(std::move(chain));
+      break;
+    case Score::fluence:
+      collision_chains_.push_back(std::move(chain));
+      break;
+    case Score::absorbed:
+      absorption_chains_.push_back(std::move(chain));
+      break;
+    default:
+      throw std::invalid_argument("Scorer: chained tally " + d.name +
+                                  " has a score the chain does not score");
   }
 }
 

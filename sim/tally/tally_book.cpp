@@ -23,7 +23,7 @@ constexpr const char* order_scope[] = {"", " (unscattered light only)",
 // left to right, from 1: 1 x m is m exactly).
 TallyResult shaped(const TallyDeclaration& d, const std::string& name,
                    const std::string& description, std::vector<double>& measure) {
-  TallyResult t{name, {}, {}, d.units, description, {}, {}};
+  TallyResult t{name, {}, {}, d.units, description, {}, {}, d.axes};
   measure.assign(1, 1.0);
   for (const Filter& f : d.filters) {
     t.dims.insert(t.dims.end(), f.dims.begin(), f.dims.end());
@@ -43,14 +43,21 @@ TallyResult shaped(const TallyDeclaration& d, const std::string& name,
 TallyBook::TallyBook(std::vector<TallyDeclaration> declarations, bool split_by_order)
     : declarations_(std::move(declarations)), split_by_order_(split_by_order) {
   offsets_.fill(absent);
+  declaration_offsets_.assign(declarations_.size(), absent);
   std::size_t next = 0;
   auto place = [&](bool by_order) {
-    for (const TallyDeclaration& d : declarations_) {
+    for (std::size_t i = 0; i < declarations_.size(); ++i) {
+      const TallyDeclaration& d = declarations_[i];
       if (d.by_order != by_order || d.score == Score::exact) continue;
-      std::size_t& at = offsets_[static_cast<std::size_t>(d.score)];
-      if (at != absent)
-        throw std::invalid_argument("TallyBook: two tallies of one score: " + d.name);
-      at = next;
+      if (d.chained && d.by_order)
+        throw std::invalid_argument("TallyBook: a chained tally is not split by order: " + d.name);
+      if (!d.chained) {
+        std::size_t& at = offsets_[static_cast<std::size_t>(d.score)];
+        if (at != absent)
+          throw std::invalid_argument("TallyBook: two tallies of one score: " + d.name);
+        at = next;
+      }
+      declaration_offsets_[i] = next;
       next += cells_of(d);
     }
   };
@@ -59,6 +66,13 @@ TallyBook::TallyBook(std::vector<TallyDeclaration> declarations, bool split_by_o
   next = block_size_ * (split_by_order_ ? 4 : 1);
   place(false);
   size_ = next;
+}
+
+bool TallyBook::has_chain() const {
+  for (const TallyDeclaration& d : declarations_) {
+    if (d.chained) return true;
+  }
+  return false;
 }
 
 bool TallyBook::scores_volume() const {
@@ -73,14 +87,15 @@ std::vector<TallyResult> TallyBook::finish(const std::vector<double>& raw_mean,
                                            double scale) const {
   std::vector<TallyResult> results;
   std::vector<double> measure;
-  auto add = [&](const TallyDeclaration& d, std::size_t block) {
+  auto add = [&](std::size_t which, std::size_t block) {
+    const TallyDeclaration& d = declarations_[which];
     TallyResult t =
         shaped(d, d.name + order_suffix[block], d.description + order_scope[block], measure);
     if (d.score == Score::exact) {
       t.mean = {d.exact_value};
       t.stderr_of_mean = {0.0};
     } else {
-      const std::size_t at = offset(d.score) + block * block_size_;
+      const std::size_t at = offset_of(which) + block * block_size_;
       t.mean.resize(measure.size());
       t.stderr_of_mean.resize(measure.size());
       for (std::size_t i = 0; i < measure.size(); ++i) {
@@ -92,12 +107,12 @@ std::vector<TallyResult> TallyBook::finish(const std::vector<double>& raw_mean,
   };
   const std::size_t blocks = split_by_order_ ? 4 : 1;
   for (std::size_t block = 0; block < blocks; ++block) {
-    for (const TallyDeclaration& d : declarations_) {
-      if (d.by_order) add(d, block);
+    for (std::size_t i = 0; i < declarations_.size(); ++i) {
+      if (declarations_[i].by_order) add(i, block);
     }
   }
-  for (const TallyDeclaration& d : declarations_) {
-    if (!d.by_order) add(d, 0);
+  for (std::size_t i = 0; i < declarations_.size(); ++i) {
+    if (!declarations_[i].by_order) add(i, 0);
   }
   return results;
 }

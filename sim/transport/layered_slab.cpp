@@ -130,12 +130,12 @@ std::vector<TallyDeclaration> declare_tallies(const LayeredSlabSpec& spec) {
                      "power absorbed in each layer, top down"});
   tallies.push_back({"absorbed_by_depth",
                      Score::absorbed_by_depth,
-                     {length_filter("z", spec.z)},
+                     {depth_filter(spec.z)},
                      fmt::format("W {} per W incident", per_length(u, 1)),
                      "power absorbed per unit depth A(z), over all r, bin average"});
   tallies.push_back({"absorbed_by_radius_depth",
                      Score::absorbed_by_radius_depth,
-                     {r, length_filter("z", spec.z)},
+                     {r, depth_filter(spec.z)},
                      fmt::format("W {} per W incident", per_length(u, 3)),
                      "power absorbed per unit volume A(r, z), bin average"});
   tallies.push_back({"specular_reflectance",
@@ -203,6 +203,7 @@ void LayeredSlabSpec::validate() const {
   const SlabLayerSpec& last = layers.back();
   if (std::isinf(last.thickness)) albedo = last.mu_s / last.mu_t();
   check_run_length(run, albedo, std::min(run.escape_radius * most_mu_t, optical_depth));
+  check_declared_tallies(declared_tallies, slab_frame(length_unit));
 }
 
 double specular_reflectance(const LayeredSlabSpec& spec) {
@@ -224,7 +225,7 @@ std::string fingerprint(const LayeredSlabSpec& spec) {
       spec.r.min, spec.r.max, spec.r.bins, spec.z.min, spec.z.max, spec.z.bins, spec.theta_o.bins,
       spec.split_by_order, to_string(spec.weighting), spec.run.photons, spec.run.batches,
       spec.run.seed, spec.run.escape_radius);
-  return fingerprint_of(text);
+  return fingerprint_of(text + fingerprint_text(spec.declared_tallies));
 }
 
 TransportProblem transport_problem(const LayeredSlabSpec& spec) {
@@ -249,6 +250,10 @@ TransportProblem transport_problem(const LayeredSlabSpec& spec) {
   problem.axes.z = spec.z;
   problem.axes.theta_o = spec.theta_o;
   problem.tallies = declare_tallies(spec);
+  for (TallyDeclaration& d : declare_chained_tallies(
+           spec.declared_tallies, slab_frame(spec.length_unit), problem.tallies)) {
+    problem.tallies.push_back(std::move(d));
+  }
   problem.split_by_order = spec.split_by_order;
   problem.estimator = Estimator::collision;  // unused: a slab has no volume tallies
   problem.run = spec.run;

@@ -192,6 +192,11 @@ void LitObjectSpec::validate() const {
                      "a number in [0.1, 10] (n_medium / n_outside; 1 for no interface)");
   }
   if (mesh) {
+    if (!declared_tallies.empty()) {
+      throw InputError("tally", "is declared in a mesh scene",
+                       "[[tally]] in an infinite, half_space, sphere or slab scene: a path that "
+                       "leaves a mesh and enters it again has no time of flight yet");
+    }
     validate_mesh_spec(*this);
     return;
   }
@@ -239,6 +244,7 @@ void LitObjectSpec::validate() const {
   check_run_settings(run);
   // Every walk ends inside the sphere: by absorption, or by leaving it after about R^2 events.
   check_run_length(run, medium.albedo, radius_mfp);
+  check_declared_tallies(declared_tallies, homogeneous_frame("sphere", medium, eta));
 }
 
 namespace {
@@ -269,7 +275,8 @@ std::string fingerprint(const LitObjectSpec& spec) {
            ? fmt::format("|light sphere {:a} {:a} {:a} {:a}", spec.light_center[0],
                          spec.light_center[1], spec.light_center[2], spec.light_radius)
            : std::string()) +
-      (spec.mesh ? mesh_fingerprint(*spec.mesh) : std::string()));
+      (spec.mesh ? mesh_fingerprint(*spec.mesh) : std::string()) +
+      fingerprint_text(spec.declared_tallies));
 }
 
 TransportProblem transport_problem(const LitObjectSpec& spec) {
@@ -317,6 +324,11 @@ TransportProblem transport_problem(const LitObjectSpec& spec) {
   problem.axes.psi = spec.psi;
   problem.axes.azimuth = spec.azimuth;
   problem.tallies = declare_tallies(spec, radius, beam_reflectance);
+  for (TallyDeclaration& d : declare_chained_tallies(
+           spec.declared_tallies, homogeneous_frame("sphere", spec.medium, spec.eta),
+           problem.tallies)) {
+    problem.tallies.push_back(std::move(d));
+  }
   problem.size_fields = "grid.psi.bins x grid.azimuth.bins, run.threads";
   return problem;
 }

@@ -92,7 +92,7 @@ std::vector<TallyDeclaration> declare_tallies(const HalfSpaceSpec& spec, double 
   if (spec.tallies.fluence) {
     tallies.push_back({"fluence",
                        Score::fluence,
-                       {r, length_filter("z", grid.z)},
+                       {r, depth_filter(grid.z)},
                        "W mfp^-2 per W incident",
                        "fluence phi(r, z) inside the medium, bin average, collision estimator",
                        true});
@@ -152,6 +152,7 @@ void HalfSpaceSpec::validate() const {
   check_grid(grid, medium);
   if (tallies.exitance_map) check_map(grid, medium);
   check_run(run, medium);
+  check_declared_tallies(declared_tallies, homogeneous_frame("half_space", medium, eta));
 }
 
 std::string fingerprint(const HalfSpaceSpec& spec) {
@@ -168,7 +169,8 @@ std::string fingerprint(const HalfSpaceSpec& spec) {
                                     spec.run.batches, spec.run.seed, spec.run.escape_radius) +
                         (spec.tallies.exitance_map
                              ? fmt::format("|map {}{}", axis(spec.grid.x), axis(spec.grid.y))
-                             : std::string()));
+                             : std::string()) +
+                        fingerprint_text(spec.declared_tallies));
 }
 
 TransportProblem transport_problem(const HalfSpaceSpec& given) {
@@ -202,6 +204,11 @@ TransportProblem transport_problem(const HalfSpaceSpec& given) {
     problem.axes.y = spec.grid.y;
   }
   problem.tallies = declare_tallies(spec, specular);
+  for (TallyDeclaration& d : declare_chained_tallies(
+           spec.declared_tallies, homogeneous_frame("half_space", spec.medium, spec.eta),
+           problem.tallies)) {
+    problem.tallies.push_back(std::move(d));
+  }
   problem.split_by_order = true;
   problem.estimator = Estimator::collision;
   problem.photon_power = 1.0 - specular;

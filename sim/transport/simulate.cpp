@@ -14,7 +14,7 @@ std::vector<TallyDeclaration> declare_tallies(const InfiniteMediumSpec& spec) {
   const TallyRequest& want = spec.tallies;
   const std::string estimator =
       want.estimator == Estimator::collision ? "collision estimator" : "track-length estimator";
-  const Filter r = radius_filter(grid.r), z = length_filter("z", grid.z);
+  const Filter r = radius_filter(grid.r), z = depth_filter(grid.z);
   std::vector<TallyDeclaration> tallies;
   if (want.radiance) {
     tallies.push_back({"radiance",
@@ -117,6 +117,11 @@ TransportProblem transport_problem(const InfiniteMediumSpec& given) {
   problem.axes.fold_phi = grid.fold_phi;
   problem.axes.rho = grid.rho;
   problem.tallies = declare_tallies(spec);
+  for (TallyDeclaration& d : declare_chained_tallies(
+           spec.declared_tallies, homogeneous_frame("infinite", spec.medium, std::nullopt),
+           problem.tallies)) {
+    problem.tallies.push_back(std::move(d));
+  }
   problem.split_by_order = spec.tallies.split_by_order;
   problem.estimator = spec.tallies.estimator;
   problem.run = spec.run;

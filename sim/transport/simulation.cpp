@@ -101,7 +101,7 @@ void check_grid(const Grid& grid, bool radiance_requested, const Medium& medium)
   }
 }
 
-void check_tallies(const TallyRequest& tallies, SourceKind source) {
+void check_tallies(const TallyRequest& tallies, SourceKind source, bool declares) {
   if (tallies.estimator != Estimator::collision && tallies.estimator != Estimator::track_length) {
     throw InputError("tallies.estimator",
                      fmt::format("got code {}", static_cast<int>(tallies.estimator)),
@@ -113,9 +113,11 @@ void check_tallies(const TallyRequest& tallies, SourceKind source) {
         "requested with the " + to_string(source) + " source, which has no spherical symmetry",
         "true only with source.type = \"point\"");
   }
-  if (!(tallies.radiance || tallies.fluence || tallies.flux || tallies.fluence_spherical)) {
+  if (!(tallies.radiance || tallies.fluence || tallies.flux || tallies.fluence_spherical ||
+        declares)) {
     throw InputError("tallies", "no tally requested",
-                     "at least one of radiance, fluence, flux, fluence_spherical = true");
+                     "at least one of radiance, fluence, flux, fluence_spherical = true, or a "
+                     "[[tally]]");
   }
 }
 
@@ -140,8 +142,13 @@ void InfiniteMediumSpec::validate() const {
                      "\"beam\" or \"point\"");
   }
   check_grid(grid, tallies.radiance, medium);
-  check_tallies(tallies, source);
+  check_tallies(tallies, source, !declared_tallies.empty());
   check_run(run, medium);
+  check_declared_tallies(declared_tallies, homogeneous_frame("infinite", medium, std::nullopt));
+  if (!declared_tallies.empty() && tallies.estimator == Estimator::track_length) {
+    throw InputError("tallies.estimator", "is \"track_length\" with [[tally]]",
+                     "\"collision\": declared tallies are scored at collisions");
+  }
 }
 
 std::string fingerprint(const InfiniteMediumSpec& spec) {
@@ -159,7 +166,7 @@ std::string fingerprint(const InfiniteMediumSpec& spec) {
       axis(spec.grid.z), axis(spec.grid.theta), axis(spec.grid.phi), axis(spec.grid.rho),
       spec.grid.fold_phi, t.radiance, t.fluence, t.flux, t.fluence_spherical, t.split_by_order,
       to_string(t.estimator), run.photons, run.batches, run.seed, run.escape_radius);
-  return fingerprint_of(canonical);
+  return fingerprint_of(canonical + fingerprint_text(spec.declared_tallies));
 }
 
 std::string to_string(SourceKind source) {

@@ -19,9 +19,9 @@
 namespace scatterlab {
 namespace {
 
-// The smallest scene of each geometry that reads, as dotted keys (a layer's in its inline table),
-// with the key at `path` ("grid.r.max"; "layers.g", the first layer's) set to `value`, a TOML
-// value as text.
+// The smallest scene of each geometry that reads, as dotted keys (a layer's and a declared
+// tally's in their inline tables), with the key at `path` ("grid.r.max"; "layers.g", the first
+// layer's; "tally.filters.t.max") set to `value`, a TOML value as text.
 std::string scene_with(std::string_view geometry, std::string_view path, std::string_view value) {
   using Keys = std::vector<std::pair<std::string, std::string>>;
   Keys root = {{"geometry.type", fmt::format("\"{}\"", geometry)}};
@@ -36,9 +36,13 @@ std::string scene_with(std::string_view geometry, std::string_view path, std::st
   }
   if (geometry == "slab")
     layer = {{"mu_a", "1.0"}, {"mu_s", "10.0"}, {"g", "0.9"}, {"n", "1.4"}, {"thickness", "1.0"}};
+  // A declared tally's keys in the one [[tally]] of the smallest declaration.
+  Keys tally;
+  const bool in_tally = path.starts_with("tally.");
+  if (in_tally) tally = {{"name", "\"t\""}, {"score", "\"absorbed\""}};
   const bool in_layer = path.starts_with("layers.");
-  Keys& keys = in_layer ? layer : root;
-  const std::string key(in_layer ? path.substr(7) : path);
+  Keys& keys = in_layer ? layer : in_tally ? tally : root;
+  const std::string key(in_layer ? path.substr(7) : in_tally ? path.substr(6) : path);
   const auto it =
       std::find_if(keys.begin(), keys.end(), [&](const auto& k) { return k.first == key; });
   if (it != keys.end()) {
@@ -54,6 +58,13 @@ std::string scene_with(std::string_view geometry, std::string_view path, std::st
       entries += fmt::format("{}{} = {}", entries.empty() ? "" : ", ", name, text_value);
     }
     text += fmt::format("layers = [{{{}}}]\n", entries);
+  }
+  if (!tally.empty()) {
+    std::string entries;
+    for (const auto& [name, text_value] : tally) {
+      entries += fmt::format("{}{} = {}", entries.empty() ? "" : ", ", name, text_value);
+    }
+    text += fmt::format("tally = [{{{}}}]\n", entries);
   }
   return text;
 }

@@ -19,6 +19,8 @@
 //                            material_table, material_citation, channel, material_note
 //   /tallies/<name>    attrs units, description, dims ("r,z,theta,phi"; "" for a scalar)
 //   /tallies/<name>/{mean,stderr}  the tally's shape; a scalar is a rank-0 dataset; attr units
+//   /tallies/<name>/axes/<dim>     a declared tally's own bin edges (attr units), which stand in
+//                                  for /grid/<dim> ([[tally]], transport/declared_tally.hpp)
 //   /figures_of_merit/<name>  rank-0: 1 / (R^2 wall_seconds) of the tally
 //                            (tally/figure_of_merit.hpp); attrs units "1/s", description
 //   /models/<model>/<name>  a model's curve beside the tally <name> it compares with (attrs
@@ -131,6 +133,7 @@ struct TallySummary {
   // Median of stderr / |mean| over bins with mean != 0; NaN when there are none.
   double median_relative_stderr = 0.0;
   std::size_t nonzero_bins = 0;
+  std::vector<AxisSummary> axes;  // its own (a declared tally's), in place of /grid's
 
   bool is_scalar() const { return shape.empty(); }
 };

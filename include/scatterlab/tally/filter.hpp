@@ -4,10 +4,14 @@
 // theta_o, the two components of a vector. A tally is a score times a list of filters; its cells
 // are the product of the filters' bins, row-major in the order listed.
 //
-// Each filter also carries the measure of each of its bins (an area, a length, a solid angle):
-// the finished tally divides a cell's raw sum by the product of its filters' measures, taken left
-// to right, which turns a per-bin sum into a bin-averaged density.
+// Each filter also carries the measure of each of its bins (an area, a length, a solid angle, a
+// time): the finished tally divides a cell's raw sum by the product of its filters' measures,
+// taken left to right, which turns a per-bin sum into a bin-averaged density.
+//
+// A filter of a declared tally (the chain, scorer.hpp) bins the event itself, along its
+// coordinate; the fixed scores' cells are found by the Scorer's own strides (Coordinate::none).
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -16,18 +20,58 @@
 
 namespace scatterlab {
 
+// Where and when an event happens, as a filter bins it: the point (for an exit, on the surface,
+// about the entry point) and the path the photon has travelled since it entered the medium, in
+// the walk's length unit times the index it travelled at (random_walk.hpp).
+struct TallyEvent {
+  double x = 0.0, y = 0.0, z = 0.0;
+  double path = 0.0;
+};
+
+// The coordinate a filter bins an event by: distance r from the beam axis, depth z, or time of
+// flight t = path x seconds_per_path.
+enum class Coordinate { none, r, z, t };
+
+// How a filter bins an event along its coordinate: the axis, in the walk's units.
+struct EventBinning {
+  Coordinate coordinate = Coordinate::none;
+  AxisLookup cells;
+  double seconds_per_path = 0.0;  // t only
+
+  // The bin of `event`, or -1 outside the axis.
+  int bin(const TallyEvent& event) const {
+    switch (coordinate) {
+      case Coordinate::r:
+        return cells.index(std::sqrt(event.x * event.x + event.y * event.y));
+      case Coordinate::z:
+        return cells.index(event.z);
+      case Coordinate::t:
+        return cells.index(event.path * seconds_per_path);
+      case Coordinate::none:
+        break;
+    }
+    return -1;
+  }
+};
+
 struct Filter {
   std::vector<std::string> dims;   // the file's dimension names, e.g. {"theta", "phi"}
   std::vector<std::size_t> shape;  // extent per dimension
   std::vector<double> measures;    // one per bin of this filter, row-major over its dims
+  EventBinning binning = {};       // where the filter bins events itself
 
   std::size_t bins() const { return measures.size(); }
 };
 
 // r about the beam axis, by the area of each ring: pi (r1^2 - r0^2), in mfp^2.
 Filter radius_filter(const UniformAxis& r);
-// A Cartesian coordinate (depth z), by its bin width, in mfp.
+// A Cartesian coordinate of an exit point on a plane (x, y), by its bin width, in mfp.
 Filter length_filter(const std::string& name, const UniformAxis& axis);
+// Depth z, by its bin width, in mfp.
+Filter depth_filter(const UniformAxis& z);
+// Time of flight t in seconds, by its bin width in s: the path (TallyEvent) times
+// `seconds_per_path`, the seconds light takes per unit of path (the index is in the path).
+Filter time_filter(const UniformAxis& t, double seconds_per_path);
 // Direction (theta from +z, phi from e_r), by each bin's solid angle in sr: a folded phi bin
 // stands for phi and -phi together, so it counts twice.
 Filter direction_filter(const UniformAxis& theta, const UniformAxis& phi, bool fold_phi);

@@ -139,6 +139,23 @@ class Scorer {
     if (escaped_ != absent) buffer[escaped_] += weight;
   }
 
+  // The chained tallies (TallyDeclaration::chained), which the walk scores only when a run has
+  // them (random_walk.hpp): each adds `weight` at the cell its filters bin the event into, and
+  // nothing when one of them puts it outside its axis. An exit is binned at its point on the
+  // surface; a collision (the fluence's collision estimator: 1 mfp) and an absorption at their
+  // point in the volume.
+  void chained_exit(double* buffer, const SurfaceExit& where, double path, double weight) const {
+    add_chained(where.transmitted ? transmitted_chains_ : exit_chains_, buffer,
+                {where.x, where.y, 0.0, path}, weight);
+  }
+  void chained_collision(double* buffer, const Vec3& position, double path) const {
+    add_chained(collision_chains_, buffer, {position.x(), position.y(), position.z(), path}, 1.0);
+  }
+  void chained_absorption(double* buffer, const Vec3& position, double path, double weight) const {
+    add_chained(absorption_chains_, buffer, {position.x(), position.y(), position.z(), path},
+                weight);
+  }
+
   bool in_grid(const Vec3& p) const {
     return r_cells_.index(std::sqrt(p.x() * p.x() + p.y() * p.y())) >= 0 &&
            z_cells_.index(p.z()) >= 0;
@@ -204,6 +221,33 @@ class Scorer {
     }
   }
 
+  // A chained tally: its offset, and each filter's binning with its stride (row-major).
+  struct ChainLink {
+    EventBinning binning;
+    std::size_t stride;
+  };
+  struct Chain {
+    std::size_t offset;
+    std::vector<ChainLink> links;
+  };
+  static void add_chained(const std::vector<Chain>& chains, double* buffer, const TallyEvent& event,
+                          double weight) {
+    for (const Chain& chain : chains) {
+      std::size_t cell = chain.offset;
+      bool inside = true;
+      for (const ChainLink& link : chain.links) {
+        const int bin = link.binning.bin(event);
+        if (bin < 0) {
+          inside = false;
+          break;
+        }
+        cell += static_cast<std::size_t>(bin) * link.stride;
+      }
+      if (inside) buffer[cell] += weight;
+    }
+  }
+
+  void add_chain(const TallyDeclaration& d, std::size_t offset);
   void flight_cylindrical(double* buffer, std::vector<double>& crossings, const Vec3& start,
                           const Vec3& direction, double length, std::size_t order_block) const;
   void flight_spherical(double* buffer, std::vector<double>& crossings, const Vec3& start,
@@ -236,6 +280,8 @@ class Scorer {
   std::size_t y_bins_ = 1;              // exit points on a plane
   std::size_t azimuth_bins_ = 1;        // about z, on a sphere
   std::vector<double> phi_cotangents_;  // cot of the interior edges of the [0, pi] phi axis
+  // The chained tallies of each event.
+  std::vector<Chain> exit_chains_, transmitted_chains_, collision_chains_, absorption_chains_;
 };
 
 [[gnu::always_inline]] inline void Scorer::collision(double* buffer, const Vec3& position,

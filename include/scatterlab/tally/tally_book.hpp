@@ -26,6 +26,10 @@ class TallyBook {
   // Offset of the score's cells in the all-orders block (or after the blocks), or absent.
   std::size_t offset(Score score) const { return offsets_[static_cast<std::size_t>(score)]; }
   bool has(Score score) const { return offset(score) != absent; }
+  // Offset of declaration i's cells; a chained tally's is found only here.
+  std::size_t offset_of(std::size_t i) const { return declaration_offsets_[i]; }
+  // Whether any tally is chained (TallyDeclaration::chained): the walk then keeps time.
+  bool has_chain() const;
   // Whether anything is scored in the volume (at collisions or along flights).
   bool scores_volume() const;
 
@@ -49,6 +53,7 @@ class TallyBook {
  private:
   std::vector<TallyDeclaration> declarations_;
   std::array<std::size_t, static_cast<std::size_t>(Score::count)> offsets_;
+  std::vector<std::size_t> declaration_offsets_;
   bool split_by_order_ = false;
   std::size_t block_size_ = 0;
   std::size_t size_ = 0;

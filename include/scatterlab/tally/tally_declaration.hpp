@@ -9,6 +9,7 @@
 
 #include "scatterlab/tally/filter.hpp"
 #include "scatterlab/tally/score.hpp"
+#include "scatterlab/tally/tally_result.hpp"
 
 namespace scatterlab {
 
@@ -20,6 +21,11 @@ struct TallyDeclaration {
   std::string description;      // one line; the per-order siblings say which light they hold
   bool by_order = false;        // has per-order siblings when the run splits by scattering order
   double exact_value = 0.0;     // Score::exact only
+  // Its filters bin its events themselves (Filter::bin; the Scorer's chain): a tally a scene
+  // declares ([[tally]]), of the score's event (exit, transmitted, fluence at collisions or
+  // absorbed) at any filters. Several may share a score. Never split by order.
+  bool chained = false;
+  std::vector<TallyAxis> axes = {};  // a chained tally's axes, as the file gives them
 };
 
 }  // namespace scatterlab

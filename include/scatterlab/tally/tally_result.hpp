@@ -9,6 +9,14 @@
 
 namespace scatterlab {
 
+// An axis a tally brings itself (a declared tally's filter, in the scene's units), which stands
+// in for /grid/<dim> (in the file: /tallies/<name>/axes/<dim>, its bin edges with their units).
+struct TallyAxis {
+  std::string dim;
+  std::vector<double> edges;
+  std::string units;
+};
+
 struct TallyResult {
   std::string name;                // e.g. "fluence", "radiance_single", "absorbed"
   std::vector<std::string> dims;   // grid axis per dimension, e.g. {"r", "z"}; empty for scalars
@@ -17,6 +25,7 @@ struct TallyResult {
   std::string description;         // one line: what it is and which estimator made it
   std::vector<double> mean;        // product(shape) values (1 for a scalar)
   std::vector<double> stderr_of_mean;
+  std::vector<TallyAxis> axes = {};  // its own axes, where it has them
 
   std::size_t size() const { return mean.size(); }
 };

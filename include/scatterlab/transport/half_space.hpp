@@ -42,6 +42,7 @@ class HalfSpace {
     const double to_surface = position.z() / -direction.z();
     exit.x = position.x() + to_surface * direction.x();
     exit.y = position.y() + to_surface * direction.y();
+    exit.remaining = flight - to_surface;
     if constexpr (fresnel) {
       // Leaving the medium the relative index is 1 / eta (fresnel.hpp).
       const FresnelDielectric surface = fresnel_dielectric_terms(-direction.z(), exit_eta_);

@@ -43,6 +43,18 @@ struct Kernel {
   template <class Geometry, class Phase, Estimator estimator,
             Weighting weighting = Weighting::analog, class Light = Source>
   BatchOutcome run(const Geometry& geometry, const Phase& phase, const Light& light) const {
+    // Chained tallies (time of flight among them) bin each event by its filters: the one walk
+    // that keeps each photon's path.
+    if (book.has_chain()) {
+      if constexpr (estimator == Estimator::track_length) {
+        throw std::invalid_argument("transport: chained tallies take the collision estimator");
+      } else {
+        const RandomWalk<Geometry, Phase, estimator, weighting, Light, true> walk(
+            geometry, phase, light, scorer, problem.albedo, problem.run.escape_radius,
+            problem.run.seed);
+        return run_batches(problem.run, book.size(), walk, progress, control);
+      }
+    }
     if constexpr (requires { object_boundary(geometry, light); } &&
                   weighting == Weighting::analog && estimator != Estimator::track_length) {
       if (const std::optional<ObjectBoundary> object = object_boundary(geometry, light)) {

@@ -24,6 +24,7 @@
 
 #include "scatterlab/core/medium.hpp"
 #include "scatterlab/tally/axis.hpp"
+#include "scatterlab/transport/declared_tally.hpp"
 #include "scatterlab/transport/engine.hpp"
 #include "scatterlab/transport/run_settings.hpp"
 #include "scatterlab/transport/weighting.hpp"
@@ -52,6 +53,8 @@ struct LayeredSlabSpec {
   bool split_by_order = true;  // siblings _unscattered, _single, _multiple
   Weighting weighting = Weighting::analog;
   RunSettings run{1'000'000, 64, 1, 0};
+  // [[tally]]: tallies the scene declares beside its own (declared_tally.hpp).
+  std::vector<DeclaredTally> declared_tallies = {};
 
   // Throws InputError naming the first bad field ("layers[2].mu_s", "grid.r.bins", ...) and
   // what it accepts.

@@ -21,6 +21,7 @@
 #include "scatterlab/core/medium.hpp"
 #include "scatterlab/core/triangle_mesh.hpp"
 #include "scatterlab/tally/axis.hpp"
+#include "scatterlab/transport/declared_tally.hpp"
 #include "scatterlab/transport/engine.hpp"
 #include "scatterlab/transport/run_settings.hpp"
 
@@ -58,6 +59,8 @@ struct LitObjectSpec {
   // Run by mesh/lit_mesh.hpp (Embree); run_lit_sphere refuses it.
   std::shared_ptr<const TriangleMesh> mesh;
   std::string mesh_source;  // what the mesh is: the scene's shape and sizes, or its OBJ file
+  // [[tally]]: tallies the scene declares beside its own (declared_tally.hpp).
+  std::vector<DeclaredTally> declared_tallies = {};
 
   // Throws InputError naming the first bad field and what it accepts.
   void validate() const;

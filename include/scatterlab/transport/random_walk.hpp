@@ -21,6 +21,12 @@
 //   bool leaves(Vec3& position, Vec3& direction, int& layer, double optical, PhotonRandom&,
 //               SurfaceExit&) const;
 // which spends a free path of `optical` optical depths through its layers.
+//
+// `chained`: the run has tallies whose filters bin events themselves (the Scorer's chain, among
+// them time of flight), and the walk keeps the path each photon has travelled since it entered:
+// in mfp in a homogeneous geometry (its flights, the last one to the surface: SurfaceExit's
+// remaining), and in a slab the length times each layer's index (slab.hpp). A run without them
+// compiles none of it.
 
 #include <cmath>
 #include <cstdint>
@@ -39,8 +45,8 @@
 namespace scatterlab {
 
 // `Light` launches each photon (Source, or a light that knows its geometry: kernel.hpp).
-template <class Geometry, class Phase, Estimator estimator,
-          Weighting weighting = Weighting::analog, class Light = Source>
+template <class Geometry, class Phase, Estimator estimator, Weighting weighting = Weighting::analog,
+          class Light = Source, bool chained = false>
 class RandomWalk {
   // A flight that is bent at a surface is not one straight track.
   static_assert(!(Geometry::has_surface && estimator == Estimator::track_length),
@@ -48,6 +54,9 @@ class RandomWalk {
   // Layers are scored at their events alone (absorption, exit).
   static_assert(!(Geometry::layered && estimator != Estimator::none),
                 "a layered geometry has no volume estimator");
+  // A chained fluence is scored at collisions.
+  static_assert(!(chained && estimator == Estimator::track_length),
+                "chained tallies take the collision estimator");
 
  public:
   // `escape_radius`: photons farther than this from the origin are stopped and counted as
@@ -83,6 +92,7 @@ class RandomWalk {
       }
       // Constant 1 under analog absorption, where the compiler folds it away.
       double weight = 1.0;
+      double path = 0.0;  // chained only: travelled since the photon entered
       int layer = 0;
       if constexpr (Geometry::layered) layer = geometry_.layer_of(position, direction);
       for (int order = 0;; ++order) {
@@ -92,8 +102,10 @@ class RandomWalk {
         Vec3 next;
         if constexpr (Geometry::layered) {
           SurfaceExit exit;
-          if (geometry_.leaves(position, direction, layer, flight, random, exit)) {
+          if (geometry_.template leaves<chained>(position, direction, layer, flight, random, exit,
+                                                 &path)) {
             scorer_.exit(buffer, exit, order, weight);
+            if constexpr (chained) scorer_.chained_exit(buffer, exit, path, weight);
             break;
           }
           next = position;
@@ -103,9 +115,13 @@ class RandomWalk {
             SurfaceExit exit;
             if (geometry_.leaves(position, direction, next, flight, random, exit)) {
               scorer_.exit(buffer, exit, order, weight);
+              if constexpr (chained) {
+                scorer_.chained_exit(buffer, exit, path + (flight - exit.remaining), weight);
+              }
               break;
             }
           }
+          if constexpr (chained) path += flight;
         }
         if (next.squaredNorm() > escape_radius2_) {
           if constexpr (estimator == Estimator::track_length) {
@@ -121,6 +137,7 @@ class RandomWalk {
         position = next;
         if constexpr (estimator == Estimator::collision) {
           scorer_.collision(buffer, position, direction, order);
+          if constexpr (chained) scorer_.chained_collision(buffer, position, path);
         }
         double albedo = albedo_;
         if constexpr (Geometry::layered) albedo = geometry_.albedo(layer);
@@ -130,6 +147,7 @@ class RandomWalk {
           // times the weight, with u[1], which absorption no longer needs.
           const double deposited = weight * (1.0 - albedo);
           scorer_.absorption(buffer, position, order, layer, deposited);
+          if constexpr (chained) scorer_.chained_absorption(buffer, position, path, deposited);
           weight -= deposited;
           if (weight < roulette_threshold) {
             if (!(weight > 0.0) || u[1] >= roulette_chance) break;
@@ -137,6 +155,7 @@ class RandomWalk {
           }
         } else if (u[1] >= albedo) {
           scorer_.absorption(buffer, position, order, layer);
+          if constexpr (chained) scorer_.chained_absorption(buffer, position, path, 1.0);
           break;
         }
         if constexpr (Geometry::layered) {

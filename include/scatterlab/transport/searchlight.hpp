@@ -13,6 +13,7 @@
 
 #include "scatterlab/core/medium.hpp"
 #include "scatterlab/tally/axis.hpp"
+#include "scatterlab/transport/declared_tally.hpp"
 #include "scatterlab/transport/engine.hpp"
 #include "scatterlab/transport/run_settings.hpp"
 
@@ -55,6 +56,8 @@ struct HalfSpaceSpec {
   HalfSpaceTallies tallies;
   RunSettings run{10'000'000, 64, 1, 0};
   std::optional<MaterialOrigin> material;  // set when the medium came from a measured table
+  // [[tally]]: tallies the scene declares beside its own (declared_tally.hpp).
+  std::vector<DeclaredTally> declared_tallies = {};
 
   // Throws InputError naming the first bad field (CLI flag names) and what it accepts.
   void validate() const;

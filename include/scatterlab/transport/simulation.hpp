@@ -11,6 +11,7 @@
 
 #include "scatterlab/core/medium.hpp"
 #include "scatterlab/tally/axis.hpp"
+#include "scatterlab/transport/declared_tally.hpp"
 #include "scatterlab/transport/estimator.hpp"
 #include "scatterlab/transport/run_settings.hpp"
 
@@ -55,6 +56,8 @@ struct InfiniteMediumSpec {
   TallyRequest tallies;
   RunSettings run;
   std::optional<MaterialOrigin> material;  // set when the medium came from a measured table
+  // [[tally]]: tallies the scene declares beside its own (declared_tally.hpp).
+  std::vector<DeclaredTally> declared_tallies = {};
 
   // Sets the source and its natural default tallies: the point source's is the fluence on
   // spherical shells (d'Eon & Irving 2011); the beam has no spherical symmetry.

@@ -82,9 +82,12 @@ class Slab {
   // Spends `optical` (the free path in optical depth) from `position` along `direction` in
   // `layer`, crossing or reflecting at each interface it reaches. Returns false with `position`
   // at the collision, `direction` and `layer` where the photon then is; true when it left the
-  // slab, with `exit` filled (exit.transmitted when through the bottom).
+  // slab, with `exit` filled (exit.transmitted when through the bottom). `timed`: adds to
+  // `path` the length travelled times each layer's index, n l, to the collision or the surface
+  // (time of flight is path / c).
+  template <bool timed = false>
   bool leaves(Vec3& position, Vec3& direction, int& layer, double optical, PhotonRandom& random,
-              SurfaceExit& exit) const {
+              SurfaceExit& exit, double* path = nullptr) const {
     for (;;) {
       const Layer& l = at(layer);
       const double w = direction.z();
@@ -94,6 +97,7 @@ class Slab {
       const double z_end = position.z() + flight * w;
       if (z_end >= l.top && z_end <= l.bottom) {
         position += flight * direction;
+        if constexpr (timed) *path += l.n * flight;
         return false;
       }
       const bool down = w > 0.0;
@@ -103,6 +107,7 @@ class Slab {
       position.x() += to_interface * direction.x();
       position.y() += to_interface * direction.y();
       position.z() = down ? l.bottom : l.top;  // exactly on the interface
+      if constexpr (timed) *path += l.n * to_interface;
       const int beyond = layer + (down ? 1 : -1);
       const double n_beyond = beyond < 0 ? n_above_ : beyond == count() ? n_below_ : at(beyond).n;
       const double cos_incident = std::abs(w);

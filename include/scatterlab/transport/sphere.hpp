@@ -50,6 +50,7 @@ class Sphere {
       exit.x = hit.x();
       exit.y = hit.y();
       exit.cos_polar = std::clamp(-hit.z() / radius_, -1.0, 1.0);
+      exit.remaining = flight - to_surface;
       if constexpr (fresnel) {
         const FresnelDielectric surface = fresnel_dielectric_terms(cos_inside, exit_eta_);
         // A flight exactly tangent to the surface (cos 0, probability 0) would be reflected

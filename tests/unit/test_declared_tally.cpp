@@ -1,0 +1,154 @@
+// [[tally]] in a scene: read once, checked with the field named, lowered to chained tallies
+// whose filters bin events themselves (transport/declared_tally.hpp, tally/scorer.hpp).
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <string_view>
+#include <variant>
+
+#include "input_error_field.hpp"
+#include "scatterlab/core/constants.hpp"
+#include "scatterlab/io/scene.hpp"
+#include "scatterlab/tally/scorer.hpp"
+#include "scatterlab/tally/tally_book.hpp"
+
+namespace scatterlab {
+namespace {
+
+using test_support::field_of;
+
+std::string refused(std::string_view text) {
+  return field_of([&] { parse_scene(text, "tally.toml"); });
+}
+
+constexpr std::string_view kHalfSpaceInMm =
+    "[geometry]\ntype = \"half_space\"\n[medium]\nalbedo = 0.9\nsigma_t = 2\ng = 0\n"
+    "length_unit = \"mm\"\n";
+
+TEST(DeclaredTally, ReadsNameScoreAndFiltersInSpaceTimeOrder) {
+  const Scene scene = parse_scene(
+      std::string(kHalfSpaceInMm) +
+          "[[tally]]\nname = \"R_rt\"\nscore = \"exitance\"\n"
+          "filters = { t = { max = 2e-9, bins = 40 }, r = { max = 3, bins = 30 } }\n"
+          "[[tally]]\nname = \"A_z\"\nscore = \"absorbed\"\nfilters = { z = { min = 0, max = 2, "
+          "bins = 4 } }\n",
+      "tally.toml");
+  const auto& spec = std::get<HalfSpaceSpec>(scene.spec);
+  ASSERT_EQ(spec.declared_tallies.size(), 2u);
+  const DeclaredTally& rt = spec.declared_tallies[0];
+  EXPECT_EQ(rt.name, "R_rt");
+  EXPECT_EQ(rt.score, DeclaredScore::exitance);
+  EXPECT_EQ(rt.r, (UniformAxis{0.0, 3.0, 30}));
+  EXPECT_EQ(rt.t, (UniformAxis{0.0, 2e-9, 40}));
+  EXPECT_FALSE(rt.z);
+
+  const TransportProblem problem = transport_problem(scene.spec);
+  const TallyDeclaration& d = problem.tallies.at(problem.tallies.size() - 2);
+  EXPECT_TRUE(d.chained);
+  EXPECT_EQ(d.score, Score::exit);
+  ASSERT_EQ(d.filters.size(), 2u);
+  EXPECT_EQ(d.filters[0].dims, std::vector<std::string>{"r"});  // r before t, as written or not
+  EXPECT_EQ(d.filters[1].dims, std::vector<std::string>{"t"});
+  EXPECT_EQ(d.units, "W mfp^-2 per J incident");
+  // The walk's r is in mfp (sigma_t = 2 / mm): 3 mm is 6 mfp. Its path is in mfp, each 0.5 mm
+  // at c / 1.3 (eta).
+  EXPECT_EQ(d.filters[0].binning.bin({5.9, 0.0, 0.0, 0.0}), 29);
+  EXPECT_EQ(d.filters[1].binning.seconds_per_path, 0.5e-3 * 1.3 / speed_of_light);
+  ASSERT_EQ(d.axes.size(), 2u);
+  EXPECT_EQ(d.axes[0].units, "mm");
+  EXPECT_EQ(d.axes[1].units, "s");
+  EXPECT_EQ(d.axes[1].edges.back(), 2e-9);
+  EXPECT_EQ(problem.tallies.back().units, "W mfp^-1 per W incident");
+}
+
+// A chained tally's filters bin an event row-major in the order listed, and the event's cell
+// gets its weight; outside any filter's axis, nothing.
+TEST(DeclaredTally, TheChainBinsEachEventByItsFilters) {
+  TallyDeclaration d{"rt", Score::exit, {}, "", ""};
+  d.chained = true;
+  d.filters = {radius_filter(UniformAxis{0.0, 2.0, 4}),
+               time_filter(UniformAxis{0.0, 1.0, 10}, 0.1)};
+  const TallyBook book({d}, false);
+  const Scorer scorer(TallyAxes{}, book);
+  std::vector<double> buffer(book.size(), 0.0);
+  SurfaceExit exit;
+  exit.x = 0.3;
+  exit.y = 0.4;                                         // r = 0.5: bin 1
+  scorer.chained_exit(buffer.data(), exit, 3.5, 0.25);  // t = 0.35: bin 3
+  scorer.chained_exit(buffer.data(), exit, 10.0, 1.0);  // t = 1: past the axis
+  for (std::size_t i = 0; i < buffer.size(); ++i) {
+    EXPECT_EQ(buffer[i], i == 1 * 10 + 3 ? 0.25 : 0.0) << i;
+  }
+}
+
+TEST(DeclaredTally, RefusesWhatItsGeometryCannotScoreNamingTheField) {
+  const std::string tally = "[[tally]]\nname = \"x\"\n";
+  const std::string half(kHalfSpaceInMm);
+  EXPECT_EQ(refused(half + tally + "score = \"glow\"\n"), "tally[1].score");
+  EXPECT_EQ(refused(half + tally), "tally[1].score");  // missing
+  EXPECT_EQ(refused(half + "[[tally]]\nscore = \"exitance\"\n"), "tally[1].name");
+  EXPECT_EQ(refused(half + tally + "score = \"transmittance\"\n"), "tally[1].score");
+  EXPECT_EQ(refused(half + tally +
+                    "score = \"exitance\"\nfilters = { z = { min = 0, max = 1, "
+                    "bins = 2 } }\n"),
+            "tally[1].filters.z");
+  EXPECT_EQ(
+      refused(half + tally + "score = \"exitance\"\nfilters = { q = { max = 1, bins = 2 } }\n"),
+      "tally[1].filters.q");
+  EXPECT_EQ(refused(half + tally + "score = \"exitance\"\nfilters = { r = { max = 1 } }\n"),
+            "tally[1].filters.r.bins");
+  EXPECT_EQ(
+      refused(half + tally + "score = \"exitance\"\nfilters = { t = { max = -1, bins = 2 } }\n"),
+      "tally[1].filters.t");
+  EXPECT_EQ(refused(half + tally + "score = \"exitance\"\ngroup_index = 1.4\n"),
+            "tally[1].group_index");
+  EXPECT_EQ(refused(half + tally + "score = \"exitance\"\n" + tally + "score = \"absorbed\"\n"),
+            "tally[2].name");
+  // The half-space's own R(r): refused where the run is lowered, before any photon runs.
+  const Scene taken =
+      parse_scene(half + "[[tally]]\nname = \"reflectance\"\nscore = \"exitance\"\n", "t.toml");
+  EXPECT_EQ(field_of([&] { transport_problem(taken.spec); }), "tally[1].name");
+  EXPECT_EQ(refused(half + "[[tally]]\nname = \"a b\"\nscore = \"exitance\"\n"), "tally[1].name");
+  // Time needs lengths in metres.
+  EXPECT_EQ(refused("[geometry]\ntype = \"half_space\"\n" + tally +
+                    "score = \"exitance\"\nfilters = { t = { max = 1e-9, bins = 2 } }\n"),
+            "tally[1].filters.t");
+  // The infinite medium has no surface and no index of its own.
+  const std::string infinite = "[medium]\nsigma_a = 0.1\nsigma_s = 10\ng = 0.9\n";
+  EXPECT_EQ(refused(infinite + tally + "score = \"exitance\"\n"), "tally[1].score");
+  EXPECT_EQ(refused(infinite + tally +
+                    "score = \"absorbed\"\nfilters = { t = { max = 1e-9, bins = 2 } }\n"),
+            "tally[1].group_index");
+  EXPECT_EQ(refused(infinite + tally +
+                    "score = \"absorbed\"\n[tallies]\nestimator = "
+                    "\"track_length\"\n"),
+            "tallies.estimator");
+  // A slab has no volume estimator; a mesh takes no [[tally]] yet.
+  EXPECT_EQ(refused("[geometry]\ntype = \"slab\"\n[[layers]]\nmu_a = 1\nmu_s = 10\ng = 0\nn = 1.4\n"
+                    "thickness = 0.1\n" +
+                    tally + "score = \"fluence\"\n"),
+            "tally[1].score");
+  EXPECT_EQ(refused("[geometry]\ntype = \"mesh\"\n[mesh]\nshape = \"sphere\"\n" + tally +
+                    "score = \"exitance\"\n"),
+            "tally");
+  EXPECT_NO_THROW(parse_scene(infinite + tally +
+                                  "score = \"absorbed\"\ngroup_index = 1.4\nfilters = { t = { "
+                                  "max = 1e-9, bins = 2 }, z = { min = -1, max = 1, bins = 4 } }\n",
+                              "tally.toml"));
+}
+
+// A scene without [[tally]] keeps the fingerprint it always had; one with them has its own.
+TEST(DeclaredTally, OnlyADeclaredTallyChangesTheFingerprint) {
+  const Scene plain = parse_scene(kHalfSpaceInMm, "a.toml");
+  HalfSpaceSpec spec = std::get<HalfSpaceSpec>(plain.spec);
+  const std::string before = fingerprint(plain.spec);
+  spec.declared_tallies.clear();
+  EXPECT_EQ(fingerprint(SceneSpec(spec)), before);
+  spec.declared_tallies.push_back(
+      {"R_t", DeclaredScore::exitance, std::nullopt, std::nullopt, UniformAxis{0, 1e-9, 4}, {}});
+  EXPECT_NE(fingerprint(SceneSpec(spec)), before);
+}
+
+}  // namespace
+}  // namespace scatterlab
