@@ -69,6 +69,26 @@ void HalfSpaceLanes(benchmark::State& state, HalfSpaceSpec spec) {
   state.counters["lanes"] = LaneWalk::lanes();
 }
 
+// The same scene with a declared R(r, t) (transport/declared_tally.hpp), in mm (sigma_t = 1 / mm,
+// so the same walk): the engine then runs the walk that keeps each photon's path, and bins its
+// exits once more through the filter chain, beside the HalfSpace and HalfSpaceLanes rows.
+template <class Phase>
+void HalfSpaceTimed(benchmark::State& state, Phase phase, HalfSpaceSpec spec) {
+  spec.medium.length_unit = "mm";
+  spec.declared_tallies = {{"reflectance_rt",
+                            DeclaredScore::exitance,
+                            {{Coordinate::r, 0.0, 10.0, 100}, {Coordinate::t, 0.0, 1e-9, 200}},
+                            std::nullopt}};
+  const TransportProblem problem = transport_problem(spec);
+  const TallyBook book(problem.tallies, problem.split_by_order);
+  const Scorer scorer(problem.axes, book);
+  const RandomWalk<scatterlab::HalfSpace<true>, Phase, Estimator::none, Weighting::analog, Source,
+                   true>
+      walk(scatterlab::HalfSpace<true>(spec.eta), phase, problem.source, scorer, problem.albedo,
+           problem.run.escape_radius, problem.run.seed);
+  bench::time_walk(state, walk, book.size());
+}
+
 // The whole run through the batch runner on one thread, as `scatterlab searchlight` does it.
 void HalfSpaceWholeRun(benchmark::State& state) {
   HalfSpaceSpec spec = half_space(0.99, 0.0, 1.33, false);
@@ -109,6 +129,8 @@ BENCHMARK_CAPTURE(HalfSpaceLanes, iso_albedo0.99_eta1.33, half_space(0.99, 0.0, 
 BENCHMARK_CAPTURE(HalfSpaceLanes, iso_albedo0.99_eta1.33_fluence, half_space(0.99, 0.0, 1.33, true));
 BENCHMARK_CAPTURE(HalfSpaceLanes, hg_g0.75_albedo0.9_eta1.33, half_space(0.9, 0.75, 1.33, false));
 BENCHMARK_CAPTURE(HalfSpaceLanes, hg_g0.9_albedo0.999_eta1.33, half_space(0.999, 0.9, 1.33, false));
+BENCHMARK_CAPTURE(HalfSpaceTimed, iso_albedo0.99_eta1.33, iso, half_space(0.99, 0.0, 1.33, false));
+BENCHMARK_CAPTURE(HalfSpaceTimed, hg_g0.9_albedo0.999_eta1.33, hg09, half_space(0.999, 0.9, 1.33, false));
 BENCHMARK(HalfSpaceWholeRun)->Unit(benchmark::kMillisecond)->UseRealTime();
 // clang-format on
 

@@ -517,33 +517,30 @@ class SceneReader : public TomlReader {
       if (const toml::table* filters = subtable(*table, "filters", path)) {
         const std::string at_filters = dotted(path, "filters");
         check_table(*filters, at_filters);
-        read_filter(*filters, at_filters, "r", 0.0, tally.r);
-        read_filter(*filters, at_filters, "z", std::nullopt, tally.z);
-        read_filter(*filters, at_filters, "t", 0.0, tally.t);
+        for (const std::string_view name : declared_filter_keys()) {
+          if (const toml::table* filter = subtable(*filters, name, at_filters)) {
+            tally.filters.push_back(read_filter(*filter, dotted(at_filters, name), name));
+          }
+        }
       }
       tallies.push_back(std::move(tally));
     }
     return tallies;
   }
 
-  // A declared tally's filter: max and bins, and min (`min` when the file gives none; r and t
-  // start at 0, z must say where).
-  void read_filter(const toml::table& filters, const std::string& path, std::string_view name,
-                   std::optional<double> min, std::optional<UniformAxis>& axis) const {
-    const toml::table* table = subtable(filters, name, path);
-    if (table == nullptr) return;
-    const std::string at_axis = dotted(path, name);
-    check_table(*table, at_axis);
+  // A declared tally's filter, as written: its keys are the schema's (theta_o and order take
+  // bins alone); check_declared_tallies fills in its defaults and refuses what is missing.
+  DeclaredFilter read_filter(const toml::table& table, const std::string& path,
+                             std::string_view name) const {
+    check_table(table, path);
     const std::string_view unit =
         name == "t" ? "a finite number, in seconds" : "a finite number, in the scene's length unit";
-    const auto given_min = number(*table, "min", at_axis, unit);
-    const auto max = number(*table, "max", at_axis, unit);
-    const auto bins = integer_as<int>(*table, "bins", at_axis, 1, "an integer in [1, 100000]");
-    if (!given_min && !min)
-      throw InputError(dotted(at_axis, "min"), "is missing", std::string(unit));
-    if (!max) throw InputError(dotted(at_axis, "max"), "is missing", std::string(unit));
-    if (!bins) throw InputError(dotted(at_axis, "bins"), "is missing", "an integer in [1, 100000]");
-    axis = UniformAxis{given_min.value_or(min.value_or(0.0)), *max, *bins};
+    DeclaredFilter filter;
+    filter.coordinate = *declared_filter(name);
+    filter.min = number(table, "min", path, unit);
+    filter.max = number(table, "max", path, unit);
+    filter.bins = integer_as<int>(table, "bins", path, 1, "an integer in [1, 100000]").value_or(0);
+    return filter;
   }
 
   void read_grid(const toml::table& table, Grid& grid) const {

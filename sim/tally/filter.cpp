@@ -78,7 +78,14 @@ Filter exit_solid_angle_filter(const UniformAxis& theta_o) {
           {count(theta_o)},
           per_bin(theta_o,
                   [](double t0, double t1) { return 2.0 * pi * (std::cos(t0) - std::cos(t1)); }),
-          {}};
+          {Coordinate::exit_angle, AxisLookup(theta_o), 0.0}};
+}
+
+Filter order_filter(int bins) {
+  const UniformAxis orders{0.0, static_cast<double>(bins), bins};
+  Filter f = length_filter("order", orders);
+  f.binning = {Coordinate::order, AxisLookup(orders), 0.0};
+  return f;
 }
 
 Filter layer_filter(std::size_t layers) {

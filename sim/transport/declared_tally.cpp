@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <set>
+#include <stdexcept>
 
 #include "scatterlab/core/constants.hpp"
 #include "scatterlab/core/error.hpp"
@@ -20,27 +21,78 @@ constexpr int max_bins = 100'000;
 // One tally's cells: past this its buffers (several per thread and batch) outgrow a machine.
 constexpr double max_cells = 1e8;
 
+// The filters, in the order of their cells: space, direction, time, order. Adding one is a row
+// here, its Coordinate and EventBinning case (tally/filter.hpp) and its factory; the schema
+// (io/scene_schema.cpp) lists its keys.
+struct FilterRow {
+  std::string_view key;
+  Coordinate coordinate;
+  bool at_exits, in_volume;  // the events it bins
+  std::string_view unit;     // of min and max: "length" is the scene's length unit
+  std::string_view per;      // what its bins divide by, for the description
+};
+constexpr std::array<FilterRow, 5> filter_rows = {{
+    {"r", Coordinate::r, true, true, "length", "per unit area at distance r from the beam axis"},
+    {"z", Coordinate::z, false, true, "length", "per unit depth z"},
+    {"theta_o", Coordinate::exit_angle, true, false, "rad",
+     "per steradian at exit angle theta_o from the outward normal, outside"},
+    {"t", Coordinate::t, true, true, "s", "per second of time of flight t after a unit impulse"},
+    {"order", Coordinate::order, true, true, "", "by scattering order (the last bin: and more)"},
+}};
+constexpr std::array<std::string_view, filter_rows.size()> filter_keys = [] {
+  std::array<std::string_view, filter_rows.size()> keys{};
+  for (std::size_t i = 0; i < keys.size(); ++i) keys[i] = filter_rows[i].key;
+  return keys;
+}();
+
+const FilterRow& row_of(Coordinate coordinate) {
+  for (const FilterRow& row : filter_rows) {
+    if (row.coordinate == coordinate) return row;
+  }
+  throw std::invalid_argument("declared tally: a filter of no row");
+}
+
 std::string key(std::size_t i, std::string_view rest) {
   return fmt::format("tally[{}].{}", i + 1, rest);
 }
 
-void check_axis(const UniformAxis& axis, std::size_t i, std::string_view name, double walk_per_unit,
-                std::string_view unit) {
-  const std::string at = key(i, fmt::format("filters.{}", name));
-  if (axis.bins < 1 || axis.bins > max_bins) {
-    throw InputError(at + ".bins", fmt::format("is {}", axis.bins), "an integer in [1, 100000]");
+// A filter's axis with its defaults: r and t from 0, theta_o over [0, pi/2], order from 0 by 1.
+UniformAxis axis_of(const DeclaredFilter& f) {
+  switch (f.coordinate) {
+    case Coordinate::exit_angle:
+      return {0.0, 0.5 * pi, f.bins};
+    case Coordinate::order:
+      return {0.0, static_cast<double>(f.bins), f.bins};
+    default:
+      return {f.min.value_or(0.0), f.max.value_or(0.0), f.bins};
   }
+}
+
+void check_filter(const DeclaredFilter& f, std::size_t i, const DeclaredTallyFrame& frame) {
+  const FilterRow& row = row_of(f.coordinate);
+  const std::string at = key(i, fmt::format("filters.{}", row.key));
+  if (f.bins < 1 || f.bins > max_bins) {
+    throw InputError(at + ".bins", f.bins == 0 ? "is missing" : fmt::format("is {}", f.bins),
+                     "an integer in [1, 100000]");
+  }
+  if (f.coordinate == Coordinate::exit_angle || f.coordinate == Coordinate::order) return;
+  const std::string unit = row.unit == "length" ? frame.length_unit : std::string(row.unit);
+  if (!f.max) throw InputError(at + ".max", "is missing", fmt::format("a number, in {}", unit));
+  if (f.coordinate == Coordinate::z && !f.min) {
+    throw InputError(at + ".min", "is missing", fmt::format("a number, in {}", unit));
+  }
+  const UniformAxis axis = axis_of(f);
   if (!std::isfinite(axis.min) || !std::isfinite(axis.max) || !(axis.max > axis.min)) {
     throw InputError(at, fmt::format("spans [{}, {}]", axis.min, axis.max),
                      fmt::format("finite ends with max > min, in {}", unit));
   }
-  if ((name == "r" || name == "t") && axis.min < 0.0) {
+  if (f.coordinate != Coordinate::z && axis.min < 0.0) {
     throw InputError(at + ".min", fmt::format("is {}", axis.min), "a number >= 0");
   }
-  if (name == "t") return;
+  if (row.unit != "length") return;
   // The walk's units: as a grid's axes, finite bins of non-zero width (length_units.hpp).
-  if (std::max(std::abs(axis.min), std::abs(axis.max)) * walk_per_unit > max_grid_mfp ||
-      axis.width() * walk_per_unit < min_bin_mfp) {
+  if (std::max(std::abs(axis.min), std::abs(axis.max)) * frame.walk_per_unit > max_grid_mfp ||
+      axis.width() * frame.walk_per_unit < min_bin_mfp) {
     throw InputError(
         at, fmt::format("spans [{}, {}] {} in {} bins", axis.min, axis.max, unit, axis.bins),
         fmt::format("ends within {:g} mfp and bins at least {:g} mfp wide", max_grid_mfp,
@@ -49,41 +101,27 @@ void check_axis(const UniformAxis& axis, std::size_t i, std::string_view name, d
 }
 
 // The units of a tally of `score` over its filters: a length power k (from the filters' measures
-// and the score's weight) and per joule with t, per watt without.
+// and the score's weight), per steradian with theta_o, and per joule with t, per watt without.
 std::string units_of(const DeclaredTally& t, const std::string& length) {
   int power = t.score == DeclaredScore::fluence ? 1 : 0;  // a collision scores 1 mfp
-  if (t.r) power -= 2;
-  if (t.z) power -= 1;
-  const std::string per = t.t ? "J" : "W";
-  if (power == 0) return fmt::format("W per {} incident", per);
-  if (power == 1) return fmt::format("W {} per {} incident", length, per);
-  return fmt::format("W {}^{} per {} incident", length, power, per);
+  if (t.filter(Coordinate::r)) power -= 2;
+  if (t.filter(Coordinate::z)) power -= 1;
+  std::string units = "W";
+  if (power == 1) units += " " + length;
+  if (power < 0) units += fmt::format(" {}^{}", length, power);
+  if (t.filter(Coordinate::exit_angle)) units += " sr^-1";
+  return units + (t.filter(Coordinate::t) ? " per J incident" : " per W incident");
 }
 
 std::string description_of(const DeclaredTally& t) {
-  std::string what;
-  switch (t.score) {
-    case DeclaredScore::exitance:
-      what = "power leaving through the lit surface";
-      break;
-    case DeclaredScore::transmittance:
-      what = "power leaving through the far side";
-      break;
-    case DeclaredScore::fluence:
-      what = "fluence rate (collision estimator)";
-      break;
-    case DeclaredScore::absorbed:
-      what = "power absorbed";
-      break;
+  constexpr std::array<std::string_view, 4> what = {
+      "power leaving through the lit surface", "power leaving through the far side",
+      "fluence rate (collision estimator)", "power absorbed"};
+  std::string text(what[static_cast<std::size_t>(t.score)]);
+  for (const FilterRow& row : filter_rows) {
+    if (t.filter(row.coordinate)) text += fmt::format(", {}", row.per);
   }
-  std::string per;
-  if (t.r)
-    per += t.score == DeclaredScore::fluence || t.score == DeclaredScore::absorbed
-               ? ", per unit area of the ring at distance r from the beam axis"
-               : ", per unit area at distance r from the beam axis";
-  if (t.z) per += ", per unit depth z";
-  if (t.t) per += ", per second of time of flight t after a unit impulse";
-  return what + per + (t.r || t.z || t.t ? ", bin average" : ", in all");
+  return text + (t.filters.empty() ? ", in all" : ", bin average");
 }
 
 }  // namespace
@@ -164,21 +202,27 @@ void check_declared_tallies(const std::vector<DeclaredTally>& tallies,
     }
     const bool exits =
         t.score == DeclaredScore::exitance || t.score == DeclaredScore::transmittance;
-    if (exits && t.z) {
-      throw InputError(key(i, "filters.z"), fmt::format("bins \"{}\"", score),
-                       "filters r and t for a score at the surface: it has no depth");
-    }
-    if (t.r) check_axis(*t.r, i, "r", frame.walk_per_unit, frame.length_unit);
-    if (t.z) check_axis(*t.z, i, "z", frame.walk_per_unit, frame.length_unit);
-    if (t.t) {
-      check_axis(*t.t, i, "t", 1.0, "s");
-      if (frame.length_unit == "mfp") {
-        throw InputError(
-            key(i, "filters.t"),
-            fmt::format("is asked in a {} scene whose lengths are in mfp", frame.geometry),
-            "a scene with a physical length unit (\"um\", \"mm\", \"cm\" or \"m\") "
-            "and its coefficients in it: time needs lengths in metres");
+    for (std::size_t j = 0; j < t.filters.size(); ++j) {
+      const DeclaredFilter& f = t.filters[j];
+      const FilterRow& row = row_of(f.coordinate);
+      if (t.filter(f.coordinate) != &f) {
+        throw InputError(key(i, fmt::format("filters.{}", row.key)), "is given twice",
+                         "each filter once");
       }
+      if (exits ? !row.at_exits : !row.in_volume) {
+        throw InputError(key(i, fmt::format("filters.{}", row.key)),
+                         fmt::format("bins \"{}\"", score),
+                         exits ? "filters r, theta_o, t and order for a score at the surface"
+                               : "filters r, z, t and order for a score in the volume");
+      }
+      check_filter(f, i, frame);
+    }
+    if (t.filter(Coordinate::t) && frame.length_unit == "mfp") {
+      throw InputError(
+          key(i, "filters.t"),
+          fmt::format("is asked in a {} scene whose lengths are in mfp", frame.geometry),
+          "a scene with a physical length unit (\"um\", \"mm\", \"cm\" or "
+          "\"m\") and its coefficients in it: time needs lengths in metres");
     }
     if (t.group_index && frame.has_index) {
       throw InputError(key(i, "group_index"), fmt::format("is given in a {} scene", frame.geometry),
@@ -189,16 +233,14 @@ void check_declared_tallies(const std::vector<DeclaredTally>& tallies,
       throw InputError(key(i, "group_index"), fmt::format("is {}", *t.group_index),
                        "a refractive index in [0.1, 10]");
     }
-    if (t.t && !frame.has_index && !t.group_index) {
+    if (t.filter(Coordinate::t) && !frame.has_index && !t.group_index) {
       throw InputError(key(i, "group_index"), "is missing",
                        fmt::format("the medium's group index (e.g. 1.4) for the time of flight "
                                    "in a {} scene, which has no index of its own",
                                    frame.geometry));
     }
     double cells = 1.0;
-    for (const auto& axis : {t.r, t.z, t.t}) {
-      if (axis) cells *= axis->bins;
-    }
+    for (const DeclaredFilter& f : t.filters) cells *= f.bins;
     if (cells > max_cells) {
       throw InputError(key(i, "filters"), fmt::format("make {:g} cells", cells),
                        fmt::format("at most {:g} cells in one tally", max_cells));
@@ -228,19 +270,34 @@ std::vector<TallyDeclaration> declare_chained_tallies(const std::vector<Declared
                        units_of(t, frame.walk_length_label),
                        description_of(t)};
     d.chained = true;
-    // Space before time, as the file's dims read: r, z, t.
-    if (t.r) {
-      d.filters.push_back(radius_filter(length_axis_in_mfp(*t.r, frame.walk_per_unit)));
-      d.axes.push_back({"r", t.r->edges(), frame.length_unit});
-    }
-    if (t.z) {
-      d.filters.push_back(depth_filter(length_axis_in_mfp(*t.z, frame.walk_per_unit)));
-      d.axes.push_back({"z", t.z->edges(), frame.length_unit});
-    }
-    if (t.t) {
-      const double index = t.group_index.value_or(frame.index);
-      d.filters.push_back(time_filter(*t.t, frame.seconds_per_walk_length * index));
-      d.axes.push_back({"t", t.t->edges(), "s"});
+    for (const FilterRow& row : filter_rows) {
+      const DeclaredFilter* f = t.filter(row.coordinate);
+      if (f == nullptr) continue;
+      const UniformAxis axis = axis_of(*f);
+      const std::string unit = row.unit == "length" ? frame.length_unit : std::string(row.unit);
+      switch (row.coordinate) {
+        case Coordinate::r:
+          d.filters.push_back(radius_filter(length_axis_in_mfp(axis, frame.walk_per_unit)));
+          break;
+        case Coordinate::z:
+          d.filters.push_back(depth_filter(length_axis_in_mfp(axis, frame.walk_per_unit)));
+          break;
+        case Coordinate::exit_angle:
+          d.filters.push_back(exit_solid_angle_filter(axis));
+          break;
+        case Coordinate::t:
+          d.filters.push_back(time_filter(
+              axis, frame.seconds_per_walk_length * t.group_index.value_or(frame.index)));
+          break;
+        case Coordinate::order:
+          d.filters.push_back(order_filter(f->bins));
+          break;
+        case Coordinate::none:
+          break;
+      }
+      // The file's own axes: edges in the scene's units (the order's bins are numbered).
+      if (row.coordinate != Coordinate::order)
+        d.axes.push_back({std::string(row.key), axis.edges(), unit});
     }
     declarations.push_back(std::move(d));
   }
@@ -249,15 +306,34 @@ std::vector<TallyDeclaration> declare_chained_tallies(const std::vector<Declared
 
 std::string fingerprint_text(const std::vector<DeclaredTally>& tallies) {
   std::string text;
-  const auto axis = [](const std::optional<UniformAxis>& a) {
-    return a ? fmt::format("{:a} {:a} {}", a->min, a->max, a->bins) : std::string("-");
-  };
   for (const DeclaredTally& t : tallies) {
-    text += fmt::format("tally {} {}|r {}|z {}|t {}|n {}|", t.name, to_string(t.score), axis(t.r),
-                        axis(t.z), axis(t.t),
-                        t.group_index ? fmt::format("{:a}", *t.group_index) : "-");
+    text += fmt::format("tally {} {}|", t.name, to_string(t.score));
+    for (const DeclaredFilter& f : t.filters) {
+      const UniformAxis axis = axis_of(f);
+      text +=
+          fmt::format("{} {:a} {:a} {}|", row_of(f.coordinate).key, axis.min, axis.max, axis.bins);
+    }
+    text += t.group_index ? fmt::format("n {:a}|", *t.group_index) : "n -|";
   }
   return text;
+}
+
+const DeclaredFilter* DeclaredTally::filter(Coordinate coordinate) const {
+  for (const DeclaredFilter& f : filters) {
+    if (f.coordinate == coordinate) return &f;
+  }
+  return nullptr;
+}
+
+std::span<const std::string_view> declared_filter_keys() {
+  return filter_keys;
+}
+
+std::optional<Coordinate> declared_filter(std::string_view name) {
+  for (const FilterRow& row : filter_rows) {
+    if (row.key == name) return row.coordinate;
+  }
+  return std::nullopt;
 }
 
 }  // namespace scatterlab

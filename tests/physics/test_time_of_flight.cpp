@@ -17,6 +17,10 @@ namespace {
 using testing::find_tally;
 using testing::scalar;
 
+DeclaredFilter filter(Coordinate coordinate, const UniformAxis& axis) {
+  return {coordinate, axis.min, axis.max, axis.bins};
+}
+
 // In an infinite medium every photon is absorbed, and its path length is a sum of a geometric
 // number (mean 1 / (1 - albedo)) of exponential flights of mean 1 / sigma_t: exponential itself,
 // of rate (1 - albedo) sigma_t = mu_a, whatever the phase function. So the power absorbed against
@@ -31,25 +35,22 @@ TEST(TimeOfFlight, InfiniteMediumAbsorbsExponentiallyInTime) {
   spec.run.seed = 11;
   const double n = 1.4;
   const double rate = 1.0 * speed_of_light * 1e3 / n;  // mu_a v, 1 / s (c in mm / s)
-  DeclaredTally absorbed;
-  absorbed.name = "absorbed_t";
-  absorbed.score = DeclaredScore::absorbed;
-  absorbed.t = UniformAxis{0.0, 6.0 / rate, 30};
-  absorbed.group_index = n;
-  spec.declared_tallies = {absorbed};
+  const UniformAxis time{0.0, 6.0 / rate, 30};
+  spec.declared_tallies = {
+      {"absorbed_t", DeclaredScore::absorbed, {filter(Coordinate::t, time)}, n}};
   const TransportOutput out = run_infinite_medium(spec);
   const TallyResult& a = find_tally(out, "absorbed_t");
   ASSERT_EQ(a.dims, std::vector<std::string>{"t"});
   EXPECT_EQ(a.units, "W per J incident");
-  const double width = absorbed.t->width();
+  const double width = time.width();
   double mean_time = 0.0, exact_mean_time = 0.0, mean_time_variance = 0.0;
-  for (int i = 0; i < absorbed.t->bins; ++i) {
-    const double t0 = absorbed.t->edge(i), t1 = absorbed.t->edge(i + 1);
+  for (int i = 0; i < time.bins; ++i) {
+    const double t0 = time.edge(i), t1 = time.edge(i + 1);
     const double exact = (std::exp(-rate * t0) - std::exp(-rate * t1)) / width;  // W / J
     const auto k = static_cast<std::size_t>(i);
     EXPECT_NEAR(a.mean[k], exact, 4.0 * a.stderr_of_mean[k] + 1e-12 * exact) << "bin " << i;
     // The mean time of the binned curve: bin centres weighted by each bin's share.
-    const double centre = absorbed.t->center(i);
+    const double centre = time.center(i);
     mean_time += centre * a.mean[k] * width;
     exact_mean_time += centre * exact * width;
     mean_time_variance += std::pow(centre * a.stderr_of_mean[k] * width, 2);
@@ -69,11 +70,12 @@ TEST(TimeOfFlight, TimeBinsSumToTheSteadyExitance) {
   spec.run.photons = 40'000;
   spec.run.batches = 8;
   spec.run.seed = 5;
-  DeclaredTally by_time{"reflectance_rt", DeclaredScore::exitance,    spec.grid.r,
-                        std::nullopt,     UniformAxis{0.0, 1e-6, 50}, std::nullopt};
-  DeclaredTally steady{"reflectance_r", DeclaredScore::exitance,
-                       spec.grid.r,     std::nullopt,
-                       std::nullopt,    std::nullopt};
+  const DeclaredFilter rings = filter(Coordinate::r, spec.grid.r);
+  const DeclaredTally by_time{"reflectance_rt",
+                              DeclaredScore::exitance,
+                              {rings, filter(Coordinate::t, UniformAxis{0.0, 1e-6, 50})},
+                              std::nullopt};
+  const DeclaredTally steady{"reflectance_r", DeclaredScore::exitance, {rings}, std::nullopt};
   spec.declared_tallies = {by_time, steady};
   const TransportOutput out = run_half_space(spec);
   const TallyResult& rt = find_tally(out, "reflectance_rt");
@@ -117,23 +119,22 @@ TEST(TimeOfFlight, UnscatteredLightCrossesASlabAtItsOpticalThickness) {
   spec.run.batches = 10;
   spec.run.seed = 3;
   const double arrival = (1.4 * 0.2 + 1.5 * 0.3) * 1e-3 / speed_of_light;  // s
-  DeclaredTally early{"early",
-                      DeclaredScore::transmittance,
-                      std::nullopt,
-                      std::nullopt,
-                      UniformAxis{0.0, arrival * (1.0 - 1e-9), 1},
-                      std::nullopt};
-  DeclaredTally on_time{"on_time",
-                        DeclaredScore::transmittance,
-                        std::nullopt,
-                        std::nullopt,
-                        UniformAxis{arrival * (1.0 - 1e-9), arrival * (1.0 + 1e-9), 1},
-                        std::nullopt};
+  const UniformAxis before{0.0, arrival * (1.0 - 1e-9), 1};
+  const UniformAxis at{arrival * (1.0 - 1e-9), arrival * (1.0 + 1e-9), 1};
+  const DeclaredTally early{
+      "early", DeclaredScore::transmittance, {filter(Coordinate::t, before)}, std::nullopt};
+  // By scattering order too: unscattered, and the rest.
+  const DeclaredTally on_time{"on_time",
+                              DeclaredScore::transmittance,
+                              {filter(Coordinate::t, at), {Coordinate::order, {}, {}, 2}},
+                              std::nullopt};
   spec.declared_tallies = {early, on_time};
   const TransportOutput out = run_layered_slab(spec);
   EXPECT_EQ(find_tally(out, "early").mean.at(0), 0.0);
   const TallyResult& t = find_tally(out, "on_time");
-  const double width = on_time.t->width();
+  ASSERT_EQ(t.dims, (std::vector<std::string>{"t", "order"}));
+  EXPECT_EQ(t.mean.at(1), 0.0);  // none of it has scattered
+  const double width = at.width();
   const double exact = (1.0 - fresnel_dielectric_reflectance(1.0, 1.4)) *
                        (1.0 - fresnel_dielectric_reflectance(1.0, 1.5 / 1.4)) *
                        std::exp(-3.5 * 0.2 - 1.5 * 0.3);
@@ -163,8 +164,11 @@ TEST(TimeOfFlight, LateReflectanceDecaysAsDiffusionTheorySays) {
   spec.run.batches = 10;
   spec.run.seed = 2;
   const double t0 = 100e-12, t1 = 150e-12, t2 = 200e-12;
-  spec.declared_tallies = {{"late", DeclaredScore::exitance, UniformAxis{0.0, 3.0, 1}, std::nullopt,
-                            UniformAxis{t0, t2, 2}, std::nullopt}};
+  spec.declared_tallies = {{"late",
+                            DeclaredScore::exitance,
+                            {filter(Coordinate::r, UniformAxis{0.0, 3.0, 1}),
+                             filter(Coordinate::t, UniformAxis{t0, t2, 2})},
+                            std::nullopt}};
   const TransportOutput out = run_half_space(spec);
   const TallyResult& late = find_tally(out, "late");
   const double v = speed_of_light * 1e3;  // mm / s, n = 1

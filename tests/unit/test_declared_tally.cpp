@@ -3,8 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <variant>
 
 #include "input_error_field.hpp"
@@ -39,9 +41,11 @@ TEST(DeclaredTally, ReadsNameScoreAndFiltersInSpaceTimeOrder) {
   const DeclaredTally& rt = spec.declared_tallies[0];
   EXPECT_EQ(rt.name, "R_rt");
   EXPECT_EQ(rt.score, DeclaredScore::exitance);
-  EXPECT_EQ(rt.r, (UniformAxis{0.0, 3.0, 30}));
-  EXPECT_EQ(rt.t, (UniformAxis{0.0, 2e-9, 40}));
-  EXPECT_FALSE(rt.z);
+  ASSERT_NE(rt.filter(Coordinate::r), nullptr);
+  EXPECT_EQ(rt.filter(Coordinate::r)->max, 3.0);
+  EXPECT_FALSE(rt.filter(Coordinate::r)->min);  // 0 by default, where it is lowered
+  EXPECT_EQ(rt.filter(Coordinate::t)->bins, 40);
+  EXPECT_EQ(rt.filter(Coordinate::z), nullptr);
 
   const TransportProblem problem = transport_problem(scene.spec);
   const TallyDeclaration& d = problem.tallies.at(problem.tallies.size() - 2);
@@ -53,7 +57,7 @@ TEST(DeclaredTally, ReadsNameScoreAndFiltersInSpaceTimeOrder) {
   EXPECT_EQ(d.units, "W mfp^-2 per J incident");
   // The walk's r is in mfp (sigma_t = 2 / mm): 3 mm is 6 mfp. Its path is in mfp, each 0.5 mm
   // at c / 1.3 (eta).
-  EXPECT_EQ(d.filters[0].binning.bin({5.9, 0.0, 0.0, 0.0}), 29);
+  EXPECT_EQ(d.filters[0].binning.bin({5.9, 0.0, 0.0, 0.0, 1.0, 0}), 29);
   EXPECT_EQ(d.filters[1].binning.seconds_per_path, 0.5e-3 * 1.3 / speed_of_light);
   ASSERT_EQ(d.axes.size(), 2u);
   EXPECT_EQ(d.axes[0].units, "mm");
@@ -75,11 +79,29 @@ TEST(DeclaredTally, TheChainBinsEachEventByItsFilters) {
   SurfaceExit exit;
   exit.x = 0.3;
   exit.y = 0.4;                                         // r = 0.5: bin 1
-  scorer.chained_exit(buffer.data(), exit, 3.5, 0.25);  // t = 0.35: bin 3
-  scorer.chained_exit(buffer.data(), exit, 10.0, 1.0);  // t = 1: past the axis
+  scorer.chained_exit(buffer.data(), exit, 3.5, 0, 0.25);  // t = 0.35: bin 3
+  scorer.chained_exit(buffer.data(), exit, 10.0, 0, 1.0);  // t = 1: past the axis
   for (std::size_t i = 0; i < buffer.size(); ++i) {
     EXPECT_EQ(buffer[i], i == 1 * 10 + 3 ? 0.25 : 0.0) << i;
   }
+}
+
+// theta_o bins the exit's angle outside, per steradian; order the scatterings, its last bin
+// holding that order and more.
+TEST(DeclaredTally, ExitAngleAndOrderBinTheirEvents) {
+  const Filter angle = exit_solid_angle_filter(UniformAxis{0.0, pi / 2, 3});
+  TallyEvent event;
+  event.cos_outside = std::cos(0.4);  // bin 0 covers [0, pi/6)
+  EXPECT_EQ(angle.binning.bin(event), 0);
+  event.cos_outside = std::cos(1.2);
+  EXPECT_EQ(angle.binning.bin(event), 2);
+  EXPECT_DOUBLE_EQ(angle.measures[0], 2 * pi * (1 - std::cos(pi / 6)));
+  const Filter orders = order_filter(3);
+  for (const auto& [order, bin] : {std::pair{0, 0}, {1, 1}, {2, 2}, {7, 2}}) {
+    event.order = order;
+    EXPECT_EQ(orders.binning.bin(event), bin) << order;
+  }
+  EXPECT_EQ(orders.measures, (std::vector<double>{1.0, 1.0, 1.0}));
 }
 
 TEST(DeclaredTally, RefusesWhatItsGeometryCannotScoreNamingTheField) {
@@ -101,6 +123,14 @@ TEST(DeclaredTally, RefusesWhatItsGeometryCannotScoreNamingTheField) {
   EXPECT_EQ(
       refused(half + tally + "score = \"exitance\"\nfilters = { t = { max = -1, bins = 2 } }\n"),
       "tally[1].filters.t");
+  EXPECT_EQ(refused(half + tally + "score = \"absorbed\"\nfilters = { theta_o = { bins = 2 } }\n"),
+            "tally[1].filters.theta_o");  // an absorption has no exit angle
+  EXPECT_EQ(refused(half + tally +
+                    "score = \"exitance\"\nfilters = { theta_o = { max = 1, "
+                    "bins = 2 } }\n"),
+            "tally[1].filters.theta_o.max");  // over [0, pi/2] always
+  EXPECT_EQ(refused(half + tally + "score = \"exitance\"\nfilters = { order = {} }\n"),
+            "tally[1].filters.order.bins");
   EXPECT_EQ(refused(half + tally + "score = \"exitance\"\ngroup_index = 1.4\n"),
             "tally[1].group_index");
   EXPECT_EQ(refused(half + tally + "score = \"exitance\"\n" + tally + "score = \"absorbed\"\n"),
@@ -146,7 +176,7 @@ TEST(DeclaredTally, OnlyADeclaredTallyChangesTheFingerprint) {
   spec.declared_tallies.clear();
   EXPECT_EQ(fingerprint(SceneSpec(spec)), before);
   spec.declared_tallies.push_back(
-      {"R_t", DeclaredScore::exitance, std::nullopt, std::nullopt, UniformAxis{0, 1e-9, 4}, {}});
+      {"R_t", DeclaredScore::exitance, {{Coordinate::t, 0.0, 1e-9, 4}}, std::nullopt});
   EXPECT_NE(fingerprint(SceneSpec(spec)), before);
 }
 

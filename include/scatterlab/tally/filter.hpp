@@ -11,6 +11,7 @@
 // A filter of a declared tally (the chain, scorer.hpp) bins the event itself, along its
 // coordinate; the fixed scores' cells are found by the Scorer's own strides (Coordinate::none).
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <string>
@@ -20,17 +21,21 @@
 
 namespace scatterlab {
 
-// Where and when an event happens, as a filter bins it: the point (for an exit, on the surface,
-// about the entry point) and the path the photon has travelled since it entered the medium, in
-// the walk's length unit times the index it travelled at (random_walk.hpp).
+// Where, when and how an event happens, as a filter bins it: the point (for an exit, on the
+// surface, about the entry point), the path the photon has travelled since it entered the
+// medium (in the walk's length unit times the index it travelled at: random_walk.hpp), the
+// cosine of an exit's angle outside, and the photon's scatterings so far.
 struct TallyEvent {
   double x = 0.0, y = 0.0, z = 0.0;
   double path = 0.0;
+  double cos_outside = 1.0;
+  int order = 0;
 };
 
-// The coordinate a filter bins an event by: distance r from the beam axis, depth z, or time of
-// flight t = path x seconds_per_path.
-enum class Coordinate { none, r, z, t };
+// The coordinate a filter bins an event by: distance r from the beam axis, depth z, the exit
+// angle theta_o, time of flight t = path x seconds_per_path, or the scattering order (its last
+// bin holding that order and more).
+enum class Coordinate { none, r, z, exit_angle, t, order };
 
 // How a filter bins an event along its coordinate: the axis, in the walk's units.
 struct EventBinning {
@@ -45,6 +50,10 @@ struct EventBinning {
         return cells.index(std::sqrt(event.x * event.x + event.y * event.y));
       case Coordinate::z:
         return cells.index(event.z);
+      case Coordinate::exit_angle:
+        return cells.index(std::acos(event.cos_outside));
+      case Coordinate::order:
+        return cells.index(std::min(static_cast<double>(event.order), cells.end - 1.0));
       case Coordinate::t:
         return cells.index(event.path * seconds_per_path);
       case Coordinate::none:
@@ -72,6 +81,8 @@ Filter depth_filter(const UniformAxis& z);
 // Time of flight t in seconds, by its bin width in s: the path (TallyEvent) times
 // `seconds_per_path`, the seconds light takes per unit of path (the index is in the path).
 Filter time_filter(const UniformAxis& t, double seconds_per_path);
+// The scattering order 0, 1, ..., bins - 1, the last bin holding that order and more: measure 1.
+Filter order_filter(int bins);
 // Direction (theta from +z, phi from e_r), by each bin's solid angle in sr: a folded phi bin
 // stands for phi and -phi together, so it counts twice.
 Filter direction_filter(const UniformAxis& theta, const UniformAxis& phi, bool fold_phi);

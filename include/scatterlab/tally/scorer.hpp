@@ -142,18 +142,21 @@ class Scorer {
   // The chained tallies (TallyDeclaration::chained), which the walk scores only when a run has
   // them (random_walk.hpp): each adds `weight` at the cell its filters bin the event into, and
   // nothing when one of them puts it outside its axis. An exit is binned at its point on the
-  // surface; a collision (the fluence's collision estimator: 1 mfp) and an absorption at their
-  // point in the volume.
-  void chained_exit(double* buffer, const SurfaceExit& where, double path, double weight) const {
+  // surface, with its angle outside; a collision (the fluence's collision estimator: 1 mfp) and
+  // an absorption at their point in the volume. `path` and `order` as TallyEvent has them.
+  void chained_exit(double* buffer, const SurfaceExit& where, double path, int order,
+                    double weight) const {
     add_chained(where.transmitted ? transmitted_chains_ : exit_chains_, buffer,
-                {where.x, where.y, 0.0, path}, weight);
+                {where.x, where.y, 0.0, path, where.cos_outside, order}, weight);
   }
-  void chained_collision(double* buffer, const Vec3& position, double path) const {
-    add_chained(collision_chains_, buffer, {position.x(), position.y(), position.z(), path}, 1.0);
+  void chained_collision(double* buffer, const Vec3& position, double path, int order) const {
+    add_chained(collision_chains_, buffer,
+                {position.x(), position.y(), position.z(), path, 1.0, order}, 1.0);
   }
-  void chained_absorption(double* buffer, const Vec3& position, double path, double weight) const {
-    add_chained(absorption_chains_, buffer, {position.x(), position.y(), position.z(), path},
-                weight);
+  void chained_absorption(double* buffer, const Vec3& position, double path, int order,
+                          double weight) const {
+    add_chained(absorption_chains_, buffer,
+                {position.x(), position.y(), position.z(), path, 1.0, order}, weight);
   }
 
   bool in_grid(const Vec3& p) const {

@@ -4,40 +4,60 @@
 // Scorer's chain, tally/scorer.hpp), so any of them works on any score where the pair makes sense:
 //
 //   score          its event                                   filters
-//   exitance       a photon leaves through the lit surface      r, t
-//   transmittance  a photon leaves a slab through its far side  r, t
-//   fluence        a collision (the collision estimator)        r, z, t
-//   absorbed       a photon's weight is absorbed                r, z, t
+//   exitance       a photon leaves through the lit surface      r, theta_o, t, order
+//   transmittance  a photon leaves a slab through its far side  r, theta_o, t, order
+//   fluence        a collision (the collision estimator)        r, z, t, order
+//   absorbed       a photon's weight is absorbed                r, z, t, order
 //
 // r is the distance from the beam axis (of an exit point on the surface, about the entry point),
-// z the depth, both in the scene's length unit; t is the time of flight in seconds since the
-// light entered the medium: the path travelled times the group index over c (a slab's layers
-// each at their own index n). A tally against t is the response to a unit impulse, per joule
-// incident; one without t is per watt, as the geometry's own tallies are.
+// z the depth, both in the scene's length unit; theta_o the exit angle from the outward normal,
+// outside, per steradian; t the time of flight in seconds since the light entered the medium:
+// the path travelled times the group index over c (a slab's layers each at their own index n);
+// order the number of scatterings, the last bin holding its order and more. A tally against t is
+// the response to a unit impulse, per joule incident; one without t is per watt, as the
+// geometry's own tallies are. Its cells are row-major in the order of the table below, whatever
+// the order the file names them in.
 
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "scatterlab/core/medium.hpp"
 #include "scatterlab/tally/axis.hpp"
+#include "scatterlab/tally/filter.hpp"
 #include "scatterlab/tally/tally_declaration.hpp"
 
 namespace scatterlab {
 
 enum class DeclaredScore { exitance, transmittance, fluence, absorbed };
 
+// One filter of a declared tally, as the file gives it: what it leaves out takes the filter's
+// default (r and t start at 0; theta_o spans [0, pi/2]; order counts from 0), and
+// check_declared_tallies refuses what is missing.
+struct DeclaredFilter {
+  Coordinate coordinate = Coordinate::r;
+  std::optional<double> min, max;
+  int bins = 0;
+};
+
 struct DeclaredTally {
   std::string name;  // letters, digits and _; unique in the file
   DeclaredScore score = DeclaredScore::exitance;
-  std::optional<UniformAxis> r, z;  // in the scene's length unit
-  std::optional<UniformAxis> t;     // seconds
+  std::vector<DeclaredFilter> filters;  // at most one of each coordinate
   // The medium's group index, where the geometry has no index of its own (the infinite
   // medium); elsewhere the index is the geometry's (eta over an outside of index 1, or each
   // layer's n).
   std::optional<double> group_index;
+
+  const DeclaredFilter* filter(Coordinate coordinate) const;
 };
+
+// The filters' keys in filters = {...} ("r", "z", "theta_o", "t", "order"), in the order of
+// their cells; and the coordinate of a key, or nullopt.
+std::span<const std::string_view> declared_filter_keys();
+std::optional<Coordinate> declared_filter(std::string_view key);
 
 // What a geometry gives its declared tallies: which events it has, its length unit and how its
 // walk's path becomes seconds.

@@ -105,7 +105,7 @@ class RandomWalk {
           if (geometry_.template leaves<chained>(position, direction, layer, flight, random, exit,
                                                  &path)) {
             scorer_.exit(buffer, exit, order, weight);
-            if constexpr (chained) scorer_.chained_exit(buffer, exit, path, weight);
+            if constexpr (chained) scorer_.chained_exit(buffer, exit, path, order, weight);
             break;
           }
           next = position;
@@ -116,7 +116,7 @@ class RandomWalk {
             if (geometry_.leaves(position, direction, next, flight, random, exit)) {
               scorer_.exit(buffer, exit, order, weight);
               if constexpr (chained) {
-                scorer_.chained_exit(buffer, exit, path + (flight - exit.remaining), weight);
+                scorer_.chained_exit(buffer, exit, path + (flight - exit.remaining), order, weight);
               }
               break;
             }
@@ -137,7 +137,7 @@ class RandomWalk {
         position = next;
         if constexpr (estimator == Estimator::collision) {
           scorer_.collision(buffer, position, direction, order);
-          if constexpr (chained) scorer_.chained_collision(buffer, position, path);
+          if constexpr (chained) scorer_.chained_collision(buffer, position, path, order);
         }
         double albedo = albedo_;
         if constexpr (Geometry::layered) albedo = geometry_.albedo(layer);
@@ -147,7 +147,8 @@ class RandomWalk {
           // times the weight, with u[1], which absorption no longer needs.
           const double deposited = weight * (1.0 - albedo);
           scorer_.absorption(buffer, position, order, layer, deposited);
-          if constexpr (chained) scorer_.chained_absorption(buffer, position, path, deposited);
+          if constexpr (chained)
+            scorer_.chained_absorption(buffer, position, path, order, deposited);
           weight -= deposited;
           if (weight < roulette_threshold) {
             if (!(weight > 0.0) || u[1] >= roulette_chance) break;
@@ -155,7 +156,7 @@ class RandomWalk {
           }
         } else if (u[1] >= albedo) {
           scorer_.absorption(buffer, position, order, layer);
-          if constexpr (chained) scorer_.chained_absorption(buffer, position, path, 1.0);
+          if constexpr (chained) scorer_.chained_absorption(buffer, position, path, order, 1.0);
           break;
         }
         if constexpr (Geometry::layered) {
