@@ -518,7 +518,11 @@ class SceneReader : public TomlReader {
         const std::string at_filters = dotted(path, "filters");
         check_table(*filters, at_filters);
         for (const std::string_view name : declared_filter_keys()) {
-          if (const toml::table* filter = subtable(*filters, name, at_filters)) {
+          if (name == "layer") {  // no axis: a bin per layer of the slab
+            if (boolean(*filters, name, at_filters).value_or(false)) {
+              tally.filters.push_back({Coordinate::layer, {}, {}, 0});
+            }
+          } else if (const toml::table* filter = subtable(*filters, name, at_filters)) {
             tally.filters.push_back(read_filter(*filter, dotted(at_filters, name), name));
           }
         }

@@ -159,6 +159,7 @@ constexpr std::array kKeys = std::to_array<SceneKey>({
      "bins of the time of flight"},
     {"tally.filters.order.bins", kDeclaring, integer, "an integer in [1, 100000]",
      "bins of the scattering order 0, 1, ...; the last holds its order and more"},
+    {"tally.filters.layer", "slab", boolean, "true or false", "a bin per layer, top down"},
 
     {"tallies.radiance", "infinite", boolean, "true or false", "L(r, z, theta, phi)"},
     {"tallies.fluence", "infinite half_space", boolean, "true or false", "fluence phi(r, z)"},

@@ -89,7 +89,11 @@ Filter order_filter(int bins) {
 }
 
 Filter layer_filter(std::size_t layers) {
-  return {{"layer"}, {layers}, std::vector<double>(layers, 1.0), {}};
+  const auto count = static_cast<double>(layers);
+  return {{"layer"},
+          {layers},
+          std::vector<double>(layers, 1.0),
+          {Coordinate::layer, AxisLookup(UniformAxis{0.0, count, static_cast<int>(layers)}), 0.0}};
 }
 
 Filter sphere_patch_filter(const UniformAxis& psi, const UniformAxis& azimuth, double radius) {

@@ -22,8 +22,8 @@ constexpr int max_bins = 100'000;
 constexpr double max_cells = 1e8;
 
 // The filters, in the order of their cells: space, direction, time, order. Adding one is a row
-// here, its Coordinate and EventBinning case (tally/filter.hpp) and its factory; the schema
-// (io/scene_schema.cpp) lists its keys.
+// here with its case in declare_chained_tallies, its Coordinate and EventBinning case
+// (tally/filter.hpp) and its factory; the schema (io/scene_schema.cpp) lists its keys.
 struct FilterRow {
   std::string_view key;
   Coordinate coordinate;
@@ -31,13 +31,14 @@ struct FilterRow {
   std::string_view unit;     // of min and max: "length" is the scene's length unit
   std::string_view per;      // what its bins divide by, for the description
 };
-constexpr std::array<FilterRow, 5> filter_rows = {{
+constexpr std::array<FilterRow, 6> filter_rows = {{
     {"r", Coordinate::r, true, true, "length", "per unit area at distance r from the beam axis"},
     {"z", Coordinate::z, false, true, "length", "per unit depth z"},
     {"theta_o", Coordinate::exit_angle, true, false, "rad",
      "per steradian at exit angle theta_o from the outward normal, outside"},
     {"t", Coordinate::t, true, true, "s", "per second of time of flight t after a unit impulse"},
     {"order", Coordinate::order, true, true, "", "by scattering order (the last bin: and more)"},
+    {"layer", Coordinate::layer, false, true, "", "by layer, top down"},
 }};
 constexpr std::array<std::string_view, filter_rows.size()> filter_keys = [] {
   std::array<std::string_view, filter_rows.size()> keys{};
@@ -71,6 +72,13 @@ UniformAxis axis_of(const DeclaredFilter& f) {
 void check_filter(const DeclaredFilter& f, std::size_t i, const DeclaredTallyFrame& frame) {
   const FilterRow& row = row_of(f.coordinate);
   const std::string at = key(i, fmt::format("filters.{}", row.key));
+  if (f.coordinate == Coordinate::layer) {  // as many bins as the slab has layers
+    if (frame.layers == 0) {
+      throw InputError(at, fmt::format("is asked in a {} scene", frame.geometry),
+                       "layer only in a slab: the other geometries have one medium");
+    }
+    return;
+  }
   if (f.bins < 1 || f.bins > max_bins) {
     throw InputError(at + ".bins", f.bins == 0 ? "is missing" : fmt::format("is {}", f.bins),
                      "an integer in [1, 100000]");
@@ -143,9 +151,10 @@ DeclaredTallyFrame homogeneous_frame(std::string_view geometry, const Medium& me
   return frame;
 }
 
-DeclaredTallyFrame slab_frame(const std::string& length_unit) {
+DeclaredTallyFrame slab_frame(const std::string& length_unit, int layers) {
   DeclaredTallyFrame frame;
   frame.geometry = "slab";
+  frame.layers = layers;
   frame.transmits = true;
   frame.has_volume_estimator = false;
   frame.length_unit = length_unit;
@@ -240,7 +249,9 @@ void check_declared_tallies(const std::vector<DeclaredTally>& tallies,
                                    frame.geometry));
     }
     double cells = 1.0;
-    for (const DeclaredFilter& f : t.filters) cells *= f.bins;
+    for (const DeclaredFilter& f : t.filters) {
+      cells *= f.coordinate == Coordinate::layer ? frame.layers : f.bins;
+    }
     if (cells > max_cells) {
       throw InputError(key(i, "filters"), fmt::format("make {:g} cells", cells),
                        fmt::format("at most {:g} cells in one tally", max_cells));
@@ -292,11 +303,14 @@ std::vector<TallyDeclaration> declare_chained_tallies(const std::vector<Declared
         case Coordinate::order:
           d.filters.push_back(order_filter(f->bins));
           break;
+        case Coordinate::layer:
+          d.filters.push_back(layer_filter(static_cast<std::size_t>(frame.layers)));
+          break;
         case Coordinate::none:
           break;
       }
-      // The file's own axes: edges in the scene's units (the order's bins are numbered).
-      if (row.coordinate != Coordinate::order)
+      // The file's own axes: edges in the scene's units (orders and layers are numbered).
+      if (row.coordinate != Coordinate::order && row.coordinate != Coordinate::layer)
         d.axes.push_back({std::string(row.key), axis.edges(), unit});
     }
     declarations.push_back(std::move(d));

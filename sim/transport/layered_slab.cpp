@@ -203,7 +203,8 @@ void LayeredSlabSpec::validate() const {
   const SlabLayerSpec& last = layers.back();
   if (std::isinf(last.thickness)) albedo = last.mu_s / last.mu_t();
   check_run_length(run, albedo, std::min(run.escape_radius * most_mu_t, optical_depth));
-  check_declared_tallies(declared_tallies, slab_frame(length_unit));
+  check_declared_tallies(declared_tallies,
+                         slab_frame(length_unit, static_cast<int>(layers.size())));
 }
 
 double specular_reflectance(const LayeredSlabSpec& spec) {
@@ -251,7 +252,8 @@ TransportProblem transport_problem(const LayeredSlabSpec& spec) {
   problem.axes.theta_o = spec.theta_o;
   problem.tallies = declare_tallies(spec);
   for (TallyDeclaration& d : declare_chained_tallies(
-           spec.declared_tallies, slab_frame(spec.length_unit), problem.tallies)) {
+           spec.declared_tallies,
+           slab_frame(spec.length_unit, static_cast<int>(spec.layers.size())), problem.tallies)) {
     problem.tallies.push_back(std::move(d));
   }
   problem.split_by_order = spec.split_by_order;

@@ -128,7 +128,10 @@ TEST(TimeOfFlight, UnscatteredLightCrossesASlabAtItsOpticalThickness) {
                               DeclaredScore::transmittance,
                               {filter(Coordinate::t, at), {Coordinate::order, {}, {}, 2}},
                               std::nullopt};
-  spec.declared_tallies = {early, on_time};
+  // And the absorbed power by layer, which is the slab's own: the same absorptions.
+  const DeclaredTally layers{
+      "absorbed_layers", DeclaredScore::absorbed, {{Coordinate::layer, {}, {}, 0}}, std::nullopt};
+  spec.declared_tallies = {early, on_time, layers};
   const TransportOutput out = run_layered_slab(spec);
   EXPECT_EQ(find_tally(out, "early").mean.at(0), 0.0);
   const TallyResult& t = find_tally(out, "on_time");
@@ -142,6 +145,12 @@ TEST(TimeOfFlight, UnscatteredLightCrossesASlabAtItsOpticalThickness) {
   // And no more than the unscattered transmittance of the run, which also holds the light
   // reflected between the layers.
   EXPECT_LE(t.mean.at(0) * width, scalar(out, "total_transmittance_unscattered") * (1 + 1e-12));
+  const TallyResult& declared = find_tally(out, "absorbed_layers");
+  const TallyResult& own = find_tally(out, "absorbed_by_layer");
+  ASSERT_EQ(declared.shape, own.shape);
+  for (std::size_t i = 0; i < own.size(); ++i) {
+    EXPECT_NEAR(declared.mean[i], own.mean[i], 1e-12 * own.mean[i]) << "layer " << i;
+  }
 }
 
 // Late light in a semi-infinite medium decays as diffusion theory says (Patterson, Chance & Wilson

@@ -131,6 +131,8 @@ TEST(DeclaredTally, RefusesWhatItsGeometryCannotScoreNamingTheField) {
             "tally[1].filters.theta_o.max");  // over [0, pi/2] always
   EXPECT_EQ(refused(half + tally + "score = \"exitance\"\nfilters = { order = {} }\n"),
             "tally[1].filters.order.bins");
+  EXPECT_EQ(refused(half + tally + "score = \"absorbed\"\nfilters = { layer = true }\n"),
+            "tally[1].filters.layer");  // only a slab has layers
   EXPECT_EQ(refused(half + tally + "score = \"exitance\"\ngroup_index = 1.4\n"),
             "tally[1].group_index");
   EXPECT_EQ(refused(half + tally + "score = \"exitance\"\n" + tally + "score = \"absorbed\"\n"),

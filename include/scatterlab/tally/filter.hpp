@@ -24,18 +24,19 @@ namespace scatterlab {
 // Where, when and how an event happens, as a filter bins it: the point (for an exit, on the
 // surface, about the entry point), the path the photon has travelled since it entered the
 // medium (in the walk's length unit times the index it travelled at: random_walk.hpp), the
-// cosine of an exit's angle outside, and the photon's scatterings so far.
+// cosine of an exit's angle outside, the photon's scatterings so far and a slab's layer.
 struct TallyEvent {
   double x = 0.0, y = 0.0, z = 0.0;
   double path = 0.0;
   double cos_outside = 1.0;
   int order = 0;
+  int layer = 0;
 };
 
 // The coordinate a filter bins an event by: distance r from the beam axis, depth z, the exit
-// angle theta_o, time of flight t = path x seconds_per_path, or the scattering order (its last
-// bin holding that order and more).
-enum class Coordinate { none, r, z, exit_angle, t, order };
+// angle theta_o, time of flight t = path x seconds_per_path, the scattering order (its last
+// bin holding that order and more), or a slab's layer.
+enum class Coordinate { none, r, z, exit_angle, t, order, layer };
 
 // How a filter bins an event along its coordinate: the axis, in the walk's units.
 struct EventBinning {
@@ -54,6 +55,8 @@ struct EventBinning {
         return cells.index(std::acos(event.cos_outside));
       case Coordinate::order:
         return cells.index(std::min(static_cast<double>(event.order), cells.end - 1.0));
+      case Coordinate::layer:
+        return cells.index(event.layer);
       case Coordinate::t:
         return cells.index(event.path * seconds_per_path);
       case Coordinate::none:

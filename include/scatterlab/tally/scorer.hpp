@@ -143,20 +143,21 @@ class Scorer {
   // them (random_walk.hpp): each adds `weight` at the cell its filters bin the event into, and
   // nothing when one of them puts it outside its axis. An exit is binned at its point on the
   // surface, with its angle outside; a collision (the fluence's collision estimator: 1 mfp) and
-  // an absorption at their point in the volume. `path` and `order` as TallyEvent has them.
+  // an absorption at their point in the volume. `path`, `order` and `layer` as TallyEvent has
+  // them.
   void chained_exit(double* buffer, const SurfaceExit& where, double path, int order,
                     double weight) const {
     add_chained(where.transmitted ? transmitted_chains_ : exit_chains_, buffer,
-                {where.x, where.y, 0.0, path, where.cos_outside, order}, weight);
+                {where.x, where.y, 0.0, path, where.cos_outside, order, 0}, weight);
   }
   void chained_collision(double* buffer, const Vec3& position, double path, int order) const {
     add_chained(collision_chains_, buffer,
-                {position.x(), position.y(), position.z(), path, 1.0, order}, 1.0);
+                {position.x(), position.y(), position.z(), path, 1.0, order, 0}, 1.0);
   }
-  void chained_absorption(double* buffer, const Vec3& position, double path, int order,
+  void chained_absorption(double* buffer, const Vec3& position, double path, int order, int layer,
                           double weight) const {
     add_chained(absorption_chains_, buffer,
-                {position.x(), position.y(), position.z(), path, 1.0, order}, weight);
+                {position.x(), position.y(), position.z(), path, 1.0, order, layer}, weight);
   }
 
   bool in_grid(const Vec3& p) const {

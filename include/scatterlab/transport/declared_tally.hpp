@@ -7,13 +7,14 @@
 //   exitance       a photon leaves through the lit surface      r, theta_o, t, order
 //   transmittance  a photon leaves a slab through its far side  r, theta_o, t, order
 //   fluence        a collision (the collision estimator)        r, z, t, order
-//   absorbed       a photon's weight is absorbed                r, z, t, order
+//   absorbed       a photon's weight is absorbed                r, z, t, order, layer
 //
 // r is the distance from the beam axis (of an exit point on the surface, about the entry point),
 // z the depth, both in the scene's length unit; theta_o the exit angle from the outward normal,
 // outside, per steradian; t the time of flight in seconds since the light entered the medium:
 // the path travelled times the group index over c (a slab's layers each at their own index n);
-// order the number of scatterings, the last bin holding its order and more. A tally against t is
+// order the number of scatterings, the last bin holding its order and more; layer a slab's layer,
+// top down (layer = true: a bin per layer). A tally against t is
 // the response to a unit impulse, per joule incident; one without t is per watt, as the
 // geometry's own tallies are. Its cells are row-major in the order of the table below, whatever
 // the order the file names them in.
@@ -54,8 +55,8 @@ struct DeclaredTally {
   const DeclaredFilter* filter(Coordinate coordinate) const;
 };
 
-// The filters' keys in filters = {...} ("r", "z", "theta_o", "t", "order"), in the order of
-// their cells; and the coordinate of a key, or nullopt.
+// The filters' keys in filters = {...} ("r", "z", "theta_o", "t", "order", "layer"), in the order
+// of their cells; and the coordinate of a key, or nullopt.
 std::span<const std::string_view> declared_filter_keys();
 std::optional<Coordinate> declared_filter(std::string_view key);
 
@@ -75,6 +76,7 @@ struct DeclaredTallyFrame {
   // geometry's own, or group_index; a slab's path carries each layer's n already).
   double seconds_per_walk_length = 0.0;
   double index = 1.0;  // the homogeneous medium's index, where it has one
+  int layers = 0;      // a slab's, which the layer filter bins by
   // How the tallies' units name a length: "mfp" in a homogeneous medium (its tallies are
   // converted to the scene's unit after the run, transport/length_units.hpp), else the unit.
   std::string walk_length_label = "mfp";
@@ -84,7 +86,7 @@ struct DeclaredTallyFrame {
 // one (eta, over an outside of index 1), and of a slab in `length_unit`.
 DeclaredTallyFrame homogeneous_frame(std::string_view geometry, const Medium& medium,
                                      std::optional<double> index);
-DeclaredTallyFrame slab_frame(const std::string& length_unit);
+DeclaredTallyFrame slab_frame(const std::string& length_unit, int layers);
 
 // Throws InputError naming tally[i].<key> (from 1, as the reader names them) for a tally its
 // geometry cannot score: an unknown pair, an axis out of range, a name taken twice, no seconds in

@@ -148,7 +148,7 @@ class RandomWalk {
           const double deposited = weight * (1.0 - albedo);
           scorer_.absorption(buffer, position, order, layer, deposited);
           if constexpr (chained)
-            scorer_.chained_absorption(buffer, position, path, order, deposited);
+            scorer_.chained_absorption(buffer, position, path, order, layer, deposited);
           weight -= deposited;
           if (weight < roulette_threshold) {
             if (!(weight > 0.0) || u[1] >= roulette_chance) break;
@@ -156,7 +156,8 @@ class RandomWalk {
           }
         } else if (u[1] >= albedo) {
           scorer_.absorption(buffer, position, order, layer);
-          if constexpr (chained) scorer_.chained_absorption(buffer, position, path, order, 1.0);
+          if constexpr (chained)
+            scorer_.chained_absorption(buffer, position, path, order, layer, 1.0);
           break;
         }
         if constexpr (Geometry::layered) {
