@@ -40,6 +40,18 @@ using VU = hn::Vec<DU>;
 // Lanes of the widest vector any target compiled here has.
 constexpr std::size_t kMaxLanes = HWY_MAX_BYTES / sizeof(double);
 
+// Photons in flight at once, whatever the vector width: the vector steps go over them a vector
+// at a time (one AVX-512 vector, two AVX2 ones), and the lanes' scores reach the buffer in one
+// order. So a run's tallies are the same bits on every machine whose vectors fuse multiplies and
+// adds (AVX2 and AVX-512 alike); SSE4's unfused arithmetic rounds otherwise. A power of two, as
+// every vector width is, so that a whole number of vectors fills it.
+constexpr std::size_t kLanes = kMaxLanes > 8 ? kMaxLanes : 8;
+
+// A lane's flag stored as a vector mask (all bits set, or none).
+HWY_INLINE bool flagged(double mask) {
+  return std::bit_cast<std::uint64_t>(mask) != 0;
+}
+
 // Philox4x32-10 (Salmon et al. 2011; Random123's philox.h, whose multipliers and key increments
 // these are) on the counters (photon low, photon high, call, 0) of every lane under one key: the
 // same four words PhotonRandom::next4 gives, since each round is integer arithmetic. A round:
@@ -234,21 +246,21 @@ HWY_INLINE auto stays_inside(const ObjectBoundary& object, const LaneWalk::Setup
 
 // One photon per lane; the arrays are the lanes' state between vector steps.
 struct Lanes {
-  alignas(64) double x[kMaxLanes], y[kMaxLanes], z[kMaxLanes];     // position
-  alignas(64) double wx[kMaxLanes], wy[kMaxLanes], wz[kMaxLanes];  // direction
-  alignas(64) std::uint64_t photon[kMaxLanes], call[kMaxLanes];    // Philox counter words 0-1, 2
-  alignas(64) double u1[kMaxLanes], u2[kMaxLanes], u3[kMaxLanes];
-  alignas(64) double scatters[kMaxLanes];  // all ones (a mask) where the photon scatters now
-  alignas(64) double next_x[kMaxLanes], next_y[kMaxLanes], next_z[kMaxLanes];
-  alignas(64) double flight[kMaxLanes];  // mfp, or optical depth in the slab
-  alignas(64) double g[kMaxLanes];       // the slab: the Henyey-Greenstein g of the lane's layer
-  double weight[kMaxLanes];              // implicit capture
-  int order[kMaxLanes];
-  int layer[kMaxLanes];  // the slab
-  bool busy[kMaxLanes];
-  alignas(64) std::int64_t cell[kMaxLanes];      // the fluence cell of the flight's end, or -1
-  std::uint8_t plain[(kMaxLanes + 7) / 8 + 8];   // bit k: lane k's flight stays inside, scatters
-  std::uint8_t inside[(kMaxLanes + 7) / 8 + 8];  // bit k: lane k's flight stays inside
+  alignas(64) double x[kLanes], y[kLanes], z[kLanes];      // position
+  alignas(64) double wx[kLanes], wy[kLanes], wz[kLanes];   // direction
+  alignas(64) std::uint64_t photon[kLanes], call[kLanes];  // Philox counter words 0-1, 2
+  alignas(64) double u1[kLanes], u2[kLanes], u3[kLanes];
+  alignas(64) double next_x[kLanes], next_y[kLanes], next_z[kLanes];
+  alignas(64) double flight[kLanes];  // mfp, or optical depth in the slab
+  alignas(64) double g[kLanes];       // the slab: the Henyey-Greenstein g of the lane's layer
+  double weight[kLanes];              // implicit capture
+  int order[kLanes];
+  int layer[kLanes];  // the slab
+  bool busy[kLanes];
+  alignas(64) std::int64_t cell[kLanes];  // the fluence cell of the flight's end, or -1
+  // Masks (flagged()): the photon scatters now; its flight stays inside, and it scatters; its
+  // flight stays inside.
+  alignas(64) double scatters[kLanes], plain[kLanes], inside[kLanes];
 };
 
 // `isotropic`: g = 0 everywhere (never in the slab, whose g is per layer); `collisions`: the
@@ -259,7 +271,7 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
   static_assert(!(Geometry::layered && (isotropic || collisions)));
   const D d;
   const DU du;
-  const std::size_t n = hn::Lanes(d);
+  const std::size_t n = hn::Lanes(d);  // divides kLanes: both are powers of two, n <= kMaxLanes
   const Scorer& scorer = *setup.scorer;
   const PhiloxKeys keys = philox_keys(setup.seed);
   Lanes lane{};
@@ -296,7 +308,7 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
     return false;
   };
   std::size_t busy = 0;
-  for (std::size_t k = 0; k < n; ++k) busy += (lane.busy[k] = launch(k));
+  for (std::size_t k = 0; k < kLanes; ++k) busy += (lane.busy[k] = launch(k));
   // Where the one volume score is phi(r, z), its cells (only with the collision estimator).
   const std::optional<Scorer::FluenceCells> cells =
       collisions ? scorer.fluence_cells() : std::nullopt;
@@ -306,51 +318,55 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
   const double plain_escape_radius2 = setup.escape_radius2 * (1.0 - 1e-12);
 
   while (busy > 0) {
-    // The event's four uniforms and the free path for every lane at once, and outside the slab
-    // (which spends a free path layer by layer) the move.
-    V u0, u1, u2, u3;
-    const VU call = hn::Load(du, lane.call);
-    philox_uniforms(keys, hn::Load(du, lane.photon), call, u0, u1, u2, u3);
-    hn::Store(hn::Add(call, hn::Set(du, 1)), du, lane.call);
-    hn::Store(u1, d, lane.u1);
-    hn::Store(u2, d, lane.u2);
-    hn::Store(u3, d, lane.u3);
-    const V flight = hn::Neg(hn::Log(d, u0));
-    hn::Store(flight, d, lane.flight);
-    if constexpr (!Geometry::layered) {
-      const V wx = hn::Load(d, lane.wx), wy = hn::Load(d, lane.wy), wz = hn::Load(d, lane.wz);
-      const V next_x = hn::MulAdd(flight, wx, hn::Load(d, lane.x));
-      const V next_y = hn::MulAdd(flight, wy, hn::Load(d, lane.y));
-      const V next_z = hn::MulAdd(flight, wz, hn::Load(d, lane.z));
-      hn::Store(next_x, d, lane.next_x);
-      hn::Store(next_y, d, lane.next_y);
-      hn::Store(next_z, d, lane.next_z);
-      // The plain event, most of them: the flight stays inside, within the escape radius, and
-      // the photon scatters. Such a lane needs only its move and its collision scored.
-      const auto inside = stays_inside(geometry, setup, next_x, next_y, next_z);
-      if constexpr (Geometry::has_surface) hn::StoreMaskBits(d, inside, lane.inside);
-      auto plain = hn::And(hn::Lt(u1, hn::Set(d, setup.albedo)), inside);
-      if (escape_limited) {
-        const V r2 =
-            hn::MulAdd(next_x, next_x, hn::MulAdd(next_y, next_y, hn::Mul(next_z, next_z)));
-        plain = hn::And(plain, hn::Lt(r2, hn::Set(d, plain_escape_radius2)));
-      }
-      hn::StoreMaskBits(d, plain, lane.plain);
-      if (cells) {
-        // Scorer::collision's cell, for all lanes: (r, z) on the grid, or -1 off it.
-        const V r = hn::Sqrt(hn::MulAdd(next_x, next_x, hn::Mul(next_y, next_y)));
-        const V ur =
-            hn::Mul(hn::Sub(r, hn::Set(d, cells->r.min)), hn::Set(d, cells->r.inverse_width));
-        const V uz =
-            hn::Mul(hn::Sub(next_z, hn::Set(d, cells->z.min)), hn::Set(d, cells->z.inverse_width));
-        const V zero = hn::Zero(d);
-        const auto on_grid =
-            hn::And(hn::And(hn::Ge(ur, zero), hn::Lt(ur, hn::Set(d, cells->r.end))),
-                    hn::And(hn::Ge(uz, zero), hn::Lt(uz, hn::Set(d, cells->z.end))));
-        const V cell = hn::MulAdd(hn::Trunc(ur), hn::Set(d, static_cast<double>(cells->z_bins)),
-                                  hn::Trunc(uz));
-        hn::Store(hn::ConvertTo(di, hn::IfThenElse(on_grid, cell, hn::Set(d, -1.0))), di,
-                  lane.cell);
+    // The event's four uniforms and the free path for every lane, a vector at a time, and
+    // outside the slab (which spends a free path layer by layer) the move.
+    for (std::size_t c = 0; c < kLanes; c += n) {
+      V u0, u1, u2, u3;
+      const VU call = hn::Load(du, lane.call + c);
+      philox_uniforms(keys, hn::Load(du, lane.photon + c), call, u0, u1, u2, u3);
+      hn::Store(hn::Add(call, hn::Set(du, 1)), du, lane.call + c);
+      hn::Store(u1, d, lane.u1 + c);
+      hn::Store(u2, d, lane.u2 + c);
+      hn::Store(u3, d, lane.u3 + c);
+      const V flight = hn::Neg(hn::Log(d, u0));
+      hn::Store(flight, d, lane.flight + c);
+      if constexpr (!Geometry::layered) {
+        const V wx = hn::Load(d, lane.wx + c), wy = hn::Load(d, lane.wy + c),
+                wz = hn::Load(d, lane.wz + c);
+        const V next_x = hn::MulAdd(flight, wx, hn::Load(d, lane.x + c));
+        const V next_y = hn::MulAdd(flight, wy, hn::Load(d, lane.y + c));
+        const V next_z = hn::MulAdd(flight, wz, hn::Load(d, lane.z + c));
+        hn::Store(next_x, d, lane.next_x + c);
+        hn::Store(next_y, d, lane.next_y + c);
+        hn::Store(next_z, d, lane.next_z + c);
+        // The plain event, most of them: the flight stays inside, within the escape radius, and
+        // the photon scatters. Such a lane needs only its move and its collision scored.
+        const auto inside = stays_inside(geometry, setup, next_x, next_y, next_z);
+        if constexpr (Geometry::has_surface)
+          hn::Store(hn::VecFromMask(d, inside), d, lane.inside + c);
+        auto plain = hn::And(hn::Lt(u1, hn::Set(d, setup.albedo)), inside);
+        if (escape_limited) {
+          const V r2 =
+              hn::MulAdd(next_x, next_x, hn::MulAdd(next_y, next_y, hn::Mul(next_z, next_z)));
+          plain = hn::And(plain, hn::Lt(r2, hn::Set(d, plain_escape_radius2)));
+        }
+        hn::Store(hn::VecFromMask(d, plain), d, lane.plain + c);
+        if (cells) {
+          // Scorer::collision's cell, for all lanes: (r, z) on the grid, or -1 off it.
+          const V r = hn::Sqrt(hn::MulAdd(next_x, next_x, hn::Mul(next_y, next_y)));
+          const V ur =
+              hn::Mul(hn::Sub(r, hn::Set(d, cells->r.min)), hn::Set(d, cells->r.inverse_width));
+          const V uz = hn::Mul(hn::Sub(next_z, hn::Set(d, cells->z.min)),
+                               hn::Set(d, cells->z.inverse_width));
+          const V zero = hn::Zero(d);
+          const auto on_grid =
+              hn::And(hn::And(hn::Ge(ur, zero), hn::Lt(ur, hn::Set(d, cells->r.end))),
+                      hn::And(hn::Ge(uz, zero), hn::Lt(uz, hn::Set(d, cells->z.end))));
+          const V cell = hn::MulAdd(hn::Trunc(ur), hn::Set(d, static_cast<double>(cells->z_bins)),
+                                    hn::Trunc(uz));
+          hn::Store(hn::ConvertTo(di, hn::IfThenElse(on_grid, cell, hn::Set(d, -1.0))), di,
+                    lane.cell + c);
+        }
       }
     }
 
@@ -369,11 +385,11 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
 
     // Each lane's surface, escape, collision and absorption, in lane order (the buffer's order of
     // adds), as RandomWalk::run has them.
-    for (std::size_t k = 0; k < n; ++k) {
+    for (std::size_t k = 0; k < kLanes; ++k) {
       lane.scatters[k] = 0.0;
       if (!lane.busy[k]) continue;
       if constexpr (!Geometry::layered) {
-        if ((lane.plain[k / 8] >> (k % 8)) & 1U) {
+        if (flagged(lane.plain[k])) {
           // What the general path below does with such a lane, without its tests.
           lane.x[k] = lane.next_x[k], lane.y[k] = lane.next_y[k], lane.z[k] = lane.next_z[k];
           if (!cells) {
@@ -393,7 +409,7 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
       if constexpr (Geometry::has_surface) {
         // A flight the vector test found inside (then absorbed) meets no surface. (The slab,
         // which spends its free paths layer by layer, has no such test.)
-        const bool inside = !Geometry::layered && ((lane.inside[k / 8] >> (k % 8)) & 1U);
+        const bool inside = !Geometry::layered && flagged(lane.inside[k]);
         if (!inside) {
           // The geometry's own code on the lane's stream (a Fresnel choice draws from it).
           Vec3 position(lane.x[k], lane.y[k], lane.z[k]);
@@ -452,24 +468,27 @@ std::uint64_t run_lanes(const Geometry& geometry, const LaneWalk::Setup& setup, 
 
     // The scattered lanes' new directions; the others (new photons, idle lanes) keep theirs. (A
     // surface may have turned a direction since the move.)
-    V nx = hn::Load(d, lane.wx), ny = hn::Load(d, lane.wy), nz = hn::Load(d, lane.wz), cos_phi,
-      sin_phi;
-    azimuth(hn::Load(d, lane.u3), cos_phi, sin_phi);
-    if constexpr (isotropic) {
-      // Drawn afresh about +z (core/frame.hpp: isotropic scattering forgets the old direction).
-      const V one = hn::Set(d, 1.0);
-      nz = hn::Sub(hn::Add(hn::Load(d, lane.u2), hn::Load(d, lane.u2)), one);
-      const V s = hn::Sqrt(hn::Max(hn::Zero(d), hn::Mul(hn::Sub(one, nz), hn::Add(one, nz))));
-      nx = hn::Mul(s, cos_phi);
-      ny = hn::Mul(s, sin_phi);
-    } else {
-      const V g = Geometry::layered ? hn::Load(d, lane.g) : hn::Set(d, setup.g);
-      turn_direction(henyey_greenstein_cos(g, hn::Load(d, lane.u2)), cos_phi, sin_phi, nx, ny, nz);
+    for (std::size_t c = 0; c < kLanes; c += n) {
+      V nx = hn::Load(d, lane.wx + c), ny = hn::Load(d, lane.wy + c), nz = hn::Load(d, lane.wz + c),
+        cos_phi, sin_phi;
+      azimuth(hn::Load(d, lane.u3 + c), cos_phi, sin_phi);
+      if constexpr (isotropic) {
+        // Drawn afresh about +z (core/frame.hpp: isotropic scattering forgets the old direction).
+        const V one = hn::Set(d, 1.0), u2 = hn::Load(d, lane.u2 + c);
+        nz = hn::Sub(hn::Add(u2, u2), one);
+        const V s = hn::Sqrt(hn::Max(hn::Zero(d), hn::Mul(hn::Sub(one, nz), hn::Add(one, nz))));
+        nx = hn::Mul(s, cos_phi);
+        ny = hn::Mul(s, sin_phi);
+      } else {
+        const V g = Geometry::layered ? hn::Load(d, lane.g + c) : hn::Set(d, setup.g);
+        turn_direction(henyey_greenstein_cos(g, hn::Load(d, lane.u2 + c)), cos_phi, sin_phi, nx, ny,
+                       nz);
+      }
+      const auto scatters = hn::MaskFromVec(hn::Load(d, lane.scatters + c));
+      hn::Store(hn::IfThenElse(scatters, nx, hn::Load(d, lane.wx + c)), d, lane.wx + c);
+      hn::Store(hn::IfThenElse(scatters, ny, hn::Load(d, lane.wy + c)), d, lane.wy + c);
+      hn::Store(hn::IfThenElse(scatters, nz, hn::Load(d, lane.wz + c)), d, lane.wz + c);
     }
-    const auto scatters = hn::MaskFromVec(hn::Load(d, lane.scatters));
-    hn::Store(hn::IfThenElse(scatters, nx, hn::Load(d, lane.wx)), d, lane.wx);
-    hn::Store(hn::IfThenElse(scatters, ny, hn::Load(d, lane.wy)), d, lane.wy);
-    hn::Store(hn::IfThenElse(scatters, nz, hn::Load(d, lane.wz)), d, lane.wz);
   }
   return scatterings;
 }

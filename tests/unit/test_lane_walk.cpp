@@ -215,6 +215,27 @@ TEST(LaneWalk, FollowsTheOnePhotonWalkInTheLayeredSlabWithImplicitCapture) {
   expect_same_paths_in_the_slab<Weighting::implicit_capture>();
 }
 
+// Eight photons are in flight whatever the vector width, so their scores reach the buffer in one
+// order: every instruction set that fuses multiplies and adds (AVX2, AVX-512) gives the same bits.
+// The infinite medium's flux and mean depth, sums of cosines and depths, are those that an order
+// of adds would move. Skipped on a machine with fewer than two such instruction sets; the
+// digests of tests/bitwise, made with AVX-512, hold an AVX2 machine to the same bits.
+TEST(LaneWalk, GivesTheSameBitsOnEveryInstructionSetWithFusedMultiplyAdds) {
+  const TransportProblem problem = transport_problem(scene(0.9, 0.7));
+  const TallyBook book(problem.tallies, problem.split_by_order);
+  const Scorer scorer(problem.axes, book);
+  std::vector<std::vector<double>> runs;
+  on_every_target([&] {
+    const std::int64_t fused = HWY_AVX2 | HWY_AVX3 | HWY_AVX3_DL;
+    if ((hwy::SupportedTargets() & fused) == 0) return;
+    const LaneWalk lanes(InfiniteMedium{}, scorer, problem.source, problem.albedo, problem.g,
+                         Estimator::collision, problem.run.escape_radius, problem.run.seed);
+    runs.push_back(walk_photons(lanes, book.size(), 1001, 4004).sums);
+  });
+  if (runs.size() < 2) GTEST_SKIP() << "one instruction set with fused multiply-adds here";
+  for (std::size_t i = 1; i < runs.size(); ++i) EXPECT_EQ(runs[i], runs[0]);
+}
+
 TEST(LaneWalk, HasOneToEightLanes) {
   EXPECT_GE(LaneWalk::lanes(), 1);
   EXPECT_LE(LaneWalk::lanes(), 8);

@@ -1,7 +1,9 @@
 #pragma once
 // The random walk of random_walk.hpp, several photons at once in the lanes
 // of the CPU's vector registers (2 with SSE4, 4 with AVX2, 8 with AVX-512; Google Highway picks
-// the widest the machine has when the program runs, so one binary serves every x86-64).
+// the widest the machine has when the program runs, so one binary serves every x86-64). Eight
+// photons are in flight whatever the width, a vector of them at a time, so that the order of
+// their scores, and the run's bits, do not depend on it.
 //
 // Each lane follows one photon through the same events as RandomWalk: a free path, the surface,
 // the collision scored, analog absorption, a new direction. What is done once for all lanes: the
@@ -21,7 +23,8 @@
 // order. The paths are the same photon by photon until a rounding
 // difference moves a collision across a bin edge; tests/unit/test_lane_walk.cpp holds the two
 // walks to each other on the same photons. A range's scores depend on the range alone, so a run
-// is still bitwise the same for any thread and rank count.
+// is still bitwise the same for any thread and rank count, and on any machine with fused
+// multiply-adds (AVX2 and AVX-512 give the same bits; SSE4's unfused arithmetic rounds otherwise).
 //
 // For the infinite medium, the half-space, the sphere (with a beam, a point source or, on the
 // sphere, its directional light) and a convex object another module traces (a triangle mesh with
@@ -88,7 +91,8 @@ class LaneWalk {
   std::uint64_t run(std::uint64_t first, std::uint64_t last, double* buffer,
                     std::vector<double>& scratch) const;
 
-  // Photons in flight at once on this machine: the lanes of the instruction set chosen.
+  // Doubles per vector in the instruction set chosen on this machine (the photons in flight,
+  // eight, are that many vectors).
   static int lanes();
 
   // What the vector code reads (lane_walk.cpp).
