@@ -1,6 +1,7 @@
 #include "scatterlab/tally/filter.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "scatterlab/core/constants.hpp"
 
@@ -32,10 +33,18 @@ Filter length_filter(const std::string& name, const UniformAxis& axis) {
   return {{name}, {count(axis)}, std::vector<double>(count(axis), axis.width()), {}};
 }
 
-Filter depth_filter(const UniformAxis& z) {
-  Filter f = length_filter("z", z);
-  f.binning = {Coordinate::z, AxisLookup(z), 0.0};
+Filter position_filter(Coordinate coordinate, const UniformAxis& axis) {
+  if (coordinate != Coordinate::x && coordinate != Coordinate::y && coordinate != Coordinate::z) {
+    throw std::invalid_argument("position_filter: x, y or z");
+  }
+  const char* name = coordinate == Coordinate::x ? "x" : coordinate == Coordinate::y ? "y" : "z";
+  Filter f = length_filter(name, axis);
+  f.binning = {coordinate, AxisLookup(axis), 0.0};
   return f;
+}
+
+Filter depth_filter(const UniformAxis& z) {
+  return position_filter(Coordinate::z, z);
 }
 
 Filter time_filter(const UniformAxis& t, double seconds_per_path) {

@@ -1,6 +1,7 @@
 #include "scatterlab/transport/declared_tally.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <array>
 #include <cmath>
@@ -31,7 +32,9 @@ struct FilterRow {
   std::string_view unit;     // of min and max: "length" is the scene's length unit
   std::string_view per;      // what its bins divide by, for the description
 };
-constexpr std::array<FilterRow, 6> filter_rows = {{
+constexpr std::array<FilterRow, 8> filter_rows = {{
+    {"x", Coordinate::x, true, true, "length", "per unit length in x"},
+    {"y", Coordinate::y, true, true, "length", "per unit length in y"},
     {"r", Coordinate::r, true, true, "length", "per unit area at distance r from the beam axis"},
     {"z", Coordinate::z, false, true, "length", "per unit depth z"},
     {"theta_o", Coordinate::exit_angle, true, false, "rad",
@@ -51,6 +54,15 @@ const FilterRow& row_of(Coordinate coordinate) {
     if (row.coordinate == coordinate) return row;
   }
   throw std::invalid_argument("declared tally: a filter of no row");
+}
+
+// The keys of the filters that bin exits, or events in the volume.
+std::vector<std::string_view> filters_of(bool exits) {
+  std::vector<std::string_view> keys;
+  for (const FilterRow& row : filter_rows) {
+    if (exits ? row.at_exits : row.in_volume) keys.push_back(row.key);
+  }
+  return keys;
 }
 
 std::string key(std::size_t i, std::string_view rest) {
@@ -86,7 +98,9 @@ void check_filter(const DeclaredFilter& f, std::size_t i, const DeclaredTallyFra
   if (f.coordinate == Coordinate::exit_angle || f.coordinate == Coordinate::order) return;
   const std::string unit = row.unit == "length" ? frame.length_unit : std::string(row.unit);
   if (!f.max) throw InputError(at + ".max", "is missing", fmt::format("a number, in {}", unit));
-  if (f.coordinate == Coordinate::z && !f.min) {
+  const bool signed_axis = f.coordinate == Coordinate::x || f.coordinate == Coordinate::y ||
+                           f.coordinate == Coordinate::z;
+  if (signed_axis && !f.min) {
     throw InputError(at + ".min", "is missing", fmt::format("a number, in {}", unit));
   }
   const UniformAxis axis = axis_of(f);
@@ -94,7 +108,7 @@ void check_filter(const DeclaredFilter& f, std::size_t i, const DeclaredTallyFra
     throw InputError(at, fmt::format("spans [{}, {}]", axis.min, axis.max),
                      fmt::format("finite ends with max > min, in {}", unit));
   }
-  if (f.coordinate != Coordinate::z && axis.min < 0.0) {
+  if (!signed_axis && axis.min < 0.0) {
     throw InputError(at + ".min", fmt::format("is {}", axis.min), "a number >= 0");
   }
   if (row.unit != "length") return;
@@ -113,7 +127,8 @@ void check_filter(const DeclaredFilter& f, std::size_t i, const DeclaredTallyFra
 std::string units_of(const DeclaredTally& t, const std::string& length) {
   int power = t.score == DeclaredScore::fluence ? 1 : 0;  // a collision scores 1 mfp
   if (t.filter(Coordinate::r)) power -= 2;
-  if (t.filter(Coordinate::z)) power -= 1;
+  for (const Coordinate c : {Coordinate::x, Coordinate::y, Coordinate::z})
+    power -= t.filter(c) != nullptr;
   std::string units = "W";
   if (power == 1) units += " " + length;
   if (power < 0) units += fmt::format(" {}^{}", length, power);
@@ -219,10 +234,10 @@ void check_declared_tallies(const std::vector<DeclaredTally>& tallies,
                          "each filter once");
       }
       if (exits ? !row.at_exits : !row.in_volume) {
-        throw InputError(key(i, fmt::format("filters.{}", row.key)),
-                         fmt::format("bins \"{}\"", score),
-                         exits ? "filters r, theta_o, t and order for a score at the surface"
-                               : "filters r, z, t and order for a score in the volume");
+        throw InputError(
+            key(i, fmt::format("filters.{}", row.key)), fmt::format("bins \"{}\"", score),
+            fmt::format("filters {} for a score {}", fmt::join(filters_of(exits), ", "),
+                        exits ? "at the surface" : "in the volume"));
       }
       check_filter(f, i, frame);
     }
@@ -290,8 +305,11 @@ std::vector<TallyDeclaration> declare_chained_tallies(const std::vector<Declared
         case Coordinate::r:
           d.filters.push_back(radius_filter(length_axis_in_mfp(axis, frame.walk_per_unit)));
           break;
+        case Coordinate::x:
+        case Coordinate::y:
         case Coordinate::z:
-          d.filters.push_back(depth_filter(length_axis_in_mfp(axis, frame.walk_per_unit)));
+          d.filters.push_back(
+              position_filter(row.coordinate, length_axis_in_mfp(axis, frame.walk_per_unit)));
           break;
         case Coordinate::exit_angle:
           d.filters.push_back(exit_solid_angle_filter(axis));

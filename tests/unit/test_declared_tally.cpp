@@ -86,6 +86,31 @@ TEST(DeclaredTally, TheChainBinsEachEventByItsFilters) {
   }
 }
 
+// x and y bin the event's position, each by its bin's width, and a map of both is row-major, x
+// first: the exit at (0.3, -0.4) falls in x bin 1 of [0, 1) and y bin 0 of [-1, 0).
+TEST(DeclaredTally, PositionFiltersBinXAndY) {
+  TallyDeclaration d{"map", Score::exit, {}, "", ""};
+  d.chained = true;
+  d.filters = {position_filter(Coordinate::x, UniformAxis{0.0, 1.0, 4}),
+               position_filter(Coordinate::y, UniformAxis{-1.0, 1.0, 2})};
+  EXPECT_EQ(d.filters[0].dims, std::vector<std::string>{"x"});
+  EXPECT_EQ(d.filters[1].dims, std::vector<std::string>{"y"});
+  EXPECT_EQ(d.filters[0].measures, std::vector<double>(4, 0.25));
+  const TallyBook book({d}, false);
+  const Scorer scorer(TallyAxes{}, book);
+  std::vector<double> buffer(book.size(), 0.0);
+  SurfaceExit exit;
+  exit.x = 0.3;
+  exit.y = -0.4;
+  scorer.chained_exit(buffer.data(), exit, 0.0, 0, 0.5);
+  exit.x = -0.1;  // off the x axis
+  scorer.chained_exit(buffer.data(), exit, 0.0, 0, 1.0);
+  for (std::size_t i = 0; i < buffer.size(); ++i) {
+    EXPECT_EQ(buffer[i], i == 1 * 2 + 0 ? 0.5 : 0.0) << i;
+  }
+  EXPECT_THROW(position_filter(Coordinate::t, UniformAxis{0.0, 1.0, 4}), std::invalid_argument);
+}
+
 // theta_o bins the exit's angle outside, per steradian; order the scatterings, its last bin
 // holding that order and more.
 TEST(DeclaredTally, ExitAngleAndOrderBinTheirEvents) {
@@ -131,6 +156,13 @@ TEST(DeclaredTally, RefusesWhatItsGeometryCannotScoreNamingTheField) {
             "tally[1].filters.theta_o.max");  // over [0, pi/2] always
   EXPECT_EQ(refused(half + tally + "score = \"exitance\"\nfilters = { order = {} }\n"),
             "tally[1].filters.order.bins");
+  // x and y may be negative, so they have no default min.
+  EXPECT_EQ(
+      refused(half + tally + "score = \"exitance\"\nfilters = { x = { max = 1, bins = 2 } }\n"),
+      "tally[1].filters.x.min");
+  EXPECT_EQ(refused(half + tally +
+                    "score = \"absorbed\"\nfilters = { y = { min = 1, max = -1, bins = 2 } }\n"),
+            "tally[1].filters.y");
   EXPECT_EQ(refused(half + tally + "score = \"absorbed\"\nfilters = { layer = true }\n"),
             "tally[1].filters.layer");  // only a slab has layers
   EXPECT_EQ(refused(half + tally + "score = \"exitance\"\ngroup_index = 1.4\n"),

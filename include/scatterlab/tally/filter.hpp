@@ -33,10 +33,11 @@ struct TallyEvent {
   int layer = 0;
 };
 
-// The coordinate a filter bins an event by: distance r from the beam axis, depth z, the exit
-// angle theta_o, time of flight t = path x seconds_per_path, the scattering order (its last
-// bin holding that order and more), or a slab's layer.
-enum class Coordinate { none, r, z, exit_angle, t, order, layer };
+// The coordinate a filter bins an event by: its position x or y (of an exit, on the surface),
+// distance r from the beam axis, depth z, the exit angle theta_o, time of flight t = path x
+// seconds_per_path, the scattering order (its last bin holding that order and more), or a slab's
+// layer.
+enum class Coordinate { none, x, y, r, z, exit_angle, t, order, layer };
 
 // How a filter bins an event along its coordinate: the axis, in the walk's units.
 struct EventBinning {
@@ -47,6 +48,10 @@ struct EventBinning {
   // The bin of `event`, or -1 outside the axis.
   int bin(const TallyEvent& event) const {
     switch (coordinate) {
+      case Coordinate::x:
+        return cells.index(event.x);
+      case Coordinate::y:
+        return cells.index(event.y);
       case Coordinate::r:
         return cells.index(std::sqrt(event.x * event.x + event.y * event.y));
       case Coordinate::z:
@@ -79,7 +84,10 @@ struct Filter {
 Filter radius_filter(const UniformAxis& r);
 // A Cartesian coordinate of an exit point on a plane (x, y), by its bin width, in mfp.
 Filter length_filter(const std::string& name, const UniformAxis& axis);
-// Depth z, by its bin width, in mfp.
+// A Cartesian coordinate x, y or z of the event (x and y of an exit on the surface), binned by the
+// filter itself, by its bin width, in mfp.
+Filter position_filter(Coordinate coordinate, const UniformAxis& axis);
+// Depth z: position_filter(Coordinate::z, z).
 Filter depth_filter(const UniformAxis& z);
 // Time of flight t in seconds, by its bin width in s: the path (TallyEvent) times
 // `seconds_per_path`, the seconds light takes per unit of path (the index is in the path).
