@@ -22,15 +22,6 @@
 namespace scatterlab::report {
 namespace {
 
-struct Scalar {
-  double mean = 0.0, stderr_of_mean = 0.0;
-};
-
-Scalar scalar(const TransportOutput& out, const std::string& name) {
-  const TallyResult& t = tally(out.tallies, name);
-  return {t.mean[0], t.stderr_of_mean[0]};
-}
-
 HalfSpaceSpec small_spec(double albedo, double g, double eta, std::uint64_t photons,
                          const Profile& profile) {
   HalfSpaceSpec spec;
@@ -62,50 +53,14 @@ Section half_space_convergence(const Profile& profile) {
   section.tolerance =
       "Each budget within 5 standard errors of the exact value; the standard error falls as "
       "N^-1/2 (least-squares slope of log stderr against log photons in [-0.6, -0.4]).";
-  section.table.columns = {"photons", "seconds", "photons_per_second", "diffuse_reflectance",
-                           "stderr", "relative_error", "z"};
-  LinePlot plot{fmt::format("Index-matched half-space, normal beam, albedo {:g}:\nerror of the "
-                            "total diffuse reflectance against photons (labels: wall time)",
-                            albedo),
-                "photons",
-                "relative error of $R_\\mathrm{d}$",
-                AxisScale::log,
-                true,
-                {}};
-  PlotSeries errors{"|Monte Carlo − exact| / exact", {}, {}, {}, true, "monte_carlo"};
-  PlotSeries predicted{"standard error / exact", {}, {}, {}, false, "standard_error"};
-  std::vector<double> photon_counts, standard_errors;
-  const int budgets = profile.quick ? 6 : 9;
-  for (int b = 0; b < budgets; ++b) {
-    const auto photons = static_cast<std::uint64_t>((profile.quick ? 2e4 : 1e5) * std::ldexp(1.0, b));
-    HalfSpaceSpec spec = small_spec(albedo, 0.0, 1.0, photons, profile);
-    spec.run.seed = profile.seed + static_cast<std::uint64_t>(b);
-    const TransportOutput out = run_half_space(spec);
-    section.non_finite_values += count_non_finite(out.tallies);
-    const Scalar r = scalar(out, "diffuse_reflectance");
-    const double z = (r.mean - exact) / r.stderr_of_mean;
-    section.checks.push_back(
-        {fmt::format("{} photons: z-score {:.2f} within 5", photons, z), std::abs(z) <= 5.0});
-    section.table.rows.push_back(
-        {fmt::format("{}", photons), fmt::format("{:.3g}", out.wall_seconds),
-         fmt::format("{:.4g}", static_cast<double>(photons) / out.wall_seconds),
-         fmt::format("{:.7f}", r.mean), fmt::format("{:.2g}", r.stderr_of_mean),
-         fmt::format("{:.3g}", std::abs(r.mean - exact) / exact), fmt::format("{:.2f}", z)});
-    errors.x.push_back(static_cast<double>(photons));
-    errors.y.push_back(std::abs(r.mean - exact) / exact);
-    errors.point_labels.push_back(wall_time_label(out.wall_seconds));
-    predicted.x.push_back(static_cast<double>(photons));
-    predicted.y.push_back(r.stderr_of_mean / exact);
-    photon_counts.push_back(static_cast<double>(photons));
-    standard_errors.push_back(r.stderr_of_mean);
-  }
-  const double slope = log_log_slope(photon_counts, standard_errors);
-  section.checks.push_back(
-      {fmt::format("slope of log stderr against log photons {:.3f} in [-0.6, -0.4]", slope),
-       slope >= -0.6 && slope <= -0.4});
-  section.findings = fmt::format("Standard error falls as photons^{:.3f}.\n", slope);
-  plot.series = {errors, predicted};
-  section.figures.push_back({section.id, plot});
+  add_error_against_run_time(
+      section, profile, {{"diffuse_reflectance", "$R_\\mathrm{d}$", exact}},
+      fmt::format("Index-matched half-space, normal beam, albedo {:g}", albedo),
+      [&](std::uint64_t photons, std::uint64_t seed) {
+        HalfSpaceSpec spec = small_spec(albedo, 0.0, 1.0, photons, profile);
+        spec.run.seed = seed;
+        return run_half_space(spec);
+      });
   return section;
 }
 
@@ -142,9 +97,9 @@ Section half_space_extremes(const Profile& profile) {
     spec.incidence_deg = c.incidence;
     const TransportOutput out = run_half_space(spec);
     section.non_finite_values += count_non_finite(out.tallies);
-    const double specular = scalar(out, "specular_reflectance").mean;
-    const double energy = specular + scalar(out, "diffuse_reflectance").mean +
-                          scalar(out, "absorbed").mean - 1.0;
+    const double specular = estimate(out, "specular_reflectance").mean;
+    const double energy =
+        specular + estimate(out, "diffuse_reflectance").mean + estimate(out, "absorbed").mean - 1.0;
     // Outside to inside: index eta relative to outside.
     const double specular_exact =
         fresnel_dielectric_reflectance(std::cos(c.incidence * std::numbers::pi / 180.0), c.eta);
@@ -160,13 +115,9 @@ Section half_space_extremes(const Profile& profile) {
       const std::vector<double> edges = {0.0, 1e3};
       const double exact =
           half_space_single_scatter_reflectance(spec.medium, c.eta, edges, 1e-9).total;
-      const Scalar single = scalar(out, "diffuse_reflectance_single");
-      const double n = static_cast<double>(photons);
-      const bool ok = single.stderr_of_mean > 0.0
-                          ? std::abs(single.mean - exact) <= 5.0 * single.stderr_of_mean
-                          : single.mean == 0.0 && exact * n < 3.0;
-      const double z = single.stderr_of_mean > 0.0 ? (single.mean - exact) / single.stderr_of_mean
-                                                   : 0.0;
+      const Estimate single = estimate(out, "diffuse_reflectance_single");
+      const bool ok = agrees(single, exact, static_cast<double>(photons));
+      const double z = z_score(single, exact);
       section.checks.push_back(
           {fmt::format("{}: once-scattered {:.6g} against exact {:.6g} (z {:.2f})", cell,
                        single.mean, exact, z),

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "scatterlab/report/section.hpp"
+#include "scatterlab/report/suites.hpp"
 #include "scatterlab/transport/simulate.hpp"
 
 namespace scatterlab::report {
@@ -47,6 +49,116 @@ inline int count_non_finite(const std::vector<TallyResult>& tallies) {
     }
   }
   return count;
+}
+
+// A Monte Carlo estimate and its standard error.
+struct Estimate {
+  double mean = 0.0, stderr_of_mean = 0.0;
+};
+
+// A run's one-value tally as an estimate.
+inline Estimate estimate(const TransportOutput& out, const std::string& name) {
+  const TallyResult& t = tally(out.tallies, name);
+  return {t.mean[0], t.stderr_of_mean[0]};
+}
+
+// |estimate - exact| within 5 standard errors; where no photon was scored, an exact value that
+// few photons would have missed (below 3 / photons).
+inline bool agrees(const Estimate& e, double exact, double photons) {
+  if (e.stderr_of_mean > 0.0) return std::abs(e.mean - exact) <= 5.0 * e.stderr_of_mean;
+  return e.mean == exact || (e.mean == 0.0 && exact * photons < 3.0);
+}
+
+inline double z_score(const Estimate& e, double exact) {
+  return e.stderr_of_mean > 0.0 ? (e.mean - exact) / e.stderr_of_mean : 0.0;
+}
+
+// A quantity whose error a section follows against run time, and its exact value.
+struct ConvergingQuantity {
+  std::string name;    // its column in the table, e.g. "diffuse_reflectance"
+  std::string symbol;  // on the figure's axis, matplotlib mathtext: "$R_\\mathrm{d}$"
+  double exact = 0.0;
+  double rounding = 0.0;  // of a reference printed to few digits, added to the tolerance
+};
+
+// Error against run time: `run(photons, seed)` at doubling budgets (6 from 2e4 photons quick, 9
+// from 1e5 in full, each its own seed from profile.seed up) gives each quantity's estimate. Each
+// budget is checked within 5 standard errors of the exact value (plus its rounding), and the
+// slope of log stderr against log photons in [-0.6, -0.4] (N^-1/2). Fills the section's table
+// (photons, seconds, photons per second, then per quantity its value, stderr, relative error and
+// z; with several quantities each column is prefixed by its name), one figure per quantity
+// (`title` above its name) and its findings.
+template <class Run>
+void add_error_against_run_time(Section& section, const Profile& profile,
+                                const std::vector<ConvergingQuantity>& quantities,
+                                const std::string& title, const Run& run) {
+  const bool several = quantities.size() > 1;
+  const auto column = [&](const ConvergingQuantity& q, const std::string& what) {
+    return several ? q.name + "_" + what : what;
+  };
+  section.table.columns = {"photons", "seconds", "photons_per_second"};
+  for (const ConvergingQuantity& q : quantities) {
+    section.table.columns.insert(
+        section.table.columns.end(),
+        {q.name, column(q, "stderr"), column(q, "relative_error"), column(q, "z")});
+  }
+  struct Series {
+    PlotSeries errors{"|Monte Carlo − exact| / exact", {}, {}, {}, true, "monte_carlo"};
+    PlotSeries predicted{"standard error / exact", {}, {}, {}, false, "standard_error"};
+    std::vector<double> standard_errors;
+  };
+  std::vector<Series> series(quantities.size());
+  std::vector<double> photon_counts;
+  const int budgets = profile.quick ? 6 : 9;
+  for (int b = 0; b < budgets; ++b) {
+    const auto photons =
+        static_cast<std::uint64_t>((profile.quick ? 2e4 : 1e5) * std::ldexp(1.0, b));
+    const TransportOutput out = run(photons, profile.seed + static_cast<std::uint64_t>(b));
+    section.non_finite_values += count_non_finite(out.tallies);
+    std::vector<std::string> row = {
+        fmt::format("{}", photons), fmt::format("{:.3g}", out.wall_seconds),
+        fmt::format("{:.4g}", static_cast<double>(photons) / out.wall_seconds)};
+    for (std::size_t i = 0; i < quantities.size(); ++i) {
+      const ConvergingQuantity& q = quantities[i];
+      const Estimate e = estimate(out, q.name);
+      const double z = (e.mean - q.exact) / e.stderr_of_mean;
+      const double relative = std::abs(e.mean - q.exact) / q.exact;
+      section.checks.push_back(
+          {fmt::format("{} photons: {}z-score {:.2f} within 5{}", photons,
+                       several ? q.name + " " : "", z,
+                       q.rounding > 0.0 ? fmt::format(" (and {:g})", q.rounding) : ""),
+           std::abs(e.mean - q.exact) <= 5.0 * e.stderr_of_mean + q.rounding});
+      row.insert(row.end(), {fmt::format("{:.7f}", e.mean), fmt::format("{:.2g}", e.stderr_of_mean),
+                             fmt::format("{:.3g}", relative), fmt::format("{:.2f}", z)});
+      Series& s = series[i];
+      s.errors.x.push_back(static_cast<double>(photons));
+      s.errors.y.push_back(relative);
+      s.errors.point_labels.push_back(wall_time_label(out.wall_seconds));
+      s.predicted.x.push_back(static_cast<double>(photons));
+      s.predicted.y.push_back(e.stderr_of_mean / q.exact);
+      s.standard_errors.push_back(e.stderr_of_mean);
+    }
+    section.table.rows.push_back(std::move(row));
+    photon_counts.push_back(static_cast<double>(photons));
+  }
+  for (std::size_t i = 0; i < quantities.size(); ++i) {
+    const ConvergingQuantity& q = quantities[i];
+    const double slope = log_log_slope(photon_counts, series[i].standard_errors);
+    section.checks.push_back({fmt::format("{}slope of log stderr against log photons {:.3f} in "
+                                          "[-0.6, -0.4]",
+                                          several ? q.name + ": " : "", slope),
+                              slope >= -0.6 && slope <= -0.4});
+    section.findings += fmt::format("{}tandard error falls as photons^{:.3f}.\n",
+                                    several ? "The " + q.name + "'s s" : "S", slope);
+    LinePlot plot{
+        fmt::format("{}:\nerror of {} against photons (labels: wall time)", title, q.symbol),
+        "photons",
+        "relative error of " + q.symbol,
+        AxisScale::log,
+        true,
+        {series[i].errors, series[i].predicted}};
+    section.figures.push_back({several ? section.id + "_" + q.name : section.id, plot});
+  }
 }
 
 }  // namespace scatterlab::report

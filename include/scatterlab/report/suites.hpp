@@ -29,6 +29,19 @@ Section infinite_medium_extremes(const Profile& profile);
 Section half_space_convergence(const Profile& profile);
 Section half_space_extremes(const Profile& profile);
 
+// The lit sphere: the unscattered exitance under the directional light against its exact
+// quadrature at doubling budgets (error against run time), and a matrix of extreme albedo, g,
+// eta and radius under the directional light and the pole beam checked for energy (by order too)
+// and the exact unscattered light (reflected at entry, leaving, absorbed at the first collision).
+Section sphere_convergence(const Profile& profile);
+Section sphere_extremes(const Profile& profile);
+
+// The layered slab: van de Hulst's R_d and T_t at doubling budgets (error against run time), and
+// a matrix of extreme albedo, g, n and thickness checked for energy, the specular reflection and
+// the exact unscattered light, with Giovanelli's semi-infinite medium.
+Section slab_convergence(const Profile& profile);
+Section slab_extremes(const Profile& profile);
+
 // The half-space models (dipole, better dipole, quantized diffusion, Grosjean beam, exact single
 // scatter) against the searchlight Monte Carlo part each models, over albedo x g x eta: totals
 // and near / far errors, with the bound R_dr <= 1 checked.
