@@ -1,6 +1,8 @@
 #include "scatterlab/transport/engine.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 
 #include "scatterlab/transport/half_space.hpp"
@@ -85,8 +87,44 @@ void check_transport_memory(const TransportProblem& problem, int ranks, bool res
                "fewer bins or tallies, or fewer threads");
 }
 
+namespace {
+
+// The slab's bound (engine.hpp): its layers' highest albedo and densest medium, the escape
+// radius in that medium's mfp, and, where every layer is finite, the time a random walk takes to
+// leave the stack.
+double slab_events_per_photon_bound(const TransportProblem& problem) {
+  double albedo = 0.0, sigma_t = 0.0, depth = 0.0;
+  for (const SlabLayer& layer : problem.layers) {
+    if (layer.sigma_t == 0.0) continue;  // a clear layer: no events
+    albedo = std::max(albedo, layer.albedo);
+    sigma_t = std::max(sigma_t, layer.sigma_t);
+    depth += layer.sigma_t * layer.thickness;  // inf for a semi-infinite last layer
+  }
+  if (sigma_t == 0.0) return 0.0;
+  double bound = expected_events_per_photon(albedo, problem.run.escape_radius * sigma_t);
+  if (problem.weighting == Weighting::implicit_capture && albedo > 0.0 && albedo < 1.0) {
+    // Each event leaves the weight times the albedo, at most: the first roulette comes after
+    // ln(threshold) / ln(albedo) events, and each survivor (1 in 1 / roulette_chance) needs
+    // ln(1 / roulette_chance) / -ln(albedo) more to meet the next.
+    const double per_factor = -1.0 / std::log(albedo);  // events per factor e of weight
+    const double roulettes = roulette_chance / (1.0 - roulette_chance);
+    bound = std::min(
+        bound, (std::log(1.0 / roulette_threshold) + roulettes * std::log(1.0 / roulette_chance)) *
+                   per_factor);
+  }
+  // Light entering at the surface of a stack of optical depth tau leaves it after about
+  // 2.6 tau events, whatever g: a diffusion of D = l l* / 3 per event (l the mfp, l* the
+  // transport mfp) between extrapolated boundaries 0.71 l* outside each face, started l* deep,
+  // leaves after (x0 + z_b) L / 2D = 1.71 l* L / (2 l l* / 3) = 2.57 L / l events (the mean exit
+  // time x (L - x) / 2D of a diffusion). Measured on one conservative layer of tau 10, 100, 1000
+  // and g 0, 0.9: 2.4 to 2.8 tau.
+  return std::min(bound, 1.0 + 2.6 * depth);
+}
+
+}  // namespace
+
 double events_per_photon_bound(const TransportProblem& problem) {
-  if (problem.geometry == GeometryKind::slab) return 0.0;
+  if (problem.geometry == GeometryKind::slab) return slab_events_per_photon_bound(problem);
   return expected_events_per_photon(problem.albedo, problem.run.escape_radius);
 }
 

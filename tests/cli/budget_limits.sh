@@ -141,6 +141,16 @@ expected+="2e+11 in all, about 17 min at 20 ns an event on 4 threads"
 if [ "$(head -1 long.err | cut -c1-${#expected})" = "$expected" ]; then pass; else
   fail "a long run's warning before it starts: $(head -3 long.err)"
 fi
+# A semi-infinite slab of albedo 1 - 1e-6 too (its layers' highest albedo bounds its events).
+printf '[geometry]\ntype = "slab"\n[[layers]]\nmu_a = 1e-4\nmu_s = 99.9999\ng = 0.9\nn = 1.4\n' \
+  >long-slab.toml
+printf 'thickness = inf\n[run]\nphotons = 200000\nthreads = 4\n' >>long-slab.toml
+timeout -s KILL 2 "$exe" simulate long-slab.toml --out long-slab.h5 >long.out 2>long.err
+expected="simulate: long-slab.h5 may take long: up to 1e+06 events a photon (the layers' highest "
+expected+="albedo 0.999999), 2e+11 in all, about 17 min at 20 ns an event on 4 threads"
+if [ "$(head -1 long.err | cut -c1-${#expected})" = "$expected" ]; then pass; else
+  fail "a long slab run's warning before it starts: $(head -3 long.err)"
+fi
 # 1000 x 1000 values: a million points, counted from the lists before one is made.
 {
   printf '[medium]\nalbedo = ['

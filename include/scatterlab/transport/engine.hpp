@@ -58,8 +58,10 @@ void check_transport_memory(const TransportProblem& problem, int ranks, bool res
 // absorption), so a photon absorbed with probability A collides A / (1 - albedo) times on
 // average: at most 1 / (1 - albedo), reached in the infinite medium, whose escape radius bounds
 // it too (run_settings.hpp, expected_events_per_photon). Infinite at albedo 1 without an escape
-// radius. 0 for a slab, whose layers each have their albedo and whose implicit capture ends
-// photons by roulette: not estimated.
+// radius. In a slab, an estimate: the bound at its layers' highest albedo (under implicit
+// capture, the events until roulette ends the weight), at most the escape radius's, and for a
+// stack of finite optical depth tau about 2.6 tau events, the time light that enters at its surface
+// takes to leave it. 0 for a stack of clear layers.
 double events_per_photon_bound(const TransportProblem& problem);
 
 // Bitwise identical for any thread and rank count, and when resumed (batch_runner.hpp).
