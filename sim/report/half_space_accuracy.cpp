@@ -30,10 +30,7 @@ HalfSpaceSpec small_spec(double albedo, double g, double eta, std::uint64_t phot
   spec.eta = eta;
   spec.grid.r = UniformAxis{0.0, 10.0, 40};
   spec.tallies.fluence = false;
-  spec.run.photons = photons;
-  spec.run.batches = 32;
-  spec.run.seed = profile.seed;
-  spec.run.threads = profile.threads;
+  spec.run = report_run(photons, profile.seed, profile);
   return spec;
 }
 

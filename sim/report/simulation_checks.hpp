@@ -10,6 +10,7 @@
 
 #include "scatterlab/report/section.hpp"
 #include "scatterlab/report/suites.hpp"
+#include "scatterlab/transport/run_settings.hpp"
 #include "scatterlab/transport/simulate.hpp"
 
 namespace scatterlab::report {
@@ -38,6 +39,17 @@ inline std::vector<std::string> wall_time_labels(const std::vector<double>& seco
   std::vector<std::string> labels;
   for (const double s : seconds) labels.push_back(wall_time_label(s));
   return labels;
+}
+
+// A report run: `photons` in 32 batches (the standard errors come from their spread), from
+// `seed`, on the profile's threads.
+inline RunSettings report_run(std::uint64_t photons, std::uint64_t seed, const Profile& profile) {
+  RunSettings run;
+  run.photons = photons;
+  run.batches = 32;
+  run.seed = seed;
+  run.threads = profile.threads;
+  return run;
 }
 
 // NaN or Inf anywhere in a run's tallies (means and standard errors).

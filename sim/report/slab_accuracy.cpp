@@ -42,10 +42,7 @@ LayeredSlabSpec one_layer(double albedo, double g, double n, double tau, std::ui
   spec.r = UniformAxis{0.0, 0.5, 10};
   spec.z = UniformAxis{0.0, 0.4, 10};
   spec.theta_o = UniformAxis{0.0, std::numbers::pi / 2.0, 6};
-  spec.run.photons = photons;
-  spec.run.batches = 32;
-  spec.run.seed = profile.seed;
-  spec.run.threads = profile.threads;
+  spec.run = report_run(photons, profile.seed, profile);
   return spec;
 }
 

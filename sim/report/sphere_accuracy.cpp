@@ -68,10 +68,7 @@ LitObjectSpec sphere_spec(double albedo, double g, double eta, double radius, Ob
   spec.radius = radius;
   spec.light = light;
   spec.psi = UniformAxis{0.0, std::numbers::pi, 6};
-  spec.run.photons = photons;
-  spec.run.batches = 32;
-  spec.run.seed = profile.seed;
-  spec.run.threads = profile.threads;
+  spec.run = report_run(photons, profile.seed, profile);
   return spec;
 }
 
