@@ -68,7 +68,7 @@ Filter shell_filter(const UniformAxis& rho) {
   return {{"rho"},
           {count(rho)},
           per_bin(rho, [](double a, double b) { return 4.0 / 3.0 * pi * (b * b * b - a * a * a); }),
-          {}};
+          {Coordinate::rho, AxisLookup(rho), 0.0}};
 }
 
 Filter exit_angle_filter(const UniformAxis& theta_o) {

@@ -32,17 +32,19 @@ struct FilterRow {
   std::string_view unit;     // of min and max: "length" is the scene's length unit
   std::string_view per;      // what its bins divide by, for the description
 };
-constexpr std::array<FilterRow, 8> filter_rows = {{
+constexpr auto filter_rows = std::to_array<FilterRow>({
     {"x", Coordinate::x, true, true, "length", "per unit length in x"},
     {"y", Coordinate::y, true, true, "length", "per unit length in y"},
     {"r", Coordinate::r, true, true, "length", "per unit area at distance r from the beam axis"},
     {"z", Coordinate::z, false, true, "length", "per unit depth z"},
+    {"rho", Coordinate::rho, false, true, "length",
+     "per unit volume at distance rho from the source"},
     {"theta_o", Coordinate::exit_angle, true, false, "rad",
      "per steradian at exit angle theta_o from the outward normal, outside"},
     {"t", Coordinate::t, true, true, "s", "per second of time of flight t after a unit impulse"},
     {"order", Coordinate::order, true, true, "", "by scattering order (the last bin: and more)"},
     {"layer", Coordinate::layer, false, true, "", "by layer, top down"},
-}};
+});
 constexpr std::array<std::string_view, filter_rows.size()> filter_keys = [] {
   std::array<std::string_view, filter_rows.size()> keys{};
   for (std::size_t i = 0; i < keys.size(); ++i) keys[i] = filter_rows[i].key;
@@ -127,6 +129,7 @@ void check_filter(const DeclaredFilter& f, std::size_t i, const DeclaredTallyFra
 std::string units_of(const DeclaredTally& t, const std::string& length) {
   int power = t.score == DeclaredScore::fluence ? 1 : 0;  // a collision scores 1 mfp
   if (t.filter(Coordinate::r)) power -= 2;
+  if (t.filter(Coordinate::rho)) power -= 3;
   for (const Coordinate c : {Coordinate::x, Coordinate::y, Coordinate::z})
     power -= t.filter(c) != nullptr;
   std::string units = "W";
@@ -304,6 +307,9 @@ std::vector<TallyDeclaration> declare_chained_tallies(const std::vector<Declared
       switch (row.coordinate) {
         case Coordinate::r:
           d.filters.push_back(radius_filter(length_axis_in_mfp(axis, frame.walk_per_unit)));
+          break;
+        case Coordinate::rho:
+          d.filters.push_back(shell_filter(length_axis_in_mfp(axis, frame.walk_per_unit)));
           break;
         case Coordinate::x:
         case Coordinate::y:

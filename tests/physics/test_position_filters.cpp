@@ -1,13 +1,16 @@
-// Declared tallies binned by position x and y (transport/declared_tally.hpp): maps of where light
-// is absorbed and where it leaves, held against an exact density, the symmetry of normal
-// incidence and the identity that summing a map over y gives the map binned by x alone. Fixed
-// seeds; tolerances k sigma.
+// Declared tallies binned by position, x and y and the distance rho from a point source
+// (transport/declared_tally.hpp): maps of where light is absorbed and where it leaves, held
+// against exact densities, the symmetry of normal incidence, the geometries' own tallies and the
+// identity that summing a map over y gives the map binned by x alone. Fixed seeds; tolerances
+// k sigma.
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "scatterlab/transport/searchlight.hpp"
+#include "scatterlab/transport/simulate.hpp"
 #include "simulation_fixtures.hpp"
 
 namespace scatterlab {
@@ -105,6 +108,60 @@ TEST(PositionFilters, ExitanceMapIsSymmetricAndSumsOverY) {
     total += sum;
   }
   EXPECT_GT(total, 0.0);
+}
+
+// An isotropic point source in a purely absorbing infinite medium (albedo 0): every photon is
+// absorbed at its first collision, at a distance rho ~ exp(-rho / l) from the source, so the
+// shell [rho0, rho1) holds exp(-rho0 / l) - exp(-rho1 / l) of the power, and its density is that
+// over the shell's volume 4/3 pi (rho1^3 - rho0^3).
+TEST(PositionFilters, PointSourceIsAbsorbedExponentiallyInRho) {
+  InfiniteMediumSpec spec;
+  const double l = 0.5;  // mm
+  spec.medium = Medium::from_albedo(0.0, 1.0 / l, 0.0, "mm");
+  spec.set_source(SourceKind::point);
+  spec.tallies.radiance = spec.tallies.fluence = spec.tallies.flux = false;
+  spec.run.photons = 100'000;
+  spec.run.batches = 10;
+  spec.run.seed = 29;
+  const UniformAxis rho{0.0, 4.0 * l, 20};
+  spec.declared_tallies = {
+      {"absorbed_rho", DeclaredScore::absorbed, {filter(Coordinate::rho, rho)}, std::nullopt}};
+  const TransportOutput out = run_infinite_medium(spec);
+  const TallyResult& a = find_tally(out, "absorbed_rho");
+  ASSERT_EQ(a.dims, std::vector<std::string>{"rho"});
+  EXPECT_EQ(a.units, "W mm^-3 per W incident");
+  for (int i = 0; i < rho.bins; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const double r0 = rho.edge(i), r1 = rho.edge(i + 1);
+    const double volume = 4.0 / 3.0 * std::numbers::pi * (r1 * r1 * r1 - r0 * r0 * r0);
+    const double exact = (std::exp(-r0 / l) - std::exp(-r1 / l)) / volume;
+    EXPECT_NEAR(a.mean[k], exact, 4.0 * a.stderr_of_mean[k]) << "shell " << i;
+  }
+}
+
+// In a scattering medium the declared fluence on shells about a point source is the source's
+// own fluence_spherical: the same collisions in the same shells, to round-off.
+TEST(PositionFilters, FluenceOnShellsIsThePointSourcesOwn) {
+  InfiniteMediumSpec spec;
+  spec.medium = Medium::from_albedo(0.9, 2.0, 0.5, "mm");
+  spec.set_source(SourceKind::point);
+  spec.tallies.radiance = spec.tallies.fluence = spec.tallies.flux = false;
+  spec.grid.rho = UniformAxis{0.0, 3.0, 30};
+  spec.run.photons = 20'000;
+  spec.run.batches = 8;
+  spec.run.seed = 31;
+  spec.declared_tallies = {{"fluence_rho",
+                            DeclaredScore::fluence,
+                            {filter(Coordinate::rho, spec.grid.rho)},
+                            std::nullopt}};
+  const TransportOutput out = run_infinite_medium(spec);
+  const TallyResult& declared = find_tally(out, "fluence_rho");
+  const TallyResult& own = find_tally(out, "fluence_spherical");
+  ASSERT_EQ(declared.size(), own.size());
+  EXPECT_EQ(declared.units, own.units);
+  for (std::size_t i = 0; i < own.size(); ++i) {
+    EXPECT_NEAR(declared.mean[i], own.mean[i], 1e-12 * own.mean[i]) << "shell " << i;
+  }
 }
 
 }  // namespace

@@ -156,6 +156,9 @@ TEST(DeclaredTally, RefusesWhatItsGeometryCannotScoreNamingTheField) {
             "tally[1].filters.theta_o.max");  // over [0, pi/2] always
   EXPECT_EQ(refused(half + tally + "score = \"exitance\"\nfilters = { order = {} }\n"),
             "tally[1].filters.order.bins");
+  EXPECT_EQ(
+      refused(half + tally + "score = \"exitance\"\nfilters = { rho = { max = 1, bins = 2 } }\n"),
+      "tally[1].filters.rho");  // an exit is on the surface: r, not rho
   // x and y may be negative, so they have no default min.
   EXPECT_EQ(
       refused(half + tally + "score = \"exitance\"\nfilters = { x = { max = 1, bins = 2 } }\n"),

@@ -34,10 +34,10 @@ struct TallyEvent {
 };
 
 // The coordinate a filter bins an event by: its position x or y (of an exit, on the surface),
-// distance r from the beam axis, depth z, the exit angle theta_o, time of flight t = path x
-// seconds_per_path, the scattering order (its last bin holding that order and more), or a slab's
-// layer.
-enum class Coordinate { none, x, y, r, z, exit_angle, t, order, layer };
+// distance r from the beam axis, depth z, distance rho from the source, the exit angle theta_o,
+// time of flight t = path x seconds_per_path, the scattering order (its last bin holding that
+// order and more), or a slab's layer.
+enum class Coordinate { none, x, y, r, z, rho, exit_angle, t, order, layer };
 
 // How a filter bins an event along its coordinate: the axis, in the walk's units.
 struct EventBinning {
@@ -56,6 +56,8 @@ struct EventBinning {
         return cells.index(std::sqrt(event.x * event.x + event.y * event.y));
       case Coordinate::z:
         return cells.index(event.z);
+      case Coordinate::rho:
+        return cells.index(std::sqrt(event.x * event.x + event.y * event.y + event.z * event.z));
       case Coordinate::exit_angle:
         return cells.index(std::acos(event.cos_outside));
       case Coordinate::order:
@@ -97,7 +99,7 @@ Filter order_filter(int bins);
 // Direction (theta from +z, phi from e_r), by each bin's solid angle in sr: a folded phi bin
 // stands for phi and -phi together, so it counts twice.
 Filter direction_filter(const UniformAxis& theta, const UniformAxis& phi, bool fold_phi);
-// rho from the source, by the volume of each spherical shell, in mfp^3.
+// rho from the source (the origin), by the volume of each spherical shell, in mfp^3.
 Filter shell_filter(const UniformAxis& rho);
 // Exit angle theta_o from the outward normal, by projected solid angle over all azimuths:
 // integral of cos theta dw = pi (sin^2 theta1 - sin^2 theta0), in sr.

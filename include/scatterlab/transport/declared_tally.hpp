@@ -6,12 +6,13 @@
 //   score          its event                                   filters
 //   exitance       a photon leaves through the lit surface      x, y, r, theta_o, t, order
 //   transmittance  a photon leaves a slab through its far side  x, y, r, theta_o, t, order
-//   fluence        a collision (the collision estimator)        x, y, r, z, t, order
-//   absorbed       a photon's weight is absorbed                x, y, r, z, t, order, layer
+//   fluence        a collision (the collision estimator)        x, y, r, z, rho, t, order
+//   absorbed       a photon's weight is absorbed                x, y, r, z, rho, t, order, layer
 //
 // x and y are the event's position (of an exit point on the surface, about the entry point; the
-// beam arrives in the x-z plane), r the distance from the beam axis, z the depth, all in the
-// scene's length unit; theta_o the exit angle from the outward normal,
+// beam arrives in the x-z plane), r the distance from the beam axis, z the depth, rho the
+// distance from the source (the origin: a point source's fluence on shells), all in the scene's
+// length unit; theta_o the exit angle from the outward normal,
 // outside, per steradian; t the time of flight in seconds since the light entered the medium:
 // the path travelled times the group index over c (a slab's layers each at their own index n);
 // order the number of scatterings, the last bin holding its order and more; layer a slab's layer,
@@ -56,8 +57,8 @@ struct DeclaredTally {
   const DeclaredFilter* filter(Coordinate coordinate) const;
 };
 
-// The filters' keys in filters = {...} ("x", "y", "r", "z", "theta_o", "t", "order", "layer"), in
-// the order of their cells; and the coordinate of a key, or nullopt.
+// The filters' keys in filters = {...} ("x", "y", "r", "z", "rho", "theta_o", "t", "order",
+// "layer"), in the order of their cells; and the coordinate of a key, or nullopt.
 std::span<const std::string_view> declared_filter_keys();
 std::optional<Coordinate> declared_filter(std::string_view key);
 
