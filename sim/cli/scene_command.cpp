@@ -520,12 +520,9 @@ void warn_if_long(const std::string& command, const std::filesystem::path& outpu
   const int threads = batch_threads(problem.run) * ranks;
   const double seconds = events * typical_ns_per_event * 1e-9 / threads;
   if (!std::isfinite(seconds) || seconds < long_run_seconds) return;
-  std::string albedo = fmt::format("albedo {}", problem.albedo);
-  if (problem.geometry == GeometryKind::slab) {
-    double highest = 0.0;
-    for (const SlabLayer& layer : problem.layers) highest = std::max(highest, layer.albedo);
-    albedo = fmt::format("the layers' highest albedo {}", highest);
-  }
+  const std::string albedo = fmt::format(
+      "{}albedo {}", problem.geometry == GeometryKind::slab ? "the layers' highest " : "",
+      highest_albedo(problem));
   fmt::print(stderr,
              "{}: {} may take long: up to {:.3g} events a photon ({}), {:.3g} in all, "
              "about {} at {:g} ns an event on {} thread{}; fewer photons, a lower albedo or a "

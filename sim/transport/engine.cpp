@@ -93,14 +93,13 @@ namespace {
 // radius in that medium's mfp, and, where every layer is finite, the time a random walk takes to
 // leave the stack.
 double slab_events_per_photon_bound(const TransportProblem& problem) {
-  double albedo = 0.0, sigma_t = 0.0, depth = 0.0;
+  double sigma_t = 0.0, depth = 0.0;
   for (const SlabLayer& layer : problem.layers) {
-    if (layer.sigma_t == 0.0) continue;  // a clear layer: no events
-    albedo = std::max(albedo, layer.albedo);
     sigma_t = std::max(sigma_t, layer.sigma_t);
     depth += layer.sigma_t * layer.thickness;  // inf for a semi-infinite last layer
   }
-  if (sigma_t == 0.0) return 0.0;
+  if (sigma_t == 0.0) return 0.0;  // clear layers only: no events
+  const double albedo = highest_albedo(problem);
   double bound = expected_events_per_photon(albedo, problem.run.escape_radius * sigma_t);
   if (problem.weighting == Weighting::implicit_capture && albedo > 0.0 && albedo < 1.0) {
     // Each event leaves the weight times the albedo, at most: the first roulette comes after
@@ -122,6 +121,15 @@ double slab_events_per_photon_bound(const TransportProblem& problem) {
 }
 
 }  // namespace
+
+double highest_albedo(const TransportProblem& problem) {
+  if (problem.geometry != GeometryKind::slab) return problem.albedo;
+  double highest = 0.0;
+  for (const SlabLayer& layer : problem.layers) {
+    if (layer.sigma_t > 0.0) highest = std::max(highest, layer.albedo);  // a clear layer: none
+  }
+  return highest;
+}
 
 double events_per_photon_bound(const TransportProblem& problem) {
   if (problem.geometry == GeometryKind::slab) return slab_events_per_photon_bound(problem);

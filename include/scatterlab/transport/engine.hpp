@@ -64,6 +64,9 @@ void check_transport_memory(const TransportProblem& problem, int ranks, bool res
 // takes to leave it. 0 for a stack of clear layers.
 double events_per_photon_bound(const TransportProblem& problem);
 
+// The albedo that bounds those events: the medium's, or a slab's layers' highest.
+double highest_albedo(const TransportProblem& problem);
+
 // Bitwise identical for any thread and rank count, and when resumed (batch_runner.hpp).
 // Throws std::invalid_argument for a problem no kernel runs (the track-length estimator in a
 // geometry with a surface); specs validate their fields before they get here.
