@@ -22,15 +22,14 @@
 namespace scatterlab::report {
 namespace {
 
-HalfSpaceSpec small_spec(double albedo, double g, double eta, std::uint64_t photons,
-                         const Profile& profile) {
+HalfSpaceSpec small_spec(double albedo, double g, double eta, const RunSettings& run) {
   HalfSpaceSpec spec;
   spec.medium.albedo = albedo;
   spec.medium.g = g;
   spec.eta = eta;
   spec.grid.r = UniformAxis{0.0, 10.0, 40};
   spec.tallies.fluence = false;
-  spec.run = report_run(photons, profile.seed, profile);
+  spec.run = run;
   return spec;
 }
 
@@ -54,9 +53,7 @@ Section half_space_convergence(const Profile& profile) {
       section, profile, {{"diffuse_reflectance", "$R_\\mathrm{d}$", exact}},
       fmt::format("Index-matched half-space, normal beam, albedo {:g}", albedo),
       [&](std::uint64_t photons, std::uint64_t seed) {
-        HalfSpaceSpec spec = small_spec(albedo, 0.0, 1.0, photons, profile);
-        spec.run.seed = seed;
-        return run_half_space(spec);
+        return run_half_space(small_spec(albedo, 0.0, 1.0, report_run(photons, seed, profile)));
       });
   return section;
 }
@@ -90,7 +87,8 @@ Section half_space_extremes(const Profile& profile) {
   const double scale = profile.quick ? 1.0 : 10.0;
   for (const Cell& c : cells) {
     const auto photons = static_cast<std::uint64_t>(scale * (c.albedo > 0.99 ? 5e3 : 2e4));
-    HalfSpaceSpec spec = small_spec(c.albedo, c.g, c.eta, photons, profile);
+    HalfSpaceSpec spec =
+        small_spec(c.albedo, c.g, c.eta, report_run(photons, profile.seed, profile));
     spec.incidence_deg = c.incidence;
     const TransportOutput out = run_half_space(spec);
     section.non_finite_values += count_non_finite(out.tallies);

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -83,6 +84,27 @@ inline bool agrees(const Estimate& e, double exact, double photons) {
 
 inline double z_score(const Estimate& e, double exact) {
   return e.stderr_of_mean > 0.0 ? (e.mean - exact) / e.stderr_of_mean : 0.0;
+}
+
+// Energy in a run whose every photon ends in exactly one of `fixed` (a part known before any
+// photon runs, or one tally) and the one-value `totals`: the residual of their sum against 1, and
+// of the sum with each total split into its scattering orders (_unscattered, _single,
+// _multiple). Both 0 to rounding.
+struct EnergyResiduals {
+  double total = 0.0, by_order = 0.0;
+};
+
+inline EnergyResiduals energy_residuals(const TransportOutput& out, double fixed,
+                                        std::initializer_list<std::string> totals) {
+  EnergyResiduals r{fixed, fixed - 1.0};
+  for (const std::string& total : totals) {
+    r.total += estimate(out, total).mean;
+    for (const char* order : {"_unscattered", "_single", "_multiple"}) {
+      r.by_order += estimate(out, total + order).mean;
+    }
+  }
+  r.total -= 1.0;
+  return r;
 }
 
 // A quantity whose error a section follows against run time, and its exact value.

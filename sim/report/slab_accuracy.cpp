@@ -34,15 +34,14 @@ namespace {
 constexpr double kMuT = 10.0;  // 1 / cm: thicknesses are optical depths / 10 cm
 
 // One analog layer of optical depth `tau` (infinite: semi-infinite), index n, in air.
-LayeredSlabSpec one_layer(double albedo, double g, double n, double tau, std::uint64_t photons,
-                          const Profile& profile) {
+LayeredSlabSpec one_layer(double albedo, double g, double n, double tau, const RunSettings& run) {
   LayeredSlabSpec spec;
   spec.layers = {
       SlabLayerSpec{kMuT * (1.0 - albedo), kMuT * albedo, g, n, tau / kMuT, std::nullopt}};
   spec.r = UniformAxis{0.0, 0.5, 10};
   spec.z = UniformAxis{0.0, 0.4, 10};
   spec.theta_o = UniformAxis{0.0, std::numbers::pi / 2.0, 6};
-  spec.run = report_run(photons, profile.seed, profile);
+  spec.run = run;
   return spec;
 }
 
@@ -73,16 +72,14 @@ Section slab_convergence(const Profile& profile) {
       "Each budget within 5 standard errors plus the table's rounding (5e-6) of each value; the "
       "standard error falls as N^-1/2 (least-squares slope of log stderr against log photons in "
       "[-0.6, -0.4]).";
-  add_error_against_run_time(section, profile,
-                             {{"diffuse_reflectance", "$R_\\mathrm{d}$", 0.09739, 5e-6},
-                              {"total_transmittance", "$T_\\mathrm{t}$", 0.66096, 5e-6}},
-                             "van de Hulst's slab, optical thickness 2, albedo 0.9, g 0.75",
-                             [&](std::uint64_t photons, std::uint64_t seed) {
-                               LayeredSlabSpec spec =
-                                   one_layer(0.9, 0.75, 1.0, 2.0, photons, profile);
-                               spec.run.seed = seed;
-                               return run_layered_slab(spec);
-                             });
+  add_error_against_run_time(
+      section, profile,
+      {{"diffuse_reflectance", "$R_\\mathrm{d}$", 0.09739, 5e-6},
+       {"total_transmittance", "$T_\\mathrm{t}$", 0.66096, 5e-6}},
+      "van de Hulst's slab, optical thickness 2, albedo 0.9, g 0.75",
+      [&](std::uint64_t photons, std::uint64_t seed) {
+        return run_layered_slab(one_layer(0.9, 0.75, 1.0, 2.0, report_run(photons, seed, profile)));
+      });
   return section;
 }
 
@@ -127,23 +124,16 @@ Section slab_extremes(const Profile& profile) {
   const double scale = profile.quick ? 1.0 : 10.0;
   for (const Cell& c : cells) {
     const auto photons = static_cast<std::uint64_t>(scale * 2e4);
-    LayeredSlabSpec spec = one_layer(c.albedo, c.g, c.n, c.tau, photons, profile);
-    spec.run.seed = profile.seed + section.table.rows.size();  // each cell its own photons
-    const TransportOutput out = run_layered_slab(spec);
+    const std::uint64_t seed = profile.seed + section.table.rows.size();  // each cell its own
+    const TransportOutput out =
+        run_layered_slab(one_layer(c.albedo, c.g, c.n, c.tau, report_run(photons, seed, profile)));
     section.non_finite_values += count_non_finite(out.tallies);
     const double count = static_cast<double>(photons);
     const std::string cell =
         fmt::format("albedo {}, g {}, n {}, tau {}", c.albedo, c.g, c.n, c.tau);
-    const auto mean = [&](const std::string& name) { return estimate(out, name).mean; };
-    const double specular = mean("specular_reflectance");
-    const double energy = specular + mean("diffuse_reflectance") + mean("total_transmittance") +
-                          mean("absorbed") - 1.0;
-    double orders = specular - 1.0;
-    for (const char* total : {"diffuse_reflectance", "total_transmittance", "absorbed"}) {
-      for (const char* order : {"_unscattered", "_single", "_multiple"}) {
-        orders += mean(std::string(total) + order);
-      }
-    }
+    const double specular = estimate(out, "specular_reflectance").mean;
+    const auto [energy, orders] =
+        energy_residuals(out, specular, {"diffuse_reflectance", "total_transmittance", "absorbed"});
     section.checks.push_back({fmt::format("{}: energy residual {:.2g}, by order {:.2g}, within "
                                           "1e-12",
                                           cell, energy, orders),
@@ -179,8 +169,8 @@ Section slab_extremes(const Profile& profile) {
 
   // Giovanelli's medium: mu_a 10, mu_s 90 per cm, isotropic, semi-infinite, behind n = 1.5.
   const auto photons = static_cast<std::uint64_t>(scale * 1e5);
-  const TransportOutput out =
-      run_layered_slab(one_layer(0.9, 0.0, 1.5, semi_infinite, photons, profile));
+  const TransportOutput out = run_layered_slab(
+      one_layer(0.9, 0.0, 1.5, semi_infinite, report_run(photons, profile.seed, profile)));
   section.non_finite_values += count_non_finite(out.tallies);
   const Estimate diffuse = estimate(out, "diffuse_reflectance");
   const double surface = estimate(out, "specular_reflectance").mean + diffuse.mean;

@@ -61,14 +61,14 @@ Unscattered exact_unscattered(ObjectLight light, double eta, double radius) {
 }
 
 LitObjectSpec sphere_spec(double albedo, double g, double eta, double radius, ObjectLight light,
-                          std::uint64_t photons, const Profile& profile) {
+                          const RunSettings& run) {
   LitObjectSpec spec;
   spec.medium = Medium{albedo, 1.0, g, "mfp"};
   spec.eta = eta;
   spec.radius = radius;
   spec.light = light;
   spec.psi = UniformAxis{0.0, std::numbers::pi, 6};
-  spec.run = report_run(photons, profile.seed, profile);
+  spec.run = run;
   return spec;
 }
 
@@ -92,10 +92,8 @@ Section sphere_convergence(const Profile& profile) {
       section, profile, {{"exited_unscattered", "the unscattered exitance", exact.leaves}},
       fmt::format("Sphere R = {:g} mfp, eta {:g}, directional light", radius, eta),
       [&](std::uint64_t photons, std::uint64_t seed) {
-        LitObjectSpec spec =
-            sphere_spec(albedo, g, eta, radius, ObjectLight::directional, photons, profile);
-        spec.run.seed = seed;
-        return run_lit_sphere(spec);
+        return run_lit_sphere(sphere_spec(albedo, g, eta, radius, ObjectLight::directional,
+                                          report_run(photons, seed, profile)));
       });
   return section;
 }
@@ -153,21 +151,16 @@ Section sphere_extremes(const Profile& profile) {
     for (const Cell& c : cells) {
       // A sphere of 10 mfp keeps each photon for more events: fewer photons.
       const auto photons = static_cast<std::uint64_t>(scale * (c.radius > 1.0 ? 5e3 : 2e4));
-      LitObjectSpec spec = sphere_spec(c.albedo, c.g, c.eta, c.radius, light, photons, profile);
-      spec.run.seed = profile.seed + section.table.rows.size();  // each cell its own photons
-      const TransportOutput out = run_lit_sphere(spec);
+      // Each cell its own photons.
+      const std::uint64_t seed = profile.seed + section.table.rows.size();
+      const TransportOutput out = run_lit_sphere(
+          sphere_spec(c.albedo, c.g, c.eta, c.radius, light, report_run(photons, seed, profile)));
       section.non_finite_values += count_non_finite(out.tallies);
       const double n = static_cast<double>(photons);
       const std::string cell = fmt::format("{}, albedo {}, g {}, eta {}, R {} mfp",
                                            to_string(light), c.albedo, c.g, c.eta, c.radius);
-      const auto mean = [&](const std::string& name) { return estimate(out, name).mean; };
-      const double energy = mean("reflected_at_entry") + mean("exited") + mean("absorbed") - 1.0;
-      double orders = mean("reflected_at_entry") - 1.0;
-      for (const char* total : {"exited", "absorbed"}) {
-        for (const char* order : {"_unscattered", "_single", "_multiple"}) {
-          orders += mean(std::string(total) + order);
-        }
-      }
+      const auto [energy, orders] =
+          energy_residuals(out, estimate(out, "reflected_at_entry").mean, {"exited", "absorbed"});
       section.checks.push_back(
           {fmt::format("{}: energy residual {:.2g}, by order {:.2g}, within 1e-12", cell, energy,
                        orders),
