@@ -273,6 +273,7 @@ std::string MeshView::exitance(std::string_view body,
       throw InputError(field + ".eta", fmt::format("got {} after {}", medium.eta, eta),
                        "one eta for every channel (the surface's)");
     }
+    check_bssrdf_eta(medium.eta, field + ".eta");
     media.push_back(medium);
     if (built_in) profiles.emplace_back(*built_in, medium);
   }

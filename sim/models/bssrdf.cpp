@@ -1,10 +1,13 @@
 #include "scatterlab/models/bssrdf.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
 
+#include "scatterlab/core/error.hpp"
 #include "scatterlab/core/fresnel.hpp"
 #include "scatterlab/core/quadrature.hpp"
 #include "scatterlab/models/boundary_reflection.hpp"
@@ -18,6 +21,15 @@ double exit_normalisation(double eta) {
 }
 
 }  // namespace
+
+void check_bssrdf_eta(double eta, const std::string& field) {
+  if (!(eta >= 0.5 && eta <= 2.0)) {
+    throw InputError(field, fmt::format("got {}", eta),
+                     "a relative index of refraction in [0.5, 2] for the diffusion BSSRDF (its "
+                     "exit term evaluates d'Eon & Irving's moment fits, valid in [0.5, 2.5], at "
+                     "1 / eta)");
+  }
+}
 
 double bssrdf_exit_weight(double eta, double cos_outside) {
   return fresnel_dielectric_transmittance(cos_outside, eta) /

@@ -9,6 +9,7 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/frame.hpp"
 #include "scatterlab/core/fresnel.hpp"
+#include "scatterlab/core/quadrature.hpp"
 #include "scatterlab/core/random.hpp"
 #include "scatterlab/models/bssrdf.hpp"
 
@@ -29,6 +30,7 @@ LitSphereExitance lit_sphere_exitance(const DiffusionProfile& profile, double ra
   }
 
   const double eta = profile.medium().eta;
+  check_bssrdf_eta(eta, "eta");
   const RadialProfileSampler sampler(profile, 2.0 * radius);
   // E_0 = 1 / (pi R^2): unit power meets the sphere. The exit factor integrates eq. 2.16's
   // F_t(w_o) / (pi 4 C_phi) over the outgoing hemisphere.
@@ -100,6 +102,37 @@ LitSphereExitance lit_sphere_exitance(const DiffusionProfile& profile, double ra
     result.stderr_of_mean[b] = scale * std::sqrt(variance / n + profile_variance);
   }
   return result;
+}
+
+double lit_sphere_exitance_quadrature(const DiffusionProfile& profile, double radius, double psi_lo,
+                                      double psi_hi, int nodes) {
+  const double eta = profile.medium().eta;
+  check_bssrdf_eta(eta, "eta");
+  const GaussLegendre rule = gauss_legendre(nodes);
+  const double c_lo = std::cos(psi_hi), c_hi = std::cos(psi_lo);
+  const QuadratureOptions tight{0.0, 1e-8, 2000};
+  double average = 0.0;
+  for (std::size_t k = 0; k < rule.nodes.size(); ++k) {
+    const double cos_o = c_lo + 0.5 * (c_hi - c_lo) * (rule.nodes[k] + 1.0);
+    const double sin_o = std::sqrt(1.0 - cos_o * cos_o);
+    const double psi_o = std::acos(cos_o);
+    const auto over_psi_i = [&](double psi_i) {
+      const double ci = std::cos(psi_i), si = std::sin(psi_i);
+      const auto over_phi = [&](double phi) {
+        const double cos_gamma = si * sin_o * std::cos(phi) + ci * cos_o;
+        const double chord = radius * std::sqrt(std::max(0.0, 2.0 * (1.0 - cos_gamma)));
+        return profile.reflectance(chord);
+      };
+      // Symmetric in phi: twice [0, pi]; the peak (x_i = x_o) sits at phi = 0.
+      const double ring = 2.0 * integrate_adaptive(over_phi, 0.0, pi, tight).value;
+      return radius * radius * si * ci * fresnel_dielectric_transmittance(ci, eta) * ring;
+    };
+    std::vector<double> breaks{0.0, pi / 2.0};
+    if (psi_o < pi / 2.0) breaks.insert(breaks.begin() + 1, psi_o);
+    const double m = integrate_adaptive(over_psi_i, breaks, tight).value;
+    average += 0.5 * rule.weights[k] * m;  // weights sum to 2 on [-1, 1]
+  }
+  return exit_transmittance_ratio(eta) * average / (pi * radius * radius);
 }
 
 }  // namespace scatterlab

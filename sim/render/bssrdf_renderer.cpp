@@ -69,6 +69,7 @@ BssrdfResult render_bssrdf(const RenderScene& scene, const BssrdfSettings& setti
                      "a solid angle >= 0 in sr (0: no clustering)");
   }
   check_bssrdf_work(scene, settings);
+  check_bssrdf_eta(scene.eta, "medium.eta");
   // The profiles first: a medium they refuse is refused before any work.
   std::vector<DiffusionProfile> profiles;
   for (const HalfSpaceMedium& m : channel_media(scene)) profiles.emplace_back(settings.model, m);

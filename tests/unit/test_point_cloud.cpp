@@ -306,12 +306,16 @@ TEST(PointCloudIrradiance, ShadowedPointsGetNoLight) {
   EXPECT_GT(lit, 200);
 }
 
-TEST(RenderBssrdf, RefusesAFloorAndANegativeClusterAngle) {
+TEST(RenderBssrdf, RefusesAFloorANegativeClusterAngleAndAnEtaItsExitTermCannotTake) {
   RenderScene scene = lit_scene(make_box(Vec3(1.0, 1.0, 1.0)), Vec3(0.0, 0.0, 5.0), 1.0);
   BssrdfSettings settings;
   settings.cluster_angle = -1.0;
   EXPECT_EQ(field_of([&] { render_bssrdf(scene, settings); }), "cluster_angle");
   settings.cluster_angle = 0.1;
+  // Refused before the image's threads start: thrown inside them, it ended the program.
+  scene.eta = 2.5;
+  EXPECT_EQ(field_of([&] { render_bssrdf(scene, settings); }), "medium.eta");
+  scene.eta = 1.3;
   scene.floor = RenderFloor{};
   EXPECT_EQ(field_of([&] { render_bssrdf(scene, settings); }), "floor");
 }

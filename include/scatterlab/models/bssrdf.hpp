@@ -15,9 +15,16 @@
 // Units: S_d in 1 / (length^2 sr) per unit power entering at x_i from w_i (R_d's units over sr).
 // Radiance leaving x_o is L_o = int_A int S_d L_i cos(theta_i) dw_i dA (Bitterli eq. 2.14).
 
+#include <string>
+
 #include "scatterlab/models/diffusion_profile.hpp"
 
 namespace scatterlab {
+
+// The exit term evaluates d'Eon & Irving's moment fits, which hold for indices in [0.5, 2.5]
+// (boundary_reflection.hpp), at 1 / eta: so S_d takes eta in [0.5, 2]. Throws InputError
+// naming `field` otherwise; a caller checks before its loops, whose threads cannot throw.
+void check_bssrdf_eta(double eta, const std::string& field);
 
 // F_t(eta, w_o) / (pi 4 C_phi(1/eta)): S_d's factor for the direction it leaves in, 1 / sr.
 // cos_outside in [0, 1] is the cosine to the normal outside the medium.

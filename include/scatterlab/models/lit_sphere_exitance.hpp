@@ -49,4 +49,12 @@ LitSphereExitance lit_sphere_exitance(const DiffusionProfile& profile, double ra
                                       std::span<const double> psi_edges, int samples,
                                       std::uint64_t seed);
 
+// The same M(psi_o) averaged over the bin [psi_lo, psi_hi], by a deterministic nested quadrature
+// of Bitterli eq. 2.14 with eq. 2.16 over the lit hemisphere in spherical coordinates about the
+// sphere's centre: Gauss-Legendre of `nodes` points in cos psi_o across the bin, adaptive
+// Gauss-Kronrod in psi_i (split at psi_o and pi / 2) and in the azimuth (to relative 1e-8). It
+// shares nothing with the sampling above but the profile and the Fresnel term.
+double lit_sphere_exitance_quadrature(const DiffusionProfile& profile, double radius, double psi_lo,
+                                      double psi_hi, int nodes = 8);
+
 }  // namespace scatterlab
