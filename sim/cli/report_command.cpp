@@ -47,19 +47,29 @@ Action add_report_command(CLI::App& app, const std::string& command_line) {
   // Each section by its id (its CSV stem), in the order of the report.
   using Suite = std::function<report::Section(const report::Profile&)>;
   const auto suites = std::make_shared<std::vector<std::pair<std::string, Suite>>>(
-      std::vector<std::pair<std::string, Suite>>{
-          {"infinite_medium_convergence", report::infinite_medium_convergence},
-          {"infinite_medium_extremes", report::infinite_medium_extremes},
-          {"half_space_convergence", report::half_space_convergence},
-          {"half_space_extremes", report::half_space_extremes},
-          {"sphere_convergence", report::sphere_convergence},
-          {"sphere_extremes", report::sphere_extremes},
-          {"slab_convergence", report::slab_convergence},
-          {"slab_extremes", report::slab_extremes},
-          {"half_space_models", report::half_space_model_accuracy},
-          {"model_continua", report::model_continua},
-          {"lobe_fits", report::lobe_fit_accuracy},
-          {"refractive_solver", report::refractive_solver_accuracy}});
+      std::vector<std::pair<std::string, Suite>> {
+        {"infinite_medium_convergence", report::infinite_medium_convergence},
+            {"infinite_medium_extremes", report::infinite_medium_extremes},
+            {"half_space_convergence", report::half_space_convergence},
+            {"half_space_extremes", report::half_space_extremes},
+            {"sphere_convergence", report::sphere_convergence},
+            {"sphere_extremes", report::sphere_extremes},
+            {"slab_convergence", report::slab_convergence},
+            {"slab_extremes", report::slab_extremes},
+#if SCATTERLAB_WITH_RENDER
+            {"mesh_convergence", report::mesh_convergence},
+            {"mesh_tessellation", report::mesh_tessellation},
+            {"mesh_extremes", report::mesh_extremes},
+            {"volumetric_renderer_convergence", report::volumetric_renderer_convergence},
+            {"volumetric_renderer_extremes", report::volumetric_renderer_extremes},
+#endif
+            {"lit_sphere_bssrdf_convergence", report::lit_sphere_bssrdf_convergence},
+            {"lit_sphere_bssrdf_extremes", report::lit_sphere_bssrdf_extremes},
+            {"half_space_models", report::half_space_model_accuracy},
+            {"model_continua", report::model_continua}, {"lobe_fits", report::lobe_fit_accuracy}, {
+          "refractive_solver", report::refractive_solver_accuracy
+        }
+      });
   std::string names;
   for (const auto& [name, suite] : *suites) names += (names.empty() ? "" : ", ") + name;
   command

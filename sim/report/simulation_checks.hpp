@@ -7,6 +7,7 @@
 #include <initializer_list>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "scatterlab/report/section.hpp"
@@ -107,6 +108,22 @@ inline EnergyResiduals energy_residuals(const TransportOutput& out, double fixed
   return r;
 }
 
+// Estimates by name as the one-value tallies of a run of `seconds`, for a section whose runs are
+// integrals rather than transport (add_error_against_run_time reads runs as TransportOutput).
+inline TransportOutput scalar_output(
+    double seconds, const std::vector<std::pair<std::string, Estimate>>& estimates) {
+  TransportOutput out;
+  out.wall_seconds = seconds;
+  for (const auto& [name, e] : estimates) {
+    TallyResult t;
+    t.name = name;
+    t.mean = {e.mean};
+    t.stderr_of_mean = {e.stderr_of_mean};
+    out.tallies.push_back(std::move(t));
+  }
+  return out;
+}
+
 // A quantity whose error a section follows against run time, and its exact value.
 struct ConvergingQuantity {
   std::string name;    // its column in the table, e.g. "diffuse_reflectance"
@@ -115,22 +132,29 @@ struct ConvergingQuantity {
   double rounding = 0.0;  // of a reference printed to few digits, added to the tolerance
 };
 
-// Error against run time: `run(photons, seed)` at doubling budgets (6 from 2e4 photons quick, 9
-// from 1e5 in full, each its own seed from profile.seed up) gives each quantity's estimate. Each
-// budget is checked within 5 standard errors of the exact value (plus its rounding), and the
-// slope of log stderr against log photons in [-0.6, -0.4] (N^-1/2). Fills the section's table
-// (photons, seconds, photons per second, then per quantity its value, stderr, relative error and
-// z; with several quantities each column is prefixed by its name), one figure per quantity
-// (`title` above its name) and its findings.
+// What a budget counts: photons for the Monte Carlo transport, samples for an integral.
+struct Budget {
+  std::string column = "photons";  // the table's column, and "<column>_per_second"
+  std::string words = "photons";   // in the checks and on the figure's axis
+};
+
+// Error against run time: `run(budget, seed)` at doubling budgets (6 from 2e4 quick, 9 from 1e5
+// in full, each its own seed from profile.seed up) gives each quantity's estimate. Each budget is
+// checked within 5 standard errors of the exact value (plus its rounding), and the slope of log
+// stderr against log budget in [-0.6, -0.4] (N^-1/2). Fills the section's table (budget, seconds,
+// budget per second, then per quantity its value, stderr, relative error and z; with several
+// quantities each column is prefixed by its name), one figure per quantity (`title` above its
+// name) and its findings.
 template <class Run>
 void add_error_against_run_time(Section& section, const Profile& profile,
                                 const std::vector<ConvergingQuantity>& quantities,
-                                const std::string& title, const Run& run) {
+                                const std::string& title, const Run& run,
+                                const Budget& budget = {}) {
   const bool several = quantities.size() > 1;
   const auto column = [&](const ConvergingQuantity& q, const std::string& what) {
     return several ? q.name + "_" + what : what;
   };
-  section.table.columns = {"photons", "seconds", "photons_per_second"};
+  section.table.columns = {budget.column, "seconds", budget.column + "_per_second"};
   for (const ConvergingQuantity& q : quantities) {
     section.table.columns.insert(
         section.table.columns.end(),
@@ -158,7 +182,7 @@ void add_error_against_run_time(Section& section, const Profile& profile,
       const double z = (e.mean - q.exact) / e.stderr_of_mean;
       const double relative = std::abs(e.mean - q.exact) / q.exact;
       section.checks.push_back(
-          {fmt::format("{} photons: {}z-score {:.2f} within 5{}", photons,
+          {fmt::format("{} {}: {}z-score {:.2f} within 5{}", photons, budget.words,
                        several ? q.name + " " : "", z,
                        q.rounding > 0.0 ? fmt::format(" (and {:g})", q.rounding) : ""),
            std::abs(e.mean - q.exact) <= 5.0 * e.stderr_of_mean + q.rounding});
@@ -178,19 +202,19 @@ void add_error_against_run_time(Section& section, const Profile& profile,
   for (std::size_t i = 0; i < quantities.size(); ++i) {
     const ConvergingQuantity& q = quantities[i];
     const double slope = log_log_slope(photon_counts, series[i].standard_errors);
-    section.checks.push_back({fmt::format("{}slope of log stderr against log photons {:.3f} in "
+    section.checks.push_back({fmt::format("{}slope of log stderr against log {} {:.3f} in "
                                           "[-0.6, -0.4]",
-                                          several ? q.name + ": " : "", slope),
+                                          several ? q.name + ": " : "", budget.words, slope),
                               slope >= -0.6 && slope <= -0.4});
-    section.findings += fmt::format("{}tandard error falls as photons^{:.3f}.\n",
-                                    several ? "The " + q.name + "'s s" : "S", slope);
-    LinePlot plot{
-        fmt::format("{}:\nerror of {} against photons (labels: wall time)", title, q.symbol),
-        "photons",
-        "relative error of " + q.symbol,
-        AxisScale::log,
-        true,
-        {series[i].errors, series[i].predicted}};
+    section.findings += fmt::format("{}tandard error falls as {}^{:.3f}.\n",
+                                    several ? "The " + q.name + "'s s" : "S", budget.words, slope);
+    LinePlot plot{fmt::format("{}:\nerror of {} against {} (labels: wall time)", title, q.symbol,
+                              budget.words),
+                  budget.words,
+                  "relative error of " + q.symbol,
+                  AxisScale::log,
+                  true,
+                  {series[i].errors, series[i].predicted}};
     section.figures.push_back({several ? section.id + "_" + q.name : section.id, plot});
   }
 }

@@ -42,6 +42,28 @@ Section sphere_extremes(const Profile& profile);
 Section slab_convergence(const Profile& profile);
 Section slab_extremes(const Profile& profile);
 
+// Objects bounded by a triangle mesh: a sphere mesh's unscattered exitance under the directional
+// light against the exact value of its own polyhedron (quadrature over its lit facets) at doubling
+// budgets; sphere meshes of 4 to 64 rings against their polyhedra and the analytic sphere (the
+// tessellation's bias and its order); and a matrix of extreme albedo, g and eta, and a beam at
+// grazing incidence, checked for energy, Fresnel reflection at entry and the unscattered light.
+// Built with the renderer (SCATTERLAB_WITH_RENDER), as the next two.
+Section mesh_convergence(const Profile& profile);
+Section mesh_tessellation(const Profile& profile);
+Section mesh_extremes(const Profile& profile);
+
+// The volumetric path tracer: an absorbing sphere mesh's image against Beer-Lambert on its own
+// chords at doubling budgets, and the white furnace (energy conservation, no path lost) with
+// geometric and interpolated normals over eta and g.
+Section volumetric_renderer_convergence(const Profile& profile);
+Section volumetric_renderer_extremes(const Profile& profile);
+
+// The lit sphere's BSSRDF integral (models/lit_sphere_exitance.hpp) against a deterministic
+// quadrature of the same integral: at doubling samples (error against run time), and for each
+// profile model over extreme albedo, eta and radius.
+Section lit_sphere_bssrdf_convergence(const Profile& profile);
+Section lit_sphere_bssrdf_extremes(const Profile& profile);
+
 // The half-space models (dipole, better dipole, quantized diffusion, Grosjean beam, exact single
 // scatter) against the searchlight Monte Carlo part each models, over albedo x g x eta: totals
 // and near / far errors, with the bound R_dr <= 1 checked.
