@@ -132,6 +132,14 @@ Section infinite_medium_convergence(const Profile& profile) {
         "against log photons {:.3f}, against log seconds {:.3f} (1/sqrt law: -0.5).\n",
         to_string(estimator), errors.back(), seconds.back(), photons.back(), slope, time_slope);
   }
+  // N^-1/2 through the collision estimator's first point: where the error should fall.
+  PlotSeries ideal{"$\\propto N^{-1/2}$", {}, {}, {}, false, "straight"};
+  const PlotSeries& first = plot.series.front();
+  for (const double n : first.x) {
+    ideal.x.push_back(n);
+    ideal.y.push_back(first.y.front() * std::sqrt(first.x.front() / n));
+  }
+  plot.series.push_back(ideal);
   section.figures.push_back({section.id, plot});
   return section;
 }

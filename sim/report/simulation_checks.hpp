@@ -208,13 +208,19 @@ void add_error_against_run_time(Section& section, const Profile& profile,
                               slope >= -0.6 && slope <= -0.4});
     section.findings += fmt::format("{}tandard error falls as {}^{:.3f}.\n",
                                     several ? "The " + q.name + "'s s" : "S", budget.words, slope);
+    // N^-1/2 through the first standard error: where a Monte Carlo's error should fall.
+    PlotSeries ideal{"$\\propto N^{-1/2}$", {}, {}, {}, false, "straight"};
+    for (const double n : photon_counts) {
+      ideal.x.push_back(n);
+      ideal.y.push_back(series[i].predicted.y.front() * std::sqrt(photon_counts.front() / n));
+    }
     LinePlot plot{fmt::format("{}:\nerror of {} against {} (labels: wall time)", title, q.symbol,
                               budget.words),
                   budget.words,
                   "relative error of " + q.symbol,
                   AxisScale::log,
                   true,
-                  {series[i].errors, series[i].predicted}};
+                  {series[i].errors, series[i].predicted, ideal}};
     section.figures.push_back({several ? section.id + "_" + q.name : section.id, plot});
   }
 }
