@@ -128,8 +128,7 @@ Section half_space_extremes(const Profile& profile) {
          fmt::format("{:.9f}", specular), fmt::format("{:.9f}", specular_exact), single_text,
          exact_text, z_text});
   }
-  section.findings = fmt::format("{} of {} checks pass over {} cells.\n", section.checks_passed(),
-                                 section.checks.size(), section.table.rows.size());
+  section.findings = checks_over_cells(section);
   return section;
 }
 

@@ -81,8 +81,7 @@ Section infinite_medium_extremes(const Profile& profile) {
            fmt::format("{}", non_finite)});
     }
   }
-  section.findings = fmt::format("{} of {} checks pass over {} cells.\n", section.checks_passed(),
-                                 section.checks.size(), section.table.rows.size());
+  section.findings = checks_over_cells(section);
   return section;
 }
 

@@ -145,8 +145,7 @@ Section lit_sphere_bssrdf_extremes(const Profile& profile) {
   section.checks.push_back(
       {fmt::format("eta 2.5, beyond the exit term's fits: refused, naming \"{}\"", refusal),
        refusal == "eta"});
-  section.findings = fmt::format("{} of {} checks pass over {} cells.\n", section.checks_passed(),
-                                 section.checks.size(), section.table.rows.size());
+  section.findings = checks_over_cells(section);
   return section;
 }
 

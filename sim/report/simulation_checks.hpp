@@ -65,6 +65,12 @@ inline int count_non_finite(const std::vector<TallyResult>& tallies) {
   return count;
 }
 
+// An extremes section's findings: "N of M checks pass over K cells.", a cell a row of its table.
+inline std::string checks_over_cells(const Section& section) {
+  return fmt::format("{} of {} checks pass over {} cells.\n", section.checks_passed(),
+                     section.checks.size(), section.table.rows.size());
+}
+
 // A Monte Carlo estimate and its standard error.
 struct Estimate {
   double mean = 0.0, stderr_of_mean = 0.0;

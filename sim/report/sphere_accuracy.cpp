@@ -194,8 +194,7 @@ Section sphere_extremes(const Profile& profile) {
            fmt::format("{:.2f}", z_score(absorbed, absorbed_exact))});
     }
   }
-  section.findings = fmt::format("{} of {} checks pass over {} cells.\n", section.checks_passed(),
-                                 section.checks.size(), section.table.rows.size());
+  section.findings = checks_over_cells(section);
   return section;
 }
 

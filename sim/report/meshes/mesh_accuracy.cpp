@@ -373,8 +373,7 @@ Section mesh_extremes(const Profile& profile) {
     add_row("beam at 89.9 deg, box", c, run_lit_mesh(spec),
             fresnel_dielectric_terms(std::cos(grazing), eta).reflectance(), true);
   }
-  section.findings = fmt::format("{} of {} checks pass over {} cells.\n", section.checks_passed(),
-                                 section.checks.size(), section.table.rows.size());
+  section.findings = checks_over_cells(section);
   return section;
 }
 

@@ -177,8 +177,7 @@ Section volumetric_renderer_extremes(const Profile& profile) {
       }
     }
   }
-  section.findings = fmt::format("{} of {} checks pass over {} cells.\n", section.checks_passed(),
-                                 section.checks.size(), section.table.rows.size());
+  section.findings = checks_over_cells(section);
   return section;
 }
 
