@@ -260,7 +260,8 @@ Action add_validate_command(CLI::App& app) {
   CLI::App* searchlight = validate->add_subcommand(
       "searchlight",
       "Half-space, like with like: the searchlight Monte Carlo's multiply-scattered part against "
-      "the dipole, better dipole and quantized diffusion, its once-scattered part against the "
+      "the dipole, better dipole, quantized diffusion and photon beam diffusion, its "
+      "once-scattered part against the "
       "exact refractive single-scatter solution, and its total against their sums and the "
       "Grosjean beam (R_d(r), phi(r, z); linear, log, sqrt and r R plots)");
   searchlight->add_option(

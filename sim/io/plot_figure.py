@@ -59,6 +59,7 @@ STYLES = {
     "grosjean_beam": (OKABE_ITO["orange"], "-.", None, 2),
     "better_dipole": (OKABE_ITO["green"], "-", None, 2),
     "quantized_diffusion": (OKABE_ITO["purple"], (0, (3, 1, 1, 1, 1, 1)), None, 2),
+    "photon_beam_diffusion": (OKABE_ITO["green"], "--", None, 2),  # the better dipole, spread
     # a BSSRDF on the Monte Carlo's own half-space profile (validate litsphere)
     "measured": (OKABE_ITO["black"], "-", None, 9),
     # single-scatter rendering methods (render --study)

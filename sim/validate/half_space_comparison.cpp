@@ -6,6 +6,7 @@
 #include "scatterlab/core/error.hpp"
 #include "scatterlab/core/medium.hpp"
 #include "scatterlab/models/dipole.hpp"
+#include "scatterlab/models/photon_beam_diffusion.hpp"
 #include "scatterlab/models/quantized_diffusion.hpp"
 #include "scatterlab/refract/half_space_single_scatter.hpp"
 
@@ -116,6 +117,7 @@ HalfSpaceComparison compare_half_space(const HalfSpaceMedium& medium, double ent
   const DipoleModel better = better_dipole(medium);
   const QuantizedDiffusion quantized = quantized_diffusion(medium);
   const GrosjeanBeam beam = grosjean_beam(medium);
+  const PhotonBeamDiffusion photon_beam = photon_beam_diffusion(medium);
   const std::vector<ModelCurve> diffusion = {
       curve("dipole", ModelPart::multiple,
             scaled(dipole_reflectance_annulus_average(dipole, r_edges), t),
@@ -126,6 +128,9 @@ HalfSpaceComparison compare_half_space(const HalfSpaceMedium& medium, double ent
       curve("quantized_diffusion", ModelPart::multiple,
             scaled(quantized_diffusion_reflectance_annulus_average(quantized, r_edges), t),
             t * quantized_diffusion_total_reflectance(quantized)),
+      curve("photon_beam_diffusion", ModelPart::multiple,
+            scaled(photon_beam_diffusion_annulus_average(photon_beam, r_edges), t),
+            t * photon_beam_diffusion_total_reflectance(photon_beam)),
   };
   for (const ModelCurve& m : diffusion) c.reflectance.push_back(m);
   for (const ModelCurve& m : diffusion) {

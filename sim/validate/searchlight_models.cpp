@@ -28,7 +28,7 @@ std::vector<ModelResult> searchlight_model_curves(const HalfSpaceSpec& spec,
                                                   double specular_reflectance, bool with_fluence) {
   std::vector<ModelResult> models;
   const char* diffusion[] = {"dipole", "better_dipole", "quantized_diffusion",
-                             "scatterlab_grosjean_beam"};
+                             "photon_beam_diffusion", "scatterlab_grosjean_beam"};
   if (spec.incidence_deg != 0.0) {
     const std::string why = fmt::format(
         "not evaluated: defined for normal incidence only, and this run's beam arrives at {} deg",

@@ -5,6 +5,7 @@
 //   single_scatter            reflectance_single, diffuse_reflectance_single (exact)
 //   dipole, better_dipole,    reflectance_multiple, diffuse_reflectance_multiple, and with the
 //   quantized_diffusion       model fluence, fluence_multiple
+//   photon_beam_diffusion     reflectance_multiple, diffuse_reflectance_multiple
 //   scatterlab_grosjean_beam  reflectance_multiple, reflectance (all orders), their totals, and
 //                             fluence (all orders)
 // A model the run's conditions leave out (oblique incidence: every model here is for normal

@@ -34,7 +34,7 @@ std::string nan_or(double v) {
 }
 
 // A model's name in a legend: what it is and where it is published (models/dipole.hpp,
-// models/quantized_diffusion.hpp, models/grosjean_beam.hpp).
+// models/quantized_diffusion.hpp, models/photon_beam_diffusion.hpp, models/grosjean_beam.hpp).
 std::string display_name(const std::string& model) {
   const std::string sum = "+single_scatter";
   if (model.ends_with(sum)) {
@@ -43,6 +43,7 @@ std::string display_name(const std::string& model) {
   if (model == "dipole") return "classical dipole (Jensen et al. 2001)";
   if (model == "better_dipole") return "better dipole (d'Eon 2012)";
   if (model == "quantized_diffusion") return "quantized diffusion (d'Eon & Irving 2011)";
+  if (model == "photon_beam_diffusion") return "photon beam diffusion (Habel et al. 2013)";
   if (model == "scatterlab_grosjean_beam") return "Grosjean beam (scatterlab)";
   if (model == "single_scatter") return "exact single scattering";
   if (model == "measured") return "on the half-space Monte Carlo's own R_d(r)";

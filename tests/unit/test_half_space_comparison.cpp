@@ -25,18 +25,20 @@ TEST(HalfSpaceComparison, ScoresModelsAgainstGivenMonteCarloCurves) {
   for (double v : mc.mean) mc.stderr_of_mean.push_back(0.01 * v);
   const HalfSpaceComparison c = compare_half_space(medium, transmittance, r_edges, z_edges,
                                                    {{ModelPart::multiple, mc}}, {}, 1.0);
-  // single scatter; three diffusion models; the same plus single scatter; the Grosjean beam's
+  // single scatter; four diffusion models; the same plus single scatter; the Grosjean beam's
   // multiply-scattered part and its total.
-  ASSERT_EQ(c.reflectance.size(), 9u);
+  ASSERT_EQ(c.reflectance.size(), 11u);
   EXPECT_EQ(c.reflectance[2].model, "better_dipole");
   EXPECT_EQ(c.reflectance[2].part, ModelPart::multiple);
   EXPECT_NEAR(c.reflectance[2].near_error, 0.0, 1e-14);
   EXPECT_NEAR(c.reflectance[2].far_error, 0.0, 1e-14);
   EXPECT_GT(c.reflectance[1].near_error, 0.01);  // the classical dipole differs
-  EXPECT_EQ(c.reflectance[5].model, "better_dipole+single_scatter");
-  EXPECT_EQ(c.reflectance[5].part, ModelPart::all);
-  EXPECT_TRUE(std::isnan(c.reflectance[5].near_error));  // no total given to compare with
-  EXPECT_NEAR(c.reflectance[5].total, c.reflectance[2].total + c.reflectance[0].total, 1e-15);
+  EXPECT_EQ(c.reflectance[4].model, "photon_beam_diffusion");
+  EXPECT_GT(c.reflectance[4].near_error, 0.01);  // kappa takes light near the beam
+  EXPECT_EQ(c.reflectance[6].model, "better_dipole+single_scatter");
+  EXPECT_EQ(c.reflectance[6].part, ModelPart::all);
+  EXPECT_TRUE(std::isnan(c.reflectance[6].near_error));  // no total given to compare with
+  EXPECT_NEAR(c.reflectance[6].total, c.reflectance[2].total + c.reflectance[0].total, 1e-15);
   EXPECT_TRUE(std::isnan(c.reflectance[0].near_error));  // nor a once-scattered part
   EXPECT_TRUE(std::isnan(c.fluence[0].near_error));  // no Monte Carlo fluence given
   EXPECT_EQ(c.fluence[0].values.size(), 30u);

@@ -1,8 +1,9 @@
 #pragma once
 // The searchlight comparison (Bitterli §2.3, §3.6.3), like with like: each half-space model
 // next to the Monte Carlo part whose definition matches it, with each model's error.
-//   - diffusion models (dipole, better dipole, quantized diffusion) model the light scattered at
-//     at least twice (models/dipole.hpp): against the Monte Carlo's _multiple part;
+//   - diffusion models (dipole, better dipole, quantized diffusion, photon beam diffusion) model
+//     the light scattered at least twice (models/dipole.hpp): against the Monte Carlo's _multiple
+//     part;
 //   - the exact once-scattered solution (refract/half_space_single_scatter.hpp): against the
 //     _single part;
 //   - each diffusion model plus the exact once-scattered light ("<model>+single_scatter"), and
