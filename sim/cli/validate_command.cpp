@@ -261,9 +261,9 @@ Action add_validate_command(CLI::App& app) {
       "searchlight",
       "Half-space, like with like: the searchlight Monte Carlo's multiply-scattered part against "
       "the dipole, better dipole, quantized diffusion and photon beam diffusion, its "
-      "once-scattered part against the "
-      "exact refractive single-scatter solution, and its total against their sums and the "
-      "Grosjean beam (R_d(r), phi(r, z); linear, log, sqrt and r R plots)");
+      "once-scattered part against the exact refractive single-scatter solution, and its total "
+      "against their sums and the Grosjean beam (R_d(r), phi(r, z); linear, log, sqrt and r R "
+      "plots)");
   searchlight->add_option(
       "-o,--out", half_space->out,
       "Directory for the CSV and PNG files: new, empty or one scatterlab wrote (made if missing)");

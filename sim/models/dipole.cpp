@@ -120,13 +120,9 @@ double dipole_fluence_annulus_integral(const DipoleModel& m, double r0, double r
 
 std::vector<double> dipole_reflectance_annulus_average(const DipoleModel& m,
                                                       std::span<const double> r_edges) {
-  detail::check_edges(r_edges, "r_edges");
-  std::vector<double> average(r_edges.size() - 1);
-  for (std::size_t i = 0; i + 1 < r_edges.size(); ++i) {
-    const double r0 = r_edges[i], r1 = r_edges[i + 1];
-    average[i] = dipole_reflectance_annulus_integral(m, r0, r1) / (pi * (r1 * r1 - r0 * r0));
-  }
-  return average;
+  return detail::annulus_averages(r_edges, [&](double r0, double r1) {
+    return dipole_reflectance_annulus_integral(m, r0, r1);
+  });
 }
 
 std::vector<double> dipole_fluence_cell_average(const DipoleModel& m,

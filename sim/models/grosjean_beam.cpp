@@ -75,12 +75,6 @@ std::vector<double> depth_breaks(const GrosjeanBeam& m, double centre, double wi
 
 bool wants(ModelPart part, ModelPart piece) { return part == ModelPart::all || part == piece; }
 
-void check_r(double r) {
-  if (!(r >= 0.0) || !std::isfinite(r)) {
-    throw InputError("r", "got " + std::to_string(r), "a finite number >= 0");
-  }
-}
-
 }  // namespace
 
 GrosjeanBeam grosjean_beam(const HalfSpaceMedium& medium) {
@@ -118,7 +112,7 @@ double grosjean_beam_escape(const GrosjeanBeam& m, double depth) {
 }
 
 double grosjean_beam_reflectance(const GrosjeanBeam& m, double r, ModelPart part) {
-  check_r(r);
+  detail::check_radius(r);
   if (m.albedo == 0.0) return 0.0;
   if (r == 0.0 && wants(part, ModelPart::single)) return HUGE_VAL;  // ~ 1 / r (header)
   const auto integrand = [&](double depth) {
@@ -190,7 +184,7 @@ std::vector<double> grosjean_beam_reflectance_annulus_average(const GrosjeanBeam
 }
 
 double grosjean_beam_fluence(const GrosjeanBeam& m, double r, double z) {
-  check_r(r);
+  detail::check_radius(r);
   if (!(z >= 0.0) || !std::isfinite(z)) {
     throw InputError("z", "got " + std::to_string(z), "a finite depth >= 0 (inside the medium)");
   }

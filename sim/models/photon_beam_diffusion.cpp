@@ -67,12 +67,6 @@ double kappa_correction(const PhotonBeamDiffusion& m, const DipoleModel& dipole,
   return integrate(f, breaks, inner_tol);
 }
 
-void check_r(double r) {
-  if (!(r >= 0.0) || !std::isfinite(r)) {
-    throw InputError("r", "got " + std::to_string(r), "a finite number >= 0");
-  }
-}
-
 }  // namespace
 
 PhotonBeamDiffusion photon_beam_diffusion(const HalfSpaceMedium& medium) {
@@ -100,7 +94,7 @@ DipoleModel photon_beam_diffusion_source(const PhotonBeamDiffusion& m, double de
 }
 
 double photon_beam_diffusion_reflectance(const PhotonBeamDiffusion& m, double r) {
-  check_r(r);
+  detail::check_radius(r);
   if (m.source.strength == 0.0) return 0.0;
   if (r == 0.0) return HUGE_VAL;  // ~ log(1 / r) (header)
   const auto f = [&](double t) {
@@ -111,7 +105,7 @@ double photon_beam_diffusion_reflectance(const PhotonBeamDiffusion& m, double r)
 }
 
 double photon_beam_diffusion_single(const PhotonBeamDiffusion& m, double r) {
-  check_r(r);
+  detail::check_radius(r);
   const HalfSpaceMedium& medium = m.medium;
   if (medium.sigma_s == 0.0) return 0.0;
   if (r == 0.0) return HUGE_VAL;  // ~ 1 / r (header)
@@ -152,13 +146,9 @@ double photon_beam_diffusion_total_reflectance(const PhotonBeamDiffusion& m) {
 
 std::vector<double> photon_beam_diffusion_annulus_average(const PhotonBeamDiffusion& m,
                                                           std::span<const double> r_edges) {
-  detail::check_edges(r_edges, "r_edges");
-  std::vector<double> average(r_edges.size() - 1);
-  for (std::size_t i = 0; i + 1 < r_edges.size(); ++i) {
-    const double r0 = r_edges[i], r1 = r_edges[i + 1];
-    average[i] = photon_beam_diffusion_annulus_integral(m, r0, r1) / (pi * (r1 * r1 - r0 * r0));
-  }
-  return average;
+  return detail::annulus_averages(r_edges, [&](double r0, double r1) {
+    return photon_beam_diffusion_annulus_integral(m, r0, r1);
+  });
 }
 
 }  // namespace scatterlab

@@ -111,12 +111,6 @@ double continuum_total(const QuantizedDiffusion& m, double sigma_tr) {
           m.fluence_weight * one_minus_e_over_s / (2.0 * m.diffusion));
 }
 
-void check_r(double r) {
-  if (!(r >= 0.0) || !std::isfinite(r)) {
-    throw InputError("r", "got " + std::to_string(r), "a finite number >= 0");
-  }
-}
-
 // exp(-r0^2 / 2v) - exp(-r1^2 / 2v), the integral of g2(v, r) 2 pi r dr over [r0, r1), as
 // exp(-r0^2 / 2v) (1 - exp(-(r1 - r0)(r1 + r0) / 2v)) so that thin and inner annuli keep their
 // digits.
@@ -195,7 +189,7 @@ QuantizedDiffusion quantized_diffusion(const HalfSpaceMedium& medium, double rel
 }
 
 double quantized_diffusion_reflectance(const QuantizedDiffusion& m, double r) {
-  check_r(r);
+  detail::check_radius(r);
   if (m.strength == 0.0) return 0.0;
   if (r == 0.0) return HUGE_VAL;  // the continuum's R_d ~ 1 / r (header)
   double sum = 0.0;

@@ -4,8 +4,10 @@
 // h off the plane; r dr = d dd turns every annulus integral into a one-dimensional one in d.
 
 #include <cmath>
+#include <numbers>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "scatterlab/core/error.hpp"
 
@@ -31,6 +33,13 @@ inline double exp_over_d_integral(double s, double d0, double d1) {
   return exponential_integral_e1(s * d0) - exponential_integral_e1(s * d1);
 }
 
+// A radius where a profile is evaluated: finite and >= 0 (InputError "r" otherwise).
+inline void check_radius(double r) {
+  if (!(r >= 0.0) || !std::isfinite(r)) {
+    throw InputError("r", "got " + std::to_string(r), "a finite number >= 0");
+  }
+}
+
 // Edges must be finite, >= 0, increasing, at least two.
 inline void check_edges(std::span<const double> edges, const std::string& field) {
   if (edges.size() < 2) throw InputError(field, "fewer than two edges", "at least two edges");
@@ -40,6 +49,19 @@ inline void check_edges(std::span<const double> edges, const std::string& field)
                        "finite edges >= 0 in increasing order");
     }
   }
+}
+
+// Averages over the annuli between consecutive edges, integral(r0, r1) / (pi (r1^2 - r0^2)), from
+// a model's integral of R 2 pi r dr over [r0, r1); the edges are checked (field "r_edges").
+template <class AnnulusIntegral>
+std::vector<double> annulus_averages(std::span<const double> r_edges, AnnulusIntegral integral) {
+  check_edges(r_edges, "r_edges");
+  std::vector<double> average(r_edges.size() - 1);
+  for (std::size_t i = 0; i + 1 < r_edges.size(); ++i) {
+    const double r0 = r_edges[i], r1 = r_edges[i + 1];
+    average[i] = integral(r0, r1) / (std::numbers::pi * (r1 * r1 - r0 * r0));
+  }
+  return average;
 }
 
 }  // namespace scatterlab::detail
