@@ -76,7 +76,7 @@ template <class Phase>
 void HalfSpaceTimed(benchmark::State& state, Phase phase, HalfSpaceSpec spec) {
   spec.medium.length_unit = "mm";
   spec.declared_tallies = {{"reflectance_rt",
-                            DeclaredScore::exitance,
+                            Score::exitance,
                             {{Coordinate::r, 0.0, 10.0, 100}, {Coordinate::t, 0.0, 1e-9, 200}},
                             std::nullopt}};
   const TransportProblem problem = transport_problem(spec);

@@ -507,7 +507,7 @@ class SceneReader : public TomlReader {
       const std::string_view scores =
           "\"exitance\", \"transmittance\", \"fluence\" or \"absorbed\"";
       if (const auto score = string(*table, "score", path, scores)) {
-        const std::optional<DeclaredScore> known = declared_score(*score);
+        const std::optional<Score> known = declared_score(*score);
         if (!known) wrong_type(*table->get("score"), dotted(path, "score"), scores);
         tally.score = *known;
       } else {
@@ -518,9 +518,9 @@ class SceneReader : public TomlReader {
         const std::string at_filters = dotted(path, "filters");
         check_table(*filters, at_filters);
         for (const std::string_view name : declared_filter_keys()) {
-          if (name == "layer") {  // no axis: a bin per layer of the slab
+          if (declared_filter_is_switch(name)) {  // no axis: a bin per layer or triangle
             if (boolean(*filters, name, at_filters).value_or(false)) {
-              tally.filters.push_back({Coordinate::layer, {}, {}, 0});
+              tally.filters.push_back({*declared_filter(name), {}, {}, 0});
             }
           } else if (const toml::table* filter = subtable(*filters, name, at_filters)) {
             tally.filters.push_back(read_filter(*filter, dotted(at_filters, name), name));

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "convex_mesh.hpp"
 #include "mesh_boundary.hpp"
 #include "mesh_light.hpp"
 #include "scatterlab/core/error.hpp"
@@ -53,6 +54,16 @@ void check_lit_mesh(const LitObjectSpec& spec) {
   require_closed_mesh(mesh);
   require_enclosed_volume(mesh);
   require_no_self_intersection(mesh);
+  // Light that leaves an object that is not convex may enter it again, after crossing air the
+  // walk does not time (and its path resumes from a fresh flight): time needs a convex mesh.
+  for (std::size_t i = 0; i < spec.declared_tallies.size(); ++i) {
+    if (spec.declared_tallies[i].filter(Coordinate::t) != nullptr && !bounds_convex_solid(mesh)) {
+      throw InputError(fmt::format("tally[{}].filters.t", i + 1),
+                       "is asked on a mesh that is not convex",
+                       "a convex mesh: light that leaves an object that is not convex and enters "
+                       "it again crosses air whose time of flight the walk does not keep");
+    }
+  }
   if (spec.light != ObjectLight::beam && spec.light != ObjectLight::sphere) return;
   const MeshRayTracer tracer(mesh);
   if (spec.light == ObjectLight::sphere) {
@@ -118,10 +129,7 @@ TransportOutput run_lit_mesh(const LitObjectSpec& spec, const ProgressCallback& 
                       sphere ? spec.light_radius * scale : radius);
     return transport(problem, boundary, light, progress, control);
   };
-  TransportOutput out =
-      spec.eta == 1.0 ? run.template operator()<false>() : run.template operator()<true>();
-  tallies_to_length_unit(out.tallies, spec.medium);  // back from mfp (length_units.hpp)
-  return out;
+  return spec.eta == 1.0 ? run.template operator()<false>() : run.template operator()<true>();
 }
 
 }  // namespace scatterlab

@@ -20,6 +20,14 @@ std::vector<double> per_bin(const UniformAxis& axis, Measure&& measure) {
   return m;
 }
 
+// A coordinate by its bin width.
+Filter length_filter(const std::string& name, const UniformAxis& axis, Coordinate coordinate) {
+  return {{name},
+          {count(axis)},
+          std::vector<double>(count(axis), axis.width()),
+          {coordinate, AxisLookup(axis), 0.0}};
+}
+
 }  // namespace
 
 Filter radius_filter(const UniformAxis& r) {
@@ -29,18 +37,12 @@ Filter radius_filter(const UniformAxis& r) {
           {Coordinate::r, AxisLookup(r), 0.0}};
 }
 
-Filter length_filter(const std::string& name, const UniformAxis& axis) {
-  return {{name}, {count(axis)}, std::vector<double>(count(axis), axis.width()), {}};
-}
-
 Filter position_filter(Coordinate coordinate, const UniformAxis& axis) {
   if (coordinate != Coordinate::x && coordinate != Coordinate::y && coordinate != Coordinate::z) {
     throw std::invalid_argument("position_filter: x, y or z");
   }
   const char* name = coordinate == Coordinate::x ? "x" : coordinate == Coordinate::y ? "y" : "z";
-  Filter f = length_filter(name, axis);
-  f.binning = {coordinate, AxisLookup(axis), 0.0};
-  return f;
+  return length_filter(name, axis, coordinate);
 }
 
 Filter depth_filter(const UniformAxis& z) {
@@ -48,13 +50,13 @@ Filter depth_filter(const UniformAxis& z) {
 }
 
 Filter time_filter(const UniformAxis& t, double seconds_per_path) {
-  Filter f = length_filter("t", t);
-  f.binning = {Coordinate::t, AxisLookup(t), seconds_per_path};
+  Filter f = length_filter("t", t, Coordinate::t);
+  f.binning.seconds_per_path = seconds_per_path;
   return f;
 }
 
 Filter direction_filter(const UniformAxis& theta, const UniformAxis& phi, bool fold_phi) {
-  Filter f{{"theta", "phi"}, {count(theta), count(phi)}, {}, {}};
+  Filter f{{"theta", "phi"}, {count(theta), count(phi)}, {}, {Coordinate::direction, {}, 0.0}};
   f.measures.reserve(count(theta) * count(phi));
   for (int k = 0; k < theta.bins; ++k) {
     const double band = std::cos(theta.edge(k)) - std::cos(theta.edge(k + 1));
@@ -79,22 +81,49 @@ Filter exit_angle_filter(const UniformAxis& theta_o) {
                     const double s0 = std::sin(t0), s1 = std::sin(t1);
                     return pi * (s1 * s1 - s0 * s0);
                   }),
-          {}};
+          {Coordinate::exit_angle, AxisLookup(theta_o), 0.0}};
 }
 
-Filter exit_solid_angle_filter(const UniformAxis& theta_o) {
+Filter exit_solid_angle_filter(const UniformAxis& theta_o, bool with_azimuth) {
+  const double turn = with_azimuth ? 1.0 : 2.0 * pi;
   return {{"theta_o"},
           {count(theta_o)},
           per_bin(theta_o,
-                  [](double t0, double t1) { return 2.0 * pi * (std::cos(t0) - std::cos(t1)); }),
+                  [turn](double t0, double t1) { return turn * (std::cos(t0) - std::cos(t1)); }),
           {Coordinate::exit_angle, AxisLookup(theta_o), 0.0}};
+}
+
+Filter polar_angle_filter(const UniformAxis& theta, bool with_azimuth) {
+  Filter f = exit_solid_angle_filter(theta, with_azimuth);
+  f.dims = {"theta"};
+  f.binning.coordinate = Coordinate::theta;
+  return f;
+}
+
+Filter azimuth_angle_filter(const UniformAxis& phi) {
+  return length_filter("phi", phi, Coordinate::phi);
+}
+
+Filter sphere_polar_filter(const UniformAxis& psi, double radius, bool with_azimuth) {
+  const double band = (with_azimuth ? 1.0 : 2.0 * pi) * radius * radius;
+  return {
+      {"psi"},
+      {count(psi)},
+      per_bin(psi, [band](double p0, double p1) { return band * (std::cos(p0) - std::cos(p1)); }),
+      {Coordinate::psi, AxisLookup(psi), 0.0}};
+}
+
+Filter sphere_azimuth_filter(const UniformAxis& azimuth, double radius, bool with_psi) {
+  Filter f = length_filter("azimuth", azimuth, Coordinate::azimuth);
+  if (!with_psi) {
+    for (double& m : f.measures) m *= 2.0 * radius * radius;
+  }
+  return f;
 }
 
 Filter order_filter(int bins) {
   const UniformAxis orders{0.0, static_cast<double>(bins), bins};
-  Filter f = length_filter("order", orders);
-  f.binning = {Coordinate::order, AxisLookup(orders), 0.0};
-  return f;
+  return length_filter("order", orders, Coordinate::order);
 }
 
 Filter layer_filter(std::size_t layers) {
@@ -106,7 +135,8 @@ Filter layer_filter(std::size_t layers) {
 }
 
 Filter sphere_patch_filter(const UniformAxis& psi, const UniformAxis& azimuth, double radius) {
-  Filter f{{"psi", "azimuth"}, {count(psi), count(azimuth)}, {}, {}};
+  Filter f{
+      {"psi", "azimuth"}, {count(psi), count(azimuth)}, {}, {Coordinate::surface_patch, {}, 0.0}};
   for (int k = 0; k < psi.bins; ++k) {
     const double band = std::cos(psi.edge(k)) - std::cos(psi.edge(k + 1));
     f.measures.insert(f.measures.end(), count(azimuth), radius * radius * band * azimuth.width());
@@ -115,11 +145,23 @@ Filter sphere_patch_filter(const UniformAxis& psi, const UniformAxis& azimuth, d
 }
 
 Filter triangle_filter(const std::vector<double>& areas) {
-  return {{"triangle"}, {areas.size()}, areas, {}};
+  const auto count = static_cast<int>(areas.size());
+  return {
+      {"triangle"},
+      {areas.size()},
+      areas,
+      {Coordinate::triangle, AxisLookup(UniformAxis{0.0, static_cast<double>(count), count}), 0.0}};
 }
 
 Filter component_filter(std::size_t components) {
-  return {{"component"}, {components}, std::vector<double>(components, 1.0), {}};
+  return {{"component"},
+          {components},
+          std::vector<double>(components, 1.0),
+          {Coordinate::component, {}, 0.0}};
+}
+
+Filter grid_region_filter(bool inside) {
+  return {{}, {}, {1.0}, {inside ? Coordinate::inside_grid : Coordinate::outside_grid, {}, 0.0}};
 }
 
 }  // namespace scatterlab

@@ -8,6 +8,8 @@
 namespace scatterlab {
 namespace {
 
+using C = Coordinate;
+
 // A straight line seen in a plane perpendicular to an axis (the beam axis for cylinders, or
 // any plane through the origin for spheres): the radial distance is
 //   rho(t) = sqrt(w(t)^2 + d^2),  w(t) = w0 + speed * t,
@@ -79,37 +81,39 @@ Scorer::Scorer(const TallyAxes& axes, const TallyBook& book)
       y_cells_(axes.y),
       book_(book),
       split_(book.split_by_order()),
-      fluence_(book.offset(Score::fluence)),
-      flux_(book.offset(Score::flux)),
-      radiance_(book.offset(Score::radiance)),
-      fluence_spherical_(book.offset(Score::fluence_spherical)),
-      exited_{book.offset(Score::exit), book.offset(Score::exit_by_radius),
-              book.offset(Score::exit_by_angle), book.offset(Score::exit_radiance)},
-      transmitted_{book.offset(Score::transmitted), book.offset(Score::transmitted_by_radius),
-                   book.offset(Score::transmitted_by_angle),
-                   book.offset(Score::transmitted_by_radius_angle)},
-      exit_by_polar_angle_(book.offset(Score::exit_by_polar_angle)),
-      exit_by_triangle_(book.offset(Score::exit_by_triangle)),
-      exit_by_position_(book.offset(Score::exit_by_position)),
-      reflected_at_entry_(book.offset(Score::reflected_at_entry)),
+      fluence_(book.offset(Score::fluence, {C::r, C::z})),
+      flux_(book.offset(Score::flux, {C::r, C::z, C::component})),
+      radiance_(book.offset(Score::radiance, {C::r, C::z, C::direction})),
+      fluence_spherical_(book.offset(Score::fluence, {C::rho})),
+      exited_{book.offset(Score::exitance), book.offset(Score::exitance, {C::r}),
+              book.offset(Score::exitance, {C::exit_angle}),
+              book.offset(Score::exitance, {C::r, C::exit_angle})},
+      transmitted_{book.offset(Score::transmittance), book.offset(Score::transmittance, {C::r}),
+                   book.offset(Score::transmittance, {C::exit_angle}),
+                   book.offset(Score::transmittance, {C::r, C::exit_angle})},
+      exit_by_polar_angle_(book.offset(Score::exitance, {C::surface_patch})),
+      exit_by_triangle_(book.offset(Score::exitance, {C::triangle})),
+      exit_by_position_(book.offset(Score::exitance, {C::x, C::y})),
+      reflected_at_entry_(book.offset(Score::entry_reflectance)),
       absorbed_(book.offset(Score::absorbed)),
-      absorbed_in_grid_(book.offset(Score::absorbed_in_grid)),
-      absorbed_outside_grid_(book.offset(Score::absorbed_outside_grid)),
-      absorption_depth_(book.offset(Score::absorption_depth)),
+      absorbed_in_grid_(book.offset(Score::absorbed, {C::inside_grid})),
+      absorbed_outside_grid_(book.offset(Score::absorbed, {C::outside_grid})),
+      absorption_depth_(book.offset(Score::absorbed_depth)),
       escaped_(book.offset(Score::escaped)),
-      absorbed_by_layer_(book.offset(Score::absorbed_by_layer)),
-      absorbed_by_depth_(book.offset(Score::absorbed_by_depth)),
-      absorbed_by_radius_depth_(book.offset(Score::absorbed_by_radius_depth)),
+      absorbed_by_layer_(book.offset(Score::absorbed, {C::layer})),
+      absorbed_by_depth_(book.offset(Score::absorbed, {C::z})),
+      absorbed_by_radius_depth_(book.offset(Score::absorbed, {C::r, C::z})),
       z_bins_(static_cast<std::size_t>(axes.z.bins)),
       theta_bins_(static_cast<std::size_t>(axes.theta.bins)),
       theta_o_bins_(static_cast<std::size_t>(axes.theta_o.bins)) {
   if ((absorbed_in_grid_ == absent) != (absorbed_outside_grid_ == absent)) {
-    throw std::invalid_argument("Scorer: absorbed_in_grid and absorbed_outside_grid go together");
+    throw std::invalid_argument("Scorer: absorbed inside and outside the grid go together");
   }
   for (std::size_t i = 0; i < book.declarations().size(); ++i) {
     const TallyDeclaration& d = book.declarations()[i];
     if (!d.chained) {
-      if (d.score == Score::absorbed) absorbed_by_order_ = d.by_order && split_;
+      if (d.score == Score::absorbed && d.filters.empty())
+        absorbed_by_order_ = d.by_order && split_;
       continue;
     }
     add_chain(d, book.offset_of(i));
@@ -274,7 +278,7 @@ void Scorer::add_chain(const TallyDeclaration& d, std::size_t offset) {
   Chain chain{offset, {}};
   std::size_t stride = 1;
   for (auto f = d.filters.rbegin(); f != d.filters.rend(); ++f) {
-    if (f->binning.coordinate == Coordinate::none) {
+    if (!bins_events(f->coordinate())) {
       throw std::invalid_argument("Scorer: a filter of chained tally " + d.name +
                                   " does not bin events");
     }
@@ -282,10 +286,10 @@ void Scorer::add_chain(const TallyDeclaration& d, std::size_t offset) {
     stride *= f->bins();
   }
   switch (d.score) {
-    case Score::exit:
+    case Score::exitance:
       exit_chains_.push_back(std::move(chain));
       break;
-    case Score::transmitted:
+    case Score::transmittance:
       transmitted_chains_.push_back(std::move(chain));
       break;
     case Score::fluence:

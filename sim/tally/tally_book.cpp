@@ -1,5 +1,6 @@
 #include "scatterlab/tally/tally_book.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -13,6 +14,11 @@ std::size_t cells_of(const TallyDeclaration& d) {
   return cells;
 }
 
+bool bins_along(const TallyDeclaration& d, std::initializer_list<Coordinate> coordinates) {
+  return std::equal(d.filters.begin(), d.filters.end(), coordinates.begin(), coordinates.end(),
+                    [](const Filter& f, Coordinate c) { return f.coordinate() == c; });
+}
+
 // Names and descriptions of the per-order siblings, block by block.
 constexpr const char* order_suffix[] = {"", "_unscattered", "_single", "_multiple"};
 constexpr const char* order_scope[] = {"", " (unscattered light only)",
@@ -22,8 +28,9 @@ constexpr const char* order_scope[] = {"", " (unscattered light only)",
 // The declaration's dims, shape and measure of each cell (product of its filters' measures,
 // left to right, from 1: 1 x m is m exactly).
 TallyResult shaped(const TallyDeclaration& d, const std::string& name,
-                   const std::string& description, std::vector<double>& measure) {
-  TallyResult t{name, {}, {}, d.units, description, {}, {}, d.axes};
+                   const std::string& description, const ReportedLength& length,
+                   std::vector<double>& measure) {
+  TallyResult t{name, {}, {}, d.units.text(length.unit), description, {}, {}, d.axes};
   measure.assign(1, 1.0);
   for (const Filter& f : d.filters) {
     t.dims.insert(t.dims.end(), f.dims.begin(), f.dims.end());
@@ -42,7 +49,6 @@ TallyResult shaped(const TallyDeclaration& d, const std::string& name,
 
 TallyBook::TallyBook(std::vector<TallyDeclaration> declarations, bool split_by_order)
     : declarations_(std::move(declarations)), split_by_order_(split_by_order) {
-  offsets_.fill(absent);
   declaration_offsets_.assign(declarations_.size(), absent);
   std::size_t next = 0;
   auto place = [&](bool by_order) {
@@ -51,11 +57,16 @@ TallyBook::TallyBook(std::vector<TallyDeclaration> declarations, bool split_by_o
       if (d.by_order != by_order || d.score == Score::exact) continue;
       if (d.chained && d.by_order)
         throw std::invalid_argument("TallyBook: a chained tally is not split by order: " + d.name);
-      if (!d.chained) {
-        std::size_t& at = offsets_[static_cast<std::size_t>(d.score)];
-        if (at != absent)
-          throw std::invalid_argument("TallyBook: two tallies of one score: " + d.name);
-        at = next;
+      for (std::size_t j = 0; j < i && !d.chained; ++j) {
+        const TallyDeclaration& e = declarations_[j];
+        if (!e.chained && e.score == d.score &&
+            std::equal(d.filters.begin(), d.filters.end(), e.filters.begin(), e.filters.end(),
+                       [](const Filter& a, const Filter& b) {
+                         return a.coordinate() == b.coordinate();
+                       })) {
+          throw std::invalid_argument("TallyBook: two tallies of one fixed path: " + e.name +
+                                      " and " + d.name);
+        }
       }
       declaration_offsets_[i] = next;
       next += cells_of(d);
@@ -66,6 +77,16 @@ TallyBook::TallyBook(std::vector<TallyDeclaration> declarations, bool split_by_o
   next = block_size_ * (split_by_order_ ? 4 : 1);
   place(false);
   size_ = next;
+}
+
+std::size_t TallyBook::offset(Score score, std::initializer_list<Coordinate> coordinates) const {
+  for (std::size_t i = 0; i < declarations_.size(); ++i) {
+    const TallyDeclaration& d = declarations_[i];
+    if (!d.chained && d.score == score && d.score != Score::exact && bins_along(d, coordinates)) {
+      return declaration_offsets_[i];
+    }
+  }
+  return absent;
 }
 
 bool TallyBook::has_chain() const {
@@ -83,14 +104,14 @@ bool TallyBook::scores_volume() const {
 }
 
 std::vector<TallyResult> TallyBook::finish(const std::vector<double>& raw_mean,
-                                           const std::vector<double>& raw_stderr,
-                                           double scale) const {
+                                           const std::vector<double>& raw_stderr, double scale,
+                                           const ReportedLength& length) const {
   std::vector<TallyResult> results;
   std::vector<double> measure;
   auto add = [&](std::size_t which, std::size_t block) {
     const TallyDeclaration& d = declarations_[which];
-    TallyResult t =
-        shaped(d, d.name + order_suffix[block], d.description + order_scope[block], measure);
+    TallyResult t = shaped(d, d.name + order_suffix[block], d.description + order_scope[block],
+                           length, measure);
     if (d.score == Score::exact) {
       t.mean = {d.exact_value};
       t.stderr_of_mean = {0.0};
@@ -102,6 +123,12 @@ std::vector<TallyResult> TallyBook::finish(const std::vector<double>& raw_mean,
         t.mean[i] = raw_mean[at + i] / measure[i] * scale;
         t.stderr_of_mean[i] = raw_stderr[at + i] / measure[i] * scale;
       }
+    }
+    // Into the reported length unit: after the scale, as its own product, so that a run in mfp,
+    // and each tally with no length, keeps the bits it had.
+    if (const double factor = length.factor(d.units); factor != 1.0) {
+      for (double& value : t.mean) value *= factor;
+      for (double& value : t.stderr_of_mean) value *= factor;
     }
     results.push_back(std::move(t));
   };

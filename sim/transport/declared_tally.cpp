@@ -16,8 +16,9 @@
 namespace scatterlab {
 namespace {
 
-constexpr std::array<std::string_view, 4> score_names = {"exitance", "transmittance", "fluence",
-                                                         "absorbed"};
+// The scores a scene may declare, each at its event.
+constexpr std::array<Score, 4> declarable = {Score::exitance, Score::transmittance, Score::fluence,
+                                             Score::absorbed};
 constexpr int max_bins = 100'000;
 // One tally's cells: past this its buffers (several per thread and batch) outgrow a machine.
 constexpr double max_cells = 1e8;
@@ -29,22 +30,55 @@ struct FilterRow {
   std::string_view key;
   Coordinate coordinate;
   bool at_exits, in_volume;  // the events it bins
-  std::string_view unit;     // of min and max: "length" is the scene's length unit
-  std::string_view per;      // what its bins divide by, for the description
+  // The surface whose exits it bins (ExitSurface::none: any).
+  ExitSurface exits_through;
+  // Of min and max: "length" is the scene's length unit; "rad" an angle over its whole range
+  // (bins alone); "" a count (order), or a switch (layer, triangle: a bin per one).
+  std::string_view unit;
+  std::string_view per;  // what its bins divide by, for the description
 };
+constexpr ExitSurface any = ExitSurface::none;
 constexpr auto filter_rows = std::to_array<FilterRow>({
-    {"x", Coordinate::x, true, true, "length", "per unit length in x"},
-    {"y", Coordinate::y, true, true, "length", "per unit length in y"},
-    {"r", Coordinate::r, true, true, "length", "per unit area at distance r from the beam axis"},
-    {"z", Coordinate::z, false, true, "length", "per unit depth z"},
-    {"rho", Coordinate::rho, false, true, "length",
+    {"x", Coordinate::x, true, true, any, "length", "per unit length in x"},
+    {"y", Coordinate::y, true, true, any, "length", "per unit length in y"},
+    {"r", Coordinate::r, true, true, any, "length",
+     "per unit area at distance r from the beam axis"},
+    {"z", Coordinate::z, false, true, any, "length", "per unit depth z"},
+    {"rho", Coordinate::rho, false, true, any, "length",
      "per unit volume at distance rho from the source"},
-    {"theta_o", Coordinate::exit_angle, true, false, "rad",
+    {"psi", Coordinate::psi, true, false, ExitSurface::sphere, "rad",
+     "per unit area of the sphere by the angle psi from the lit pole"},
+    {"azimuth", Coordinate::azimuth, true, false, ExitSurface::sphere, "rad",
+     "by the exit point's azimuth about z (alone: per unit area of its lune)"},
+    {"triangle", Coordinate::triangle, true, false, ExitSurface::mesh, "",
+     "per unit area of each triangle"},
+    {"theta", Coordinate::theta, false, true, any, "rad",
+     "per steradian by the direction's polar angle theta from +z"},
+    {"theta_o", Coordinate::exit_angle, true, false, any, "rad",
      "per steradian at exit angle theta_o from the outward normal, outside"},
-    {"t", Coordinate::t, true, true, "s", "per second of time of flight t after a unit impulse"},
-    {"order", Coordinate::order, true, true, "", "by scattering order (the last bin: and more)"},
-    {"layer", Coordinate::layer, false, true, "", "by layer, top down"},
+    {"phi", Coordinate::phi, true, true, ExitSurface::plane, "rad",
+     "by the direction's azimuth phi about z (alone: per radian)"},
+    {"t", Coordinate::t, true, true, any, "s",
+     "per second of time of flight t after a unit impulse"},
+    {"order", Coordinate::order, true, true, any, "",
+     "by scattering order (the last bin: and more)"},
+    {"layer", Coordinate::layer, false, true, any, "", "by layer, top down"},
 });
+
+// The names of the surfaces, for refusals.
+std::string_view surface_name(ExitSurface surface) {
+  switch (surface) {
+    case ExitSurface::plane:
+      return "a plane (half_space, slab)";
+    case ExitSurface::sphere:
+      return "a sphere";
+    case ExitSurface::mesh:
+      return "a mesh";
+    case ExitSurface::none:
+      break;
+  }
+  return "none";
+}
 constexpr std::array<std::string_view, filter_rows.size()> filter_keys = [] {
   std::array<std::string_view, filter_rows.size()> keys{};
   for (std::size_t i = 0; i < keys.size(); ++i) keys[i] = filter_rows[i].key;
@@ -71,11 +105,18 @@ std::string key(std::size_t i, std::string_view rest) {
   return fmt::format("tally[{}].{}", i + 1, rest);
 }
 
-// A filter's axis with its defaults: r and t from 0, theta_o over [0, pi/2], order from 0 by 1.
+// A filter's axis with its defaults: r and t from 0; the angles over their whole range
+// (theta_o [0, pi/2], theta and psi [0, pi], phi and azimuth [0, 2 pi]); order from 0 by 1.
 UniformAxis axis_of(const DeclaredFilter& f) {
   switch (f.coordinate) {
     case Coordinate::exit_angle:
       return {0.0, 0.5 * pi, f.bins};
+    case Coordinate::theta:
+    case Coordinate::psi:
+      return {0.0, pi, f.bins};
+    case Coordinate::phi:
+    case Coordinate::azimuth:
+      return {0.0, 2.0 * pi, f.bins};
     case Coordinate::order:
       return {0.0, static_cast<double>(f.bins), f.bins};
     default:
@@ -93,11 +134,12 @@ void check_filter(const DeclaredFilter& f, std::size_t i, const DeclaredTallyFra
     }
     return;
   }
+  if (f.coordinate == Coordinate::triangle) return;  // a bin per triangle (the surface checked)
   if (f.bins < 1 || f.bins > max_bins) {
     throw InputError(at + ".bins", f.bins == 0 ? "is missing" : fmt::format("is {}", f.bins),
                      "an integer in [1, 100000]");
   }
-  if (f.coordinate == Coordinate::exit_angle || f.coordinate == Coordinate::order) return;
+  if (row.unit == "rad" || f.coordinate == Coordinate::order) return;  // bins alone
   const std::string unit = row.unit == "length" ? frame.length_unit : std::string(row.unit);
   if (!f.max) throw InputError(at + ".max", "is missing", fmt::format("a number, in {}", unit));
   const bool signed_axis = f.coordinate == Coordinate::x || f.coordinate == Coordinate::y ||
@@ -124,26 +166,34 @@ void check_filter(const DeclaredFilter& f, std::size_t i, const DeclaredTallyFra
   }
 }
 
-// The units of a tally of `score` over its filters: a length power k (from the filters' measures
+// The units of a tally of `score` over its filters: a length power (from the filters' measures
 // and the score's weight), per steradian with theta_o, and per joule with t, per watt without.
-std::string units_of(const DeclaredTally& t, const std::string& length) {
-  int power = t.score == DeclaredScore::fluence ? 1 : 0;  // a collision scores 1 mfp
-  if (t.filter(Coordinate::r)) power -= 2;
-  if (t.filter(Coordinate::rho)) power -= 3;
+Units units_of(const DeclaredTally& t) {
+  Units units;
+  units.length = t.score == Score::fluence ? 1 : 0;  // a collision scores 1 mfp
+  if (t.filter(Coordinate::r)) units.length -= 2;
+  if (t.filter(Coordinate::rho)) units.length -= 3;
   for (const Coordinate c : {Coordinate::x, Coordinate::y, Coordinate::z})
-    power -= t.filter(c) != nullptr;
-  std::string units = "W";
-  if (power == 1) units += " " + length;
-  if (power < 0) units += fmt::format(" {}^{}", length, power);
-  if (t.filter(Coordinate::exit_angle)) units += " sr^-1";
-  return units + (t.filter(Coordinate::t) ? " per J incident" : " per W incident");
+    units.length -= t.filter(c) != nullptr;
+  for (const Coordinate c : {Coordinate::psi, Coordinate::azimuth, Coordinate::triangle}) {
+    if (t.filter(c)) {
+      units.length -= 2;  // per unit area of the surface
+      break;
+    }
+  }
+  const bool polar = t.filter(Coordinate::exit_angle) || t.filter(Coordinate::theta);
+  if (polar) units.steradians = -1;
+  if (t.filter(Coordinate::phi) && !polar) units.radians = -1;
+  if (t.filter(Coordinate::t)) units.seconds = -1;
+  return units;
 }
 
 std::string description_of(const DeclaredTally& t) {
   constexpr std::array<std::string_view, 4> what = {
       "power leaving through the lit surface", "power leaving through the far side",
       "fluence rate (collision estimator)", "power absorbed"};
-  std::string text(what[static_cast<std::size_t>(t.score)]);
+  const auto at = std::find(declarable.begin(), declarable.end(), t.score);
+  std::string text(what.at(static_cast<std::size_t>(at - declarable.begin())));
   for (const FilterRow& row : filter_rows) {
     if (t.filter(row.coordinate)) text += fmt::format(", {}", row.per);
   }
@@ -156,7 +206,10 @@ DeclaredTallyFrame homogeneous_frame(std::string_view geometry, const Medium& me
                                      std::optional<double> index) {
   DeclaredTallyFrame frame;
   frame.geometry = geometry;
-  frame.has_surface = index.has_value();
+  frame.surface = geometry == "half_space" ? ExitSurface::plane
+                  : geometry == "sphere"   ? ExitSurface::sphere
+                  : geometry == "mesh"     ? ExitSurface::mesh
+                                           : ExitSurface::none;
   frame.has_index = index.has_value();
   frame.index = index.value_or(1.0);
   frame.length_unit = medium.length_unit;
@@ -176,22 +229,18 @@ DeclaredTallyFrame slab_frame(const std::string& length_unit, int layers) {
   frame.transmits = true;
   frame.has_volume_estimator = false;
   frame.length_unit = length_unit;
-  frame.walk_length_label = length_unit;
   if (length_unit != "mfp") {
     frame.seconds_per_walk_length = millimetres_per(length_unit) * 1e-3 / speed_of_light;
   }
   return frame;
 }
 
-std::string to_string(DeclaredScore score) {
-  return std::string(score_names[static_cast<std::size_t>(score)]);
-}
-
-std::optional<DeclaredScore> declared_score(std::string_view name) {
-  for (std::size_t i = 0; i < score_names.size(); ++i) {
-    if (score_names[i] == name) return static_cast<DeclaredScore>(i);
+std::optional<Score> declared_score(std::string_view name) {
+  const std::optional<Score> score = score_named(name);
+  if (!score || std::find(declarable.begin(), declarable.end(), *score) == declarable.end()) {
+    return std::nullopt;
   }
-  return std::nullopt;
+  return score;
 }
 
 void check_declared_tallies(const std::vector<DeclaredTally>& tallies,
@@ -211,24 +260,23 @@ void check_declared_tallies(const std::vector<DeclaredTally>& tallies,
       throw InputError(key(i, "name"), fmt::format("\"{}\" is taken by an earlier tally", t.name),
                        "a name of its own");
     }
-    const std::string score = to_string(t.score);
+    const std::string_view score = to_string(t.score);
     const auto refuse_score = [&](std::string_view why) {
       throw InputError(key(i, "score"),
                        fmt::format("\"{}\" in a {} scene: {}", score, frame.geometry, why),
                        "\"exitance\" (a geometry with a surface), \"transmittance\" (a slab), "
                        "\"fluence\" (not a slab) or \"absorbed\"");
     };
-    if (t.score == DeclaredScore::exitance && !frame.has_surface) {
+    if (t.score == Score::exitance && frame.surface == ExitSurface::none) {
       refuse_score("it has no surface to leave through");
     }
-    if (t.score == DeclaredScore::transmittance && !frame.transmits) {
+    if (t.score == Score::transmittance && !frame.transmits) {
       refuse_score("only a slab has a far side");
     }
-    if (t.score == DeclaredScore::fluence && !frame.has_volume_estimator) {
+    if (t.score == Score::fluence && !frame.has_volume_estimator) {
       refuse_score("its walk scores no collisions in the volume");
     }
-    const bool exits =
-        t.score == DeclaredScore::exitance || t.score == DeclaredScore::transmittance;
+    const bool exits = t.score == Score::exitance || t.score == Score::transmittance;
     for (std::size_t j = 0; j < t.filters.size(); ++j) {
       const DeclaredFilter& f = t.filters[j];
       const FilterRow& row = row_of(f.coordinate);
@@ -241,6 +289,12 @@ void check_declared_tallies(const std::vector<DeclaredTally>& tallies,
             key(i, fmt::format("filters.{}", row.key)), fmt::format("bins \"{}\"", score),
             fmt::format("filters {} for a score {}", fmt::join(filters_of(exits), ", "),
                         exits ? "at the surface" : "in the volume"));
+      }
+      if (exits && row.exits_through != any && row.exits_through != frame.surface) {
+        throw InputError(key(i, fmt::format("filters.{}", row.key)),
+                         fmt::format("bins \"{}\" in a {} scene, whose surface is {}", score,
+                                     frame.geometry, surface_name(frame.surface)),
+                         fmt::format("{} only on {}", row.key, surface_name(row.exits_through)));
       }
       check_filter(f, i, frame);
     }
@@ -268,7 +322,10 @@ void check_declared_tallies(const std::vector<DeclaredTally>& tallies,
     }
     double cells = 1.0;
     for (const DeclaredFilter& f : t.filters) {
-      cells *= f.coordinate == Coordinate::layer ? frame.layers : f.bins;
+      cells *= f.coordinate == Coordinate::layer ? frame.layers
+               : f.coordinate == Coordinate::triangle
+                   ? static_cast<double>(frame.triangle_areas.size())
+                   : f.bins;
     }
     if (cells > max_cells) {
       throw InputError(key(i, "filters"), fmt::format("make {:g} cells", cells),
@@ -291,13 +348,7 @@ std::vector<TallyDeclaration> declare_chained_tallies(const std::vector<Declared
             "a name of its own");
       }
     }
-    static constexpr Score scores[] = {Score::exit, Score::transmitted, Score::fluence,
-                                       Score::absorbed};
-    TallyDeclaration d{t.name,
-                       scores[static_cast<std::size_t>(t.score)],
-                       {},
-                       units_of(t, frame.walk_length_label),
-                       description_of(t)};
+    TallyDeclaration d{t.name, t.score, {}, units_of(t), description_of(t)};
     d.chained = true;
     for (const FilterRow& row : filter_rows) {
       const DeclaredFilter* f = t.filter(row.coordinate);
@@ -318,7 +369,24 @@ std::vector<TallyDeclaration> declare_chained_tallies(const std::vector<Declared
               position_filter(row.coordinate, length_axis_in_mfp(axis, frame.walk_per_unit)));
           break;
         case Coordinate::exit_angle:
-          d.filters.push_back(exit_solid_angle_filter(axis));
+          d.filters.push_back(exit_solid_angle_filter(axis, t.filter(Coordinate::phi) != nullptr));
+          break;
+        case Coordinate::theta:
+          d.filters.push_back(polar_angle_filter(axis, t.filter(Coordinate::phi) != nullptr));
+          break;
+        case Coordinate::phi:
+          d.filters.push_back(azimuth_angle_filter(axis));
+          break;
+        case Coordinate::psi:
+          d.filters.push_back(
+              sphere_polar_filter(axis, frame.radius, t.filter(Coordinate::azimuth) != nullptr));
+          break;
+        case Coordinate::azimuth:
+          d.filters.push_back(
+              sphere_azimuth_filter(axis, frame.radius, t.filter(Coordinate::psi) != nullptr));
+          break;
+        case Coordinate::triangle:
+          d.filters.push_back(triangle_filter(frame.triangle_areas));
           break;
         case Coordinate::t:
           d.filters.push_back(time_filter(
@@ -330,12 +398,12 @@ std::vector<TallyDeclaration> declare_chained_tallies(const std::vector<Declared
         case Coordinate::layer:
           d.filters.push_back(layer_filter(static_cast<std::size_t>(frame.layers)));
           break;
-        case Coordinate::none:
+        default:
           break;
       }
-      // The file's own axes: edges in the scene's units (orders and layers are numbered).
-      if (row.coordinate != Coordinate::order && row.coordinate != Coordinate::layer)
-        d.axes.push_back({std::string(row.key), axis.edges(), unit});
+      // The file's own axes: edges in the scene's units (orders, layers and triangles are
+      // numbered).
+      if (!row.unit.empty()) d.axes.push_back({std::string(row.key), axis.edges(), unit});
     }
     declarations.push_back(std::move(d));
   }
@@ -372,6 +440,10 @@ std::optional<Coordinate> declared_filter(std::string_view name) {
     if (row.key == name) return row.coordinate;
   }
   return std::nullopt;
+}
+
+bool declared_filter_is_switch(std::string_view name) {
+  return name == "layer" || name == "triangle";
 }
 
 }  // namespace scatterlab

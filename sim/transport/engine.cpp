@@ -155,7 +155,8 @@ TransportOutput detail::run_kernel(const TransportProblem& problem,
   const BatchOutcome outcome = select(Kernel{problem, book, scorer, progress, control});
   TransportOutput output;
   if (!outcome.mean.empty()) {  // the root's; other ranks fold only their slice
-    output.tallies = book.finish(outcome.mean, outcome.standard_error, problem.photon_power);
+    output.tallies =
+        book.finish(outcome.mean, outcome.standard_error, problem.photon_power, problem.length);
   }
   output.photons = outcome.photons_done;
   output.photons_resumed = outcome.photons_resumed;

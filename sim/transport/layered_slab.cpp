@@ -72,76 +72,67 @@ void check_layer(const SlabLayerSpec& layer, std::size_t i, std::size_t count,
   }
 }
 
-std::string per_length(const std::string& unit, int power) {
-  return fmt::format("{}^-{}", unit, power);
-}
-
 // MCML's tallies (the manual, "Scored physical quantities"), each declared once.
 std::vector<TallyDeclaration> declare_tallies(const LayeredSlabSpec& spec) {
-  const std::string& u = spec.length_unit;
   const Filter r = radius_filter(spec.r);
   const Filter angle = exit_solid_angle_filter(spec.theta_o);
   std::vector<TallyDeclaration> tallies;
   struct Side {
     const char* name;
-    Score total, by_radius, by_angle, by_radius_angle;
+    Score score;
     const char* what;
   };
   for (const Side& side :
-       {Side{"diffuse_reflectance", Score::exit, Score::exit_by_radius, Score::exit_by_angle,
-             Score::exit_radiance, "leaving through the lit side z = 0 (R_d)"},
-        Side{"total_transmittance", Score::transmitted, Score::transmitted_by_radius,
-             Score::transmitted_by_angle, Score::transmitted_by_radius_angle,
+       {Side{"diffuse_reflectance", Score::exitance, "leaving through the lit side z = 0 (R_d)"},
+        Side{"total_transmittance", Score::transmittance,
              "leaving through the far side, unscattered light included (T_t)"}}) {
     const std::string name = side.name;
-    tallies.push_back(
-        {name, side.total, {}, "W per W incident", fmt::format("power {}", side.what), true});
+    tallies.push_back({name, side.score, {}, Units{}, fmt::format("power {}", side.what), true});
     tallies.push_back({name + "_by_radius",
-                       side.by_radius,
+                       side.score,
                        {r},
-                       fmt::format("W {} per W incident", per_length(u, 2)),
+                       Units{1, -2},
                        fmt::format("power {} per unit area of the ring at distance r from the "
                                    "beam, ring average",
                                    side.what),
                        true});
     tallies.push_back({name + "_by_angle",
-                       side.by_angle,
+                       side.score,
                        {angle},
-                       "W sr^-1 per W incident",
+                       Units{1, 0, -1},
                        fmt::format("power {} per steradian at exit angle theta_o from the "
                                    "outward normal (outside), bin average",
                                    side.what),
                        true});
     tallies.push_back({name + "_by_radius_angle",
-                       side.by_radius_angle,
+                       side.score,
                        {r, exit_angle_filter(spec.theta_o)},
-                       fmt::format("W {} sr^-1 per W incident", per_length(u, 2)),
+                       Units{1, -2, -1},
                        fmt::format("radiance {}: power per unit area and projected solid angle "
                                    "(cos theta_o d omega), by r and theta_o, bin average",
                                    side.what),
                        true});
   }
-  tallies.push_back(
-      {"absorbed", Score::absorbed, {}, "W per W incident", "power absorbed in the slab", true});
+  tallies.push_back({"absorbed", Score::absorbed, {}, Units{}, "power absorbed in the slab", true});
   tallies.push_back({"absorbed_by_layer",
-                     Score::absorbed_by_layer,
+                     Score::absorbed,
                      {layer_filter(spec.layers.size())},
-                     "W per W incident",
+                     Units{},
                      "power absorbed in each layer, top down"});
   tallies.push_back({"absorbed_by_depth",
-                     Score::absorbed_by_depth,
+                     Score::absorbed,
                      {depth_filter(spec.z)},
-                     fmt::format("W {} per W incident", per_length(u, 1)),
+                     Units{1, -1},
                      "power absorbed per unit depth A(z), over all r, bin average"});
   tallies.push_back({"absorbed_by_radius_depth",
-                     Score::absorbed_by_radius_depth,
+                     Score::absorbed,
                      {r, depth_filter(spec.z)},
-                     fmt::format("W {} per W incident", per_length(u, 3)),
+                     Units{1, -3},
                      "power absorbed per unit volume A(r, z), bin average"});
   tallies.push_back({"specular_reflectance",
                      Score::exact,
                      {},
-                     "W per W incident",
+                     Units{},
                      "light reflected where the beam meets the slab (R_sp; exact: no standard "
                      "error)",
                      false,
@@ -256,6 +247,7 @@ TransportProblem transport_problem(const LayeredSlabSpec& spec) {
            slab_frame(spec.length_unit, static_cast<int>(spec.layers.size())), problem.tallies)) {
     problem.tallies.push_back(std::move(d));
   }
+  problem.length = {spec.length_unit, 1.0};  // transported in it
   problem.split_by_order = spec.split_by_order;
   problem.estimator = Estimator::collision;  // unused: a slab has no volume tallies
   problem.run = spec.run;

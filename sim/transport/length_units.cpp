@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
-#include <sstream>
 
 #include "scatterlab/core/error.hpp"
 
@@ -65,34 +64,6 @@ UniformAxis length_axis_in_mfp(const UniformAxis& axis, double mfp_per_unit) {
   scaled.min = axis.min * mfp_per_unit;
   scaled.max = axis.max * mfp_per_unit;
   return scaled;
-}
-
-std::string units_in_length_unit(const std::string& units, const Medium& medium, double* factor) {
-  *factor = 1.0;
-  if (medium.length_unit == "mfp") return units;
-  std::istringstream words(units);
-  std::string word, converted;
-  while (words >> word) {
-    if (word == "mfp" || word.rfind("mfp^", 0) == 0) {
-      // "mfp" is length^1, "mfp^-2" length^-2: a value per mfp^k is sigma_t^-k per unit^k.
-      const int power = word == "mfp" ? 1 : std::atoi(word.c_str() + 4);
-      *factor *= std::pow(medium.sigma_t, -power);
-      word = medium.length_unit + word.substr(3);
-    }
-    converted += (converted.empty() ? "" : " ") + word;
-  }
-  return converted;
-}
-
-void tallies_to_length_unit(std::vector<TallyResult>& tallies, const Medium& medium) {
-  if (medium.length_unit == "mfp") return;
-  for (TallyResult& tally : tallies) {
-    double factor = 1.0;
-    tally.units = units_in_length_unit(tally.units, medium, &factor);
-    if (factor == 1.0) continue;
-    for (double& value : tally.mean) value *= factor;
-    for (double& value : tally.stderr_of_mean) value *= factor;
-  }
 }
 
 }  // namespace scatterlab

@@ -46,27 +46,44 @@ std::optional<BeamEntry> beam_entry(const LitObjectSpec& spec, double radius_mfp
   return BeamEntry{point, direction, std::clamp(-direction.dot(point) / radius_mfp, 0.0, 1.0)};
 }
 
+// A mesh's triangle areas in mfp^2, as it is transported.
+std::vector<double> triangle_areas_mfp(const LitObjectSpec& spec) {
+  const double scale = mfp_per_length_unit(spec.medium);
+  std::vector<double> areas(spec.mesh->triangle_count());
+  for (std::size_t t = 0; t < areas.size(); ++t) areas[t] = spec.mesh->area(t) * scale * scale;
+  return areas;
+}
+
+// What the object gives its declared tallies: its surface, with the sphere's radius or the
+// mesh's areas in the walk's units.
+DeclaredTallyFrame object_frame(const LitObjectSpec& spec) {
+  DeclaredTallyFrame frame =
+      homogeneous_frame(spec.mesh ? "mesh" : "sphere", spec.medium, spec.eta);
+  if (spec.mesh) {
+    frame.triangle_areas = triangle_areas_mfp(spec);
+  } else {
+    frame.radius = spec.radius * mfp_per_length_unit(spec.medium);
+  }
+  return frame;
+}
+
 // The sphere's tallies, each declared once; all but the light reflected at entry by order.
 std::vector<TallyDeclaration> declare_tallies(const LitObjectSpec& spec, double radius_mfp,
                                               double beam_reflectance) {
   std::vector<TallyDeclaration> tallies;
   if (spec.mesh) {
-    // Triangle areas in mfp^2, as the mesh is transported.
-    const double scale = mfp_per_length_unit(spec.medium);
-    std::vector<double> areas(spec.mesh->triangle_count());
-    for (std::size_t t = 0; t < areas.size(); ++t) areas[t] = spec.mesh->area(t) * scale * scale;
     tallies.push_back({"exitance",
-                       Score::exit_by_triangle,
-                       {triangle_filter(areas)},
-                       "W mfp^-2 per W incident",
+                       Score::exitance,
+                       {triangle_filter(triangle_areas_mfp(spec))},
+                       Units{1, -2},
                        "radiant exitance M on the mesh: power leaving the object for good "
                        "through each triangle per unit of its area",
                        true});
   } else {
     tallies.push_back({"exitance",
-                       Score::exit_by_polar_angle,
+                       Score::exitance,
                        {sphere_patch_filter(spec.psi, spec.azimuth, radius_mfp)},
-                       "W mfp^-2 per W incident",
+                       Units{1, -2},
                        "radiant exitance M(psi, azimuth) on the sphere: power leaving per unit "
                        "area of the patch at angle psi from the lit pole (0, 0, -R) and azimuth "
                        "about z from +x, patch average",
@@ -74,9 +91,9 @@ std::vector<TallyDeclaration> declare_tallies(const LitObjectSpec& spec, double 
   }
   const char* object = spec.mesh ? "object" : "sphere";
   tallies.push_back({"exited",
-                     Score::exit,
+                     Score::exitance,
                      {},
-                     "W per W incident",
+                     Units{},
                      fmt::format("total power leaving the {} after it entered (any point, any "
                                  "angle)",
                                  object),
@@ -84,16 +101,16 @@ std::vector<TallyDeclaration> declare_tallies(const LitObjectSpec& spec, double 
   tallies.push_back({"absorbed",
                      Score::absorbed,
                      {},
-                     "W per W incident",
+                     Units{},
                      fmt::format("power absorbed in the {}", object),
                      true});
   // On a mesh even a beam's reflection is counted photon by photon: light reflected off one part
   // of a shape that is not convex can enter another.
   if (spec.light == ObjectLight::directional || spec.mesh) {
     tallies.push_back({"reflected_at_entry",
-                       Score::reflected_at_entry,
+                       Score::entry_reflectance,
                        {},
-                       "W per W incident",
+                       Units{},
                        fmt::format("light reflected where it meets the {} (Fresnel, each "
                                    "photon's own angle of incidence) that never enters",
                                    object)});
@@ -101,7 +118,7 @@ std::vector<TallyDeclaration> declare_tallies(const LitObjectSpec& spec, double 
     tallies.push_back({"reflected_at_entry",
                        Score::exact,
                        {},
-                       "W per W incident",
+                       Units{},
                        "Fresnel reflection of the beam where it meets the sphere (exact: no "
                        "standard error)",
                        false,
@@ -192,12 +209,8 @@ void LitObjectSpec::validate() const {
                      "a number in [0.1, 10] (n_medium / n_outside; 1 for no interface)");
   }
   if (mesh) {
-    if (!declared_tallies.empty()) {
-      throw InputError("tally", "is declared in a mesh scene",
-                       "[[tally]] in an infinite, half_space, sphere or slab scene: a path that "
-                       "leaves a mesh and enters it again has no time of flight yet");
-    }
     validate_mesh_spec(*this);
+    check_declared_tallies(declared_tallies, object_frame(*this));
     return;
   }
   if (!(radius > 0.0) || !std::isfinite(radius)) {
@@ -244,7 +257,7 @@ void LitObjectSpec::validate() const {
   check_run_settings(run);
   // Every walk ends inside the sphere: by absorption, or by leaving it after about R^2 events.
   check_run_length(run, medium.albedo, radius_mfp);
-  check_declared_tallies(declared_tallies, homogeneous_frame("sphere", medium, eta));
+  check_declared_tallies(declared_tallies, object_frame(*this));
 }
 
 namespace {
@@ -288,6 +301,7 @@ TransportProblem transport_problem(const LitObjectSpec& spec) {
   problem.split_by_order = spec.split_by_order;
   problem.estimator = Estimator::collision;
   problem.run = spec.run;
+  problem.length = reported_length(spec.medium);  // back from mfp
   problem.run.escape_radius = std::numeric_limits<double>::infinity();
   if (spec.mesh) {
     problem.geometry = GeometryKind::mesh;
@@ -296,6 +310,10 @@ TransportProblem transport_problem(const LitObjectSpec& spec) {
     // wander for ever.
     problem.run.escape_radius = 1e3 * (1.0 + bounding_radius_mfp(spec));
     problem.tallies = declare_tallies(spec, radius, 0.0);
+    for (TallyDeclaration& d :
+         declare_chained_tallies(spec.declared_tallies, object_frame(spec), problem.tallies)) {
+      problem.tallies.push_back(std::move(d));
+    }
     problem.size_fields = "the mesh's triangles, run.threads";
     return problem;
   }
@@ -324,9 +342,8 @@ TransportProblem transport_problem(const LitObjectSpec& spec) {
   problem.axes.psi = spec.psi;
   problem.axes.azimuth = spec.azimuth;
   problem.tallies = declare_tallies(spec, radius, beam_reflectance);
-  for (TallyDeclaration& d : declare_chained_tallies(
-           spec.declared_tallies, homogeneous_frame("sphere", spec.medium, spec.eta),
-           problem.tallies)) {
+  for (TallyDeclaration& d :
+       declare_chained_tallies(spec.declared_tallies, object_frame(spec), problem.tallies)) {
     problem.tallies.push_back(std::move(d));
   }
   problem.size_fields = "grid.psi.bins x grid.azimuth.bins, run.threads";
@@ -337,9 +354,7 @@ TransportOutput run_lit_sphere(const LitObjectSpec& spec, const ProgressCallback
                                const RunControl& control) {
   spec.validate();
   if (spec.mesh) throw std::invalid_argument("run_lit_sphere: a mesh runs with run_lit_mesh");
-  TransportOutput out = transport(transport_problem(spec), progress, control);
-  tallies_to_length_unit(out.tallies, spec.medium);  // back from mfp (length_units.hpp)
-  return out;
+  return transport(transport_problem(spec), progress, control);
 }
 
 }  // namespace scatterlab

@@ -75,16 +75,16 @@ std::vector<TallyDeclaration> declare_tallies(const HalfSpaceSpec& spec, double 
   const Filter r = radius_filter(grid.r);
   std::vector<TallyDeclaration> tallies;
   tallies.push_back({"reflectance",
-                     Score::exit_by_radius,
+                     Score::exitance,
                      {r},
-                     "W mfp^-2 per W incident",
+                     Units{1, -2},
                      "diffuse reflectance R_d(r): power leaving the surface per unit area, ring "
                      "average",
                      true});
   tallies.push_back({"exitant_radiance",
-                     Score::exit_radiance,
+                     Score::exitance,
                      {r, exit_angle_filter(grid.theta_o)},
-                     "W mfp^-2 sr^-1 per W incident",
+                     Units{1, -2, -1},
                      "radiance leaving the surface outside the medium, L(r, theta_o) with theta_o "
                      "from the outward normal: power / (ring area x projected solid angle) of the "
                      "bin",
@@ -93,42 +93,40 @@ std::vector<TallyDeclaration> declare_tallies(const HalfSpaceSpec& spec, double 
     tallies.push_back({"fluence",
                        Score::fluence,
                        {r, depth_filter(grid.z)},
-                       "W mfp^-2 per W incident",
+                       Units{1, -2},
                        "fluence phi(r, z) inside the medium, bin average, collision estimator",
                        true});
   }
   if (spec.tallies.exitance_map) {
-    tallies.push_back({"exitance_map",
-                       Score::exit_by_position,
-                       {length_filter("x", grid.x), length_filter("y", grid.y)},
-                       "W mfp^-2 per W incident",
-                       "radiant exitance M(x, y) of the surface about the entry point: power "
-                       "leaving per unit area, cell average (the beam arrives in the x-z plane)",
-                       true});
+    tallies.push_back(
+        {"exitance_map",
+         Score::exitance,
+         {position_filter(Coordinate::x, grid.x), position_filter(Coordinate::y, grid.y)},
+         Units{1, -2},
+         "radiant exitance M(x, y) of the surface about the entry point: power "
+         "leaving per unit area, cell average (the beam arrives in the x-z plane)",
+         true});
   }
   tallies.push_back({"diffuse_reflectance",
-                     Score::exit,
+                     Score::exitance,
                      {},
-                     "W per W incident",
+                     Units{},
                      "total power leaving the surface after scattering (all radii and angles)",
                      true});
   tallies.push_back({"specular_reflectance",
                      Score::exact,
                      {},
-                     "W per W incident",
+                     Units{},
                      "Fresnel reflection of the beam at entry (exact: no standard error)",
                      false,
                      specular});
-  tallies.push_back({"absorbed",
-                     Score::absorbed,
-                     {},
-                     "W per W incident",
-                     "power absorbed anywhere in the medium"});
+  tallies.push_back(
+      {"absorbed", Score::absorbed, {}, Units{}, "power absorbed anywhere in the medium"});
   if (std::isfinite(spec.run.escape_radius)) {
     tallies.push_back({"escaped",
                        Score::escaped,
                        {},
-                       "W per W incident",
+                       Units{},
                        "power carried past the escape radius (see /parameters escape_radius)"});
   }
   return tallies;
@@ -213,6 +211,7 @@ TransportProblem transport_problem(const HalfSpaceSpec& given) {
   problem.estimator = Estimator::collision;
   problem.photon_power = 1.0 - specular;
   problem.run = spec.run;
+  problem.length = reported_length(spec.medium);  // back from mfp
   problem.size_fields = spec.tallies.fluence
                             ? "grid.r.bins x grid.z.bins (fluence), grid.theta_o.bins, run.threads"
                             : "grid.r.bins x grid.theta_o.bins, run.threads";
@@ -222,9 +221,7 @@ TransportProblem transport_problem(const HalfSpaceSpec& given) {
 TransportOutput run_half_space(const HalfSpaceSpec& spec, const ProgressCallback& progress,
                                const RunControl& control) {
   spec.validate();
-  TransportOutput out = transport(transport_problem(spec), progress, control);
-  tallies_to_length_unit(out.tallies, spec.medium);  // back from mfp (length_units.hpp)
-  return out;
+  return transport(transport_problem(spec), progress, control);
 }
 
 }  // namespace scatterlab

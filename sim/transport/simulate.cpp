@@ -20,7 +20,7 @@ std::vector<TallyDeclaration> declare_tallies(const InfiniteMediumSpec& spec) {
     tallies.push_back({"radiance",
                        Score::radiance,
                        {r, z, direction_filter(grid.theta, grid.phi, grid.fold_phi)},
-                       "W mfp^-2 sr^-1 per W incident",
+                       Units{1, -2, -1},
                        "radiance L(r, z, theta, phi), bin average, " + estimator,
                        true});
   }
@@ -28,7 +28,7 @@ std::vector<TallyDeclaration> declare_tallies(const InfiniteMediumSpec& spec) {
     tallies.push_back({"fluence",
                        Score::fluence,
                        {r, z},
-                       "W mfp^-2 per W incident",
+                       Units{1, -2},
                        "fluence phi(r, z), bin average, " + estimator,
                        true});
   }
@@ -37,40 +37,40 @@ std::vector<TallyDeclaration> declare_tallies(const InfiniteMediumSpec& spec) {
         {"flux",
          Score::flux,
          {r, z, component_filter(2)},
-         "W mfp^-2 per W incident",
+         Units{1, -2},
          "vector irradiance E = integral of L omega d omega: components (E_r, E_z), " + estimator,
          true});
   }
   if (want.fluence_spherical) {
     tallies.push_back(
         {"fluence_spherical",
-         Score::fluence_spherical,
+         Score::fluence,
          {shell_filter(grid.rho)},
-         "W mfp^-2 per W incident",
+         Units{1, -2},
          "fluence phi(rho) on spherical shells about the source, shell average, " + estimator,
          true});
   }
   tallies.push_back({"absorbed",
-                     Score::absorbed_in_grid,
-                     {},
-                     "W per W incident",
+                     Score::absorbed,
+                     {grid_region_filter(true)},
+                     Units{},
                      "power absorbed inside the (r, z) grid"});
   tallies.push_back({"absorbed_outside_grid",
-                     Score::absorbed_outside_grid,
-                     {},
-                     "W per W incident",
+                     Score::absorbed,
+                     {grid_region_filter(false)},
+                     Units{},
                      "power absorbed outside the (r, z) grid"});
   if (std::isfinite(spec.run.escape_radius)) {
     tallies.push_back({"escaped",
                        Score::escaped,
                        {},
-                       "W per W incident",
+                       Units{},
                        "power carried past the escape radius (see /parameters escape_radius)"});
   }
   tallies.push_back({"absorbed_mean_depth",
-                     Score::absorption_depth,
+                     Score::absorbed_depth,
                      {},
-                     "mfp",
+                     Units{0, 1},
                      "first moment in depth z (along the beam axis) of the absorbed power, "
                      "integral of z dP_absorbed per W incident; the mean absorption depth when "
                      "every photon is absorbed"});
@@ -125,6 +125,7 @@ TransportProblem transport_problem(const InfiniteMediumSpec& given) {
   problem.split_by_order = spec.tallies.split_by_order;
   problem.estimator = spec.tallies.estimator;
   problem.run = spec.run;
+  problem.length = reported_length(spec.medium);  // back from mfp
   problem.size_fields = size_fields(spec);
   return problem;
 }
@@ -132,9 +133,7 @@ TransportProblem transport_problem(const InfiniteMediumSpec& given) {
 TransportOutput run_infinite_medium(const InfiniteMediumSpec& spec,
                                     const ProgressCallback& progress, const RunControl& control) {
   spec.validate();
-  TransportOutput out = transport(transport_problem(spec), progress, control);
-  tallies_to_length_unit(out.tallies, spec.medium);  // back from mfp (length_units.hpp)
-  return out;
+  return transport(transport_problem(spec), progress, control);
 }
 
 }  // namespace scatterlab

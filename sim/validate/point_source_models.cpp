@@ -65,8 +65,7 @@ std::vector<ModelResult> point_source_model_curves(const InfiniteMediumSpec& spe
   }
   // The models are in mfp (sigma_t = 1); the tally is in the run's unit (length_units.hpp).
   const UniformAxis rho = length_axis_in_mfp(spec.grid.rho, mfp_per_length_unit(spec.medium));
-  double to_length_unit = 1.0;
-  units_in_length_unit("W mfp^-2 per W incident", spec.medium, &to_length_unit);
+  const double to_length_unit = reported_length(spec.medium).factor(Units{1, -2});
   const PointSourceCurves curves = point_source_shell_averages(spec.medium.albedo, rho.edges());
   const std::vector<double>* values[] = {&curves.exact, &curves.diffusion, &curves.grosjean};
   for (std::size_t m = 0; m < 3; ++m) {

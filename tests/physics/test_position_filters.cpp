@@ -40,8 +40,8 @@ TEST(PositionFilters, ObliqueBeamIsAbsorbedExponentiallyAlongX) {
   const UniformAxis x{0.0, 4.0 * a, 20};
   const UniformAxis y{-0.5, 0.5, 5};  // 0 is in the middle bin
   spec.declared_tallies = {
-      {"absorbed_x", DeclaredScore::absorbed, {filter(Coordinate::x, x)}, std::nullopt},
-      {"absorbed_y", DeclaredScore::absorbed, {filter(Coordinate::y, y)}, std::nullopt}};
+      {"absorbed_x", Score::absorbed, {filter(Coordinate::x, x)}, std::nullopt},
+      {"absorbed_y", Score::absorbed, {filter(Coordinate::y, y)}, std::nullopt}};
   const TransportOutput out = run_half_space(spec);
   const TallyResult& along_x = find_tally(out, "absorbed_x");
   ASSERT_EQ(along_x.dims, std::vector<std::string>{"x"});
@@ -75,11 +75,11 @@ TEST(PositionFilters, ExitanceMapIsSymmetricAndSumsOverY) {
   spec.grid.x = spec.grid.y = span;
   spec.tallies.exitance_map = true;
   spec.declared_tallies = {{"map",
-                            DeclaredScore::exitance,
+                            Score::exitance,
                             {filter(Coordinate::x, span), filter(Coordinate::y, span)},
                             std::nullopt},
                            {"strip",
-                            DeclaredScore::exitance,
+                            Score::exitance,
                             {filter(Coordinate::x, span), filter(Coordinate::y, whole)},
                             std::nullopt}};
   const TransportOutput out = run_half_space(spec);
@@ -125,7 +125,7 @@ TEST(PositionFilters, PointSourceIsAbsorbedExponentiallyInRho) {
   spec.run.seed = 29;
   const UniformAxis rho{0.0, 4.0 * l, 20};
   spec.declared_tallies = {
-      {"absorbed_rho", DeclaredScore::absorbed, {filter(Coordinate::rho, rho)}, std::nullopt}};
+      {"absorbed_rho", Score::absorbed, {filter(Coordinate::rho, rho)}, std::nullopt}};
   const TransportOutput out = run_infinite_medium(spec);
   const TallyResult& a = find_tally(out, "absorbed_rho");
   ASSERT_EQ(a.dims, std::vector<std::string>{"rho"});
@@ -150,10 +150,8 @@ TEST(PositionFilters, FluenceOnShellsIsThePointSourcesOwn) {
   spec.run.photons = 20'000;
   spec.run.batches = 8;
   spec.run.seed = 31;
-  spec.declared_tallies = {{"fluence_rho",
-                            DeclaredScore::fluence,
-                            {filter(Coordinate::rho, spec.grid.rho)},
-                            std::nullopt}};
+  spec.declared_tallies = {
+      {"fluence_rho", Score::fluence, {filter(Coordinate::rho, spec.grid.rho)}, std::nullopt}};
   const TransportOutput out = run_infinite_medium(spec);
   const TallyResult& declared = find_tally(out, "fluence_rho");
   const TallyResult& own = find_tally(out, "fluence_spherical");

@@ -36,8 +36,7 @@ TEST(TimeOfFlight, InfiniteMediumAbsorbsExponentiallyInTime) {
   const double n = 1.4;
   const double rate = 1.0 * speed_of_light * 1e3 / n;  // mu_a v, 1 / s (c in mm / s)
   const UniformAxis time{0.0, 6.0 / rate, 30};
-  spec.declared_tallies = {
-      {"absorbed_t", DeclaredScore::absorbed, {filter(Coordinate::t, time)}, n}};
+  spec.declared_tallies = {{"absorbed_t", Score::absorbed, {filter(Coordinate::t, time)}, n}};
   const TransportOutput out = run_infinite_medium(spec);
   const TallyResult& a = find_tally(out, "absorbed_t");
   ASSERT_EQ(a.dims, std::vector<std::string>{"t"});
@@ -72,10 +71,10 @@ TEST(TimeOfFlight, TimeBinsSumToTheSteadyExitance) {
   spec.run.seed = 5;
   const DeclaredFilter rings = filter(Coordinate::r, spec.grid.r);
   const DeclaredTally by_time{"reflectance_rt",
-                              DeclaredScore::exitance,
+                              Score::exitance,
                               {rings, filter(Coordinate::t, UniformAxis{0.0, 1e-6, 50})},
                               std::nullopt};
-  const DeclaredTally steady{"reflectance_r", DeclaredScore::exitance, {rings}, std::nullopt};
+  const DeclaredTally steady{"reflectance_r", Score::exitance, {rings}, std::nullopt};
   spec.declared_tallies = {by_time, steady};
   const TransportOutput out = run_half_space(spec);
   const TallyResult& rt = find_tally(out, "reflectance_rt");
@@ -122,15 +121,15 @@ TEST(TimeOfFlight, UnscatteredLightCrossesASlabAtItsOpticalThickness) {
   const UniformAxis before{0.0, arrival * (1.0 - 1e-9), 1};
   const UniformAxis at{arrival * (1.0 - 1e-9), arrival * (1.0 + 1e-9), 1};
   const DeclaredTally early{
-      "early", DeclaredScore::transmittance, {filter(Coordinate::t, before)}, std::nullopt};
+      "early", Score::transmittance, {filter(Coordinate::t, before)}, std::nullopt};
   // By scattering order too: unscattered, and the rest.
   const DeclaredTally on_time{"on_time",
-                              DeclaredScore::transmittance,
+                              Score::transmittance,
                               {filter(Coordinate::t, at), {Coordinate::order, {}, {}, 2}},
                               std::nullopt};
   // And the absorbed power by layer, which is the slab's own: the same absorptions.
   const DeclaredTally layers{
-      "absorbed_layers", DeclaredScore::absorbed, {{Coordinate::layer, {}, {}, 0}}, std::nullopt};
+      "absorbed_layers", Score::absorbed, {{Coordinate::layer, {}, {}, 0}}, std::nullopt};
   spec.declared_tallies = {early, on_time, layers};
   const TransportOutput out = run_layered_slab(spec);
   EXPECT_EQ(find_tally(out, "early").mean.at(0), 0.0);
@@ -174,7 +173,7 @@ TEST(TimeOfFlight, LateReflectanceDecaysAsDiffusionTheorySays) {
   spec.run.seed = 2;
   const double t0 = 100e-12, t1 = 150e-12, t2 = 200e-12;
   spec.declared_tallies = {{"late",
-                            DeclaredScore::exitance,
+                            Score::exitance,
                             {filter(Coordinate::r, UniformAxis{0.0, 3.0, 1}),
                              filter(Coordinate::t, UniformAxis{t0, t2, 2})},
                             std::nullopt}};

@@ -40,7 +40,7 @@ TEST(DeclaredTally, ReadsNameScoreAndFiltersInSpaceTimeOrder) {
   ASSERT_EQ(spec.declared_tallies.size(), 2u);
   const DeclaredTally& rt = spec.declared_tallies[0];
   EXPECT_EQ(rt.name, "R_rt");
-  EXPECT_EQ(rt.score, DeclaredScore::exitance);
+  EXPECT_EQ(rt.score, Score::exitance);
   ASSERT_NE(rt.filter(Coordinate::r), nullptr);
   EXPECT_EQ(rt.filter(Coordinate::r)->max, 3.0);
   EXPECT_FALSE(rt.filter(Coordinate::r)->min);  // 0 by default, where it is lowered
@@ -50,11 +50,11 @@ TEST(DeclaredTally, ReadsNameScoreAndFiltersInSpaceTimeOrder) {
   const TransportProblem problem = transport_problem(scene.spec);
   const TallyDeclaration& d = problem.tallies.at(problem.tallies.size() - 2);
   EXPECT_TRUE(d.chained);
-  EXPECT_EQ(d.score, Score::exit);
+  EXPECT_EQ(d.score, Score::exitance);
   ASSERT_EQ(d.filters.size(), 2u);
   EXPECT_EQ(d.filters[0].dims, std::vector<std::string>{"r"});  // r before t, as written or not
   EXPECT_EQ(d.filters[1].dims, std::vector<std::string>{"t"});
-  EXPECT_EQ(d.units, "W mfp^-2 per J incident");
+  EXPECT_EQ(d.units, (Units{1, -2, 0, -1}));  // W mm^-2 per J incident, once in mm
   // The walk's r is in mfp (sigma_t = 2 / mm): 3 mm is 6 mfp. Its path is in mfp, each 0.5 mm
   // at c / 1.3 (eta).
   EXPECT_EQ(d.filters[0].binning.bin({5.9, 0.0, 0.0, 0.0, 1.0, 0}), 29);
@@ -63,13 +63,13 @@ TEST(DeclaredTally, ReadsNameScoreAndFiltersInSpaceTimeOrder) {
   EXPECT_EQ(d.axes[0].units, "mm");
   EXPECT_EQ(d.axes[1].units, "s");
   EXPECT_EQ(d.axes[1].edges.back(), 2e-9);
-  EXPECT_EQ(problem.tallies.back().units, "W mfp^-1 per W incident");
+  EXPECT_EQ(problem.tallies.back().units, (Units{1, -1}));
 }
 
 // A chained tally's filters bin an event row-major in the order listed, and the event's cell
 // gets its weight; outside any filter's axis, nothing.
 TEST(DeclaredTally, TheChainBinsEachEventByItsFilters) {
-  TallyDeclaration d{"rt", Score::exit, {}, "", ""};
+  TallyDeclaration d{"rt", Score::exitance, {}, {}, ""};
   d.chained = true;
   d.filters = {radius_filter(UniformAxis{0.0, 2.0, 4}),
                time_filter(UniformAxis{0.0, 1.0, 10}, 0.1)};
@@ -79,8 +79,8 @@ TEST(DeclaredTally, TheChainBinsEachEventByItsFilters) {
   SurfaceExit exit;
   exit.x = 0.3;
   exit.y = 0.4;                                         // r = 0.5: bin 1
-  scorer.chained_exit(buffer.data(), exit, 3.5, 0, 0.25);  // t = 0.35: bin 3
-  scorer.chained_exit(buffer.data(), exit, 10.0, 0, 1.0);  // t = 1: past the axis
+  scorer.chained_exit(buffer.data(), exit, Vec3::UnitZ(), 3.5, 0, 0.25);  // t = 0.35: bin 3
+  scorer.chained_exit(buffer.data(), exit, Vec3::UnitZ(), 10.0, 0, 1.0);  // t = 1: past the axis
   for (std::size_t i = 0; i < buffer.size(); ++i) {
     EXPECT_EQ(buffer[i], i == 1 * 10 + 3 ? 0.25 : 0.0) << i;
   }
@@ -89,7 +89,7 @@ TEST(DeclaredTally, TheChainBinsEachEventByItsFilters) {
 // x and y bin the event's position, each by its bin's width, and a map of both is row-major, x
 // first: the exit at (0.3, -0.4) falls in x bin 1 of [0, 1) and y bin 0 of [-1, 0).
 TEST(DeclaredTally, PositionFiltersBinXAndY) {
-  TallyDeclaration d{"map", Score::exit, {}, "", ""};
+  TallyDeclaration d{"map", Score::exitance, {}, {}, ""};
   d.chained = true;
   d.filters = {position_filter(Coordinate::x, UniformAxis{0.0, 1.0, 4}),
                position_filter(Coordinate::y, UniformAxis{-1.0, 1.0, 2})};
@@ -102,9 +102,9 @@ TEST(DeclaredTally, PositionFiltersBinXAndY) {
   SurfaceExit exit;
   exit.x = 0.3;
   exit.y = -0.4;
-  scorer.chained_exit(buffer.data(), exit, 0.0, 0, 0.5);
+  scorer.chained_exit(buffer.data(), exit, Vec3::UnitZ(), 0.0, 0, 0.5);
   exit.x = -0.1;  // off the x axis
-  scorer.chained_exit(buffer.data(), exit, 0.0, 0, 1.0);
+  scorer.chained_exit(buffer.data(), exit, Vec3::UnitZ(), 0.0, 0, 1.0);
   for (std::size_t i = 0; i < buffer.size(); ++i) {
     EXPECT_EQ(buffer[i], i == 1 * 2 + 0 ? 0.5 : 0.0) << i;
   }
@@ -127,6 +127,52 @@ TEST(DeclaredTally, ExitAngleAndOrderBinTheirEvents) {
     EXPECT_EQ(orders.binning.bin(event), bin) << order;
   }
   EXPECT_EQ(orders.measures, (std::vector<double>{1.0, 1.0, 1.0}));
+}
+
+// theta and phi bin the direction of travel in the lab's frame; psi and azimuth an exit point on
+// a sphere (psi = pi, the antipode, in the last bin); triangle a mesh's triangle.
+TEST(DeclaredTally, DirectionAndSurfaceCoordinatesBinTheirEvents) {
+  TallyEvent event;
+  event.u_x = -std::sqrt(0.75);  // theta = 2 pi / 3; phi just past pi, below the -x axis
+  event.u_y = -std::sqrt(0.75) * 1e-9;
+  event.u_z = -0.5;
+  const Filter theta = polar_angle_filter(UniformAxis{0.0, pi, 4}, false);
+  EXPECT_EQ(theta.binning.bin(event), 2);  // [pi / 2, 3 pi / 4)
+  event.u_z = -1.0;                        // straight back: pi, in the last bin
+  EXPECT_EQ(theta.binning.bin(event), 3);
+  EXPECT_DOUBLE_EQ(theta.measures[0], 2 * pi * (1 - std::cos(pi / 4)));
+  EXPECT_DOUBLE_EQ(polar_angle_filter(UniformAxis{0.0, pi, 4}, true).measures[0],
+                   1 - std::cos(pi / 4));
+  const Filter phi = azimuth_angle_filter(UniformAxis{0.0, 2 * pi, 4});
+  EXPECT_EQ(phi.binning.bin(event), 2);  // pi + 1e-9: [pi, 3 pi / 2)
+  event.u_y = -event.u_y;
+  EXPECT_EQ(phi.binning.bin(event), 1);  // pi - 1e-9: [pi / 2, pi)
+  EXPECT_DOUBLE_EQ(phi.measures[0], pi / 2);
+  const Filter psi = sphere_polar_filter(UniformAxis{0.0, pi, 3}, 2.0, false);
+  event.cos_polar = -1.0;  // the antipode
+  EXPECT_EQ(psi.binning.bin(event), 2);
+  event.cos_polar = 0.9;
+  EXPECT_EQ(psi.binning.bin(event), 0);
+  EXPECT_DOUBLE_EQ(psi.measures[0], 2 * pi * 4.0 * (1 - std::cos(pi / 3)));
+  const Filter azimuth = sphere_azimuth_filter(UniformAxis{0.0, 2 * pi, 4}, 2.0, false);
+  event.x = 0.0;
+  event.y = -1.0;  // azimuth 3 pi / 2: the last bin
+  EXPECT_EQ(azimuth.binning.bin(event), 3);
+  EXPECT_DOUBLE_EQ(azimuth.measures[0], 2 * 4.0 * pi / 2);  // the lune: 2 R^2 x width
+  // Over the whole sphere the bands, and the lunes, add up to its area; psi x azimuth, made for
+  // each other, to each patch's.
+  double bands = 0.0, lunes = 0.0;
+  for (const double m : psi.measures) bands += m;
+  for (const double m : azimuth.measures) lunes += m;
+  EXPECT_NEAR(bands, 4 * pi * 4.0, 1e-12);
+  EXPECT_NEAR(lunes, 4 * pi * 4.0, 1e-12);
+  EXPECT_DOUBLE_EQ(
+      sphere_polar_filter(UniformAxis{0.0, pi, 3}, 2.0, true).measures[1] *
+          sphere_azimuth_filter(UniformAxis{0.0, 2 * pi, 4}, 2.0, true).measures[1],
+      sphere_patch_filter(UniformAxis{0.0, pi, 3}, UniformAxis{0.0, 2 * pi, 4}, 2.0).measures[4]);
+  const Filter triangles = triangle_filter({0.5, 0.25, 2.0});
+  event.triangle = 2;
+  EXPECT_EQ(triangles.binning.bin(event), 2);
 }
 
 TEST(DeclaredTally, RefusesWhatItsGeometryCannotScoreNamingTheField) {
@@ -191,14 +237,34 @@ TEST(DeclaredTally, RefusesWhatItsGeometryCannotScoreNamingTheField) {
                     "score = \"absorbed\"\n[tallies]\nestimator = "
                     "\"track_length\"\n"),
             "tallies.estimator");
-  // A slab has no volume estimator; a mesh takes no [[tally]] yet.
+  // The direction's theta is of events in the volume; an exit has theta_o. phi bins exits
+  // through a plane only, psi and azimuth a sphere's, triangle a mesh's.
+  EXPECT_EQ(refused(half + tally + "score = \"exitance\"\nfilters = { theta = { bins = 2 } }\n"),
+            "tally[1].filters.theta");
+  EXPECT_EQ(refused(half + tally + "score = \"exitance\"\nfilters = { psi = { bins = 2 } }\n"),
+            "tally[1].filters.psi");
+  const std::string sphere =
+      "[geometry]\ntype = \"sphere\"\nradius = 1\neta = 1.3\n[source]\ntype = \"directional\"\n";
+  EXPECT_EQ(refused(sphere + tally + "score = \"exitance\"\nfilters = { phi = { bins = 2 } }\n"),
+            "tally[1].filters.phi");
+  EXPECT_EQ(refused(sphere + tally + "score = \"exitance\"\nfilters = { triangle = true }\n"),
+            "tally[1].filters.triangle");
+  EXPECT_NO_THROW(parse_scene(sphere + tally +
+                                  "score = \"exitance\"\nfilters = { psi = { bins = 2 }, "
+                                  "azimuth = { bins = 3 } }\n",
+                              "sphere.toml"));
+  EXPECT_NO_THROW(parse_scene(sphere + tally +
+                                  "score = \"absorbed\"\nfilters = { theta = { bins = 2 }, "
+                                  "phi = { bins = 3 } }\n",
+                              "sphere.toml"));
+  // A slab has no volume estimator.
   EXPECT_EQ(refused("[geometry]\ntype = \"slab\"\n[[layers]]\nmu_a = 1\nmu_s = 10\ng = 0\nn = 1.4\n"
                     "thickness = 0.1\n" +
                     tally + "score = \"fluence\"\n"),
             "tally[1].score");
   EXPECT_EQ(refused("[geometry]\ntype = \"mesh\"\n[mesh]\nshape = \"sphere\"\n" + tally +
-                    "score = \"exitance\"\n"),
-            "tally");
+                    "score = \"exitance\"\nfilters = { psi = { bins = 2 } }\n"),
+            "tally[1].filters.psi");
   EXPECT_NO_THROW(parse_scene(infinite + tally +
                                   "score = \"absorbed\"\ngroup_index = 1.4\nfilters = { t = { "
                                   "max = 1e-9, bins = 2 }, z = { min = -1, max = 1, bins = 4 } }\n",
@@ -213,7 +279,7 @@ TEST(DeclaredTally, OnlyADeclaredTallyChangesTheFingerprint) {
   spec.declared_tallies.clear();
   EXPECT_EQ(fingerprint(SceneSpec(spec)), before);
   spec.declared_tallies.push_back(
-      {"R_t", DeclaredScore::exitance, {{Coordinate::t, 0.0, 1e-9, 4}}, std::nullopt});
+      {"R_t", Score::exitance, {{Coordinate::t, 0.0, 1e-9, 4}}, std::nullopt});
   EXPECT_NE(fingerprint(SceneSpec(spec)), before);
 }
 

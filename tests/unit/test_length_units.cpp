@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
 #include <string>
 #include <variant>
 #include <vector>
@@ -22,18 +23,40 @@ Medium in_mm(double sigma_t) {
   return Medium{0.8, sigma_t, 0.5, "mm"};
 }
 
-TEST(LengthUnits, UnitsStringsAndFactors) {
-  double factor = 0.0;
-  EXPECT_EQ(units_in_length_unit("W mfp^-2 sr^-1 per W incident", in_mm(2.0), &factor),
-            "W mm^-2 sr^-1 per W incident");
-  EXPECT_DOUBLE_EQ(factor, 4.0);  // per mfp^2 = sigma_t^2 per mm^2
-  EXPECT_EQ(units_in_length_unit("mfp", in_mm(2.0), &factor), "mm");
-  EXPECT_DOUBLE_EQ(factor, 0.5);  // 1 mfp = 1 / sigma_t mm
-  EXPECT_EQ(units_in_length_unit("W per W incident", in_mm(2.0), &factor), "W per W incident");
-  EXPECT_DOUBLE_EQ(factor, 1.0);
-  EXPECT_EQ(units_in_length_unit("W mfp^-2 per W incident", Medium{}, &factor),
-            "W mfp^-2 per W incident");
-  EXPECT_DOUBLE_EQ(factor, 1.0);
+// An independent reading of a units text: the text with "mfp" replaced by the medium's unit, and
+// in *factor sigma_t^-k for each mfp^k in it.
+std::string in_unit(const std::string& units, const Medium& medium, double* factor) {
+  *factor = 1.0;
+  std::istringstream words(units);
+  std::string word, converted;
+  while (words >> word) {
+    if (word == "mfp" || word.starts_with("mfp^")) {
+      *factor *= std::pow(medium.sigma_t, -(word == "mfp" ? 1 : std::stoi(word.substr(4))));
+      word = medium.length_unit + word.substr(3);
+    }
+    converted += (converted.empty() ? "" : " ") + word;
+  }
+  return converted;
+}
+
+TEST(LengthUnits, UnitsAreWrittenAndConvertedFromTheirPowers) {
+  EXPECT_EQ((Units{1, -2, -1}.text("mfp")), "W mfp^-2 sr^-1 per W incident");
+  EXPECT_EQ((Units{1, -2, 0, -1}.text("mm")), "W mm^-2 per J incident");
+  EXPECT_EQ((Units{0, 1}.text("mm")), "mm");
+  EXPECT_EQ((Units{1, 0, -1}.text("cm")), "W sr^-1 per W incident");
+  EXPECT_EQ(Units{}.text("cm"), "W per W incident");
+  const ReportedLength mm = reported_length(in_mm(2.0));
+  EXPECT_EQ(mm.unit, "mm");
+  EXPECT_EQ(mm.factor(Units{1, -2, -1}), 4.0);  // per mfp^2 = sigma_t^2 per mm^2
+  EXPECT_EQ(mm.factor(Units{0, 1}), 0.5);       // 1 mfp = 1 / sigma_t mm
+  EXPECT_EQ(mm.factor(Units{}), 1.0);
+  EXPECT_EQ(reported_length(Medium{}).factor(Units{1, -2}), 1.0);
+  // The independent reading of the text agrees.
+  for (const Units units : {Units{1, -2, -1}, Units{0, 1}, Units{1, -3}, Units{}}) {
+    double factor = 0.0;
+    EXPECT_EQ(in_unit(units.text("mfp"), in_mm(2.0), &factor), units.text("mm"));
+    EXPECT_EQ(factor, mm.factor(units));
+  }
 }
 
 TEST(LengthUnits, UnknownUnitOrMfpWithSigmaTIsRefused) {
@@ -64,7 +87,7 @@ void expect_scaled(const std::vector<TallyResult>& mm, const std::vector<TallyRe
   ASSERT_EQ(mm.size(), mfp.size());
   for (std::size_t t = 0; t < mm.size(); ++t) {
     double factor = 0.0;
-    const std::string units = units_in_length_unit(mfp[t].units, in_mm(sigma_t), &factor);
+    const std::string units = in_unit(mfp[t].units, in_mm(sigma_t), &factor);
     EXPECT_EQ(mm[t].name, mfp[t].name);
     EXPECT_EQ(mm[t].units, units) << mm[t].name;
     EXPECT_EQ(mm[t].units.find("mfp"), std::string::npos) << mm[t].units;
@@ -123,7 +146,7 @@ TEST(LengthUnits, SearchlightAcceptsSigmaTInCentimetres) {
   ASSERT_EQ(a.tallies.size(), b.tallies.size());
   for (std::size_t t = 0; t < a.tallies.size(); ++t) {
     double factor = 0.0;
-    const std::string units = units_in_length_unit(b.tallies[t].units, cm.medium, &factor);
+    const std::string units = in_unit(b.tallies[t].units, cm.medium, &factor);
     EXPECT_EQ(a.tallies[t].units, units);
     for (std::size_t i = 0; i < a.tallies[t].mean.size(); ++i) {
       EXPECT_EQ(a.tallies[t].mean[i], b.tallies[t].mean[i] * factor) << a.tallies[t].name;

@@ -20,7 +20,7 @@ double total(const Filter& f) {
 
 TEST(Filter, MeasuresAddUpToTheWhole) {
   EXPECT_NEAR(total(radius_filter({0.0, 2.0, 40})), pi * 4.0, 1e-12);
-  EXPECT_NEAR(total(length_filter("z", {-1.0, 3.0, 40})), 4.0, 1e-12);
+  EXPECT_NEAR(total(position_filter(Coordinate::z, {-1.0, 3.0, 40})), 4.0, 1e-12);
   EXPECT_NEAR(total(shell_filter({0.0, 3.0, 30})), 4.0 / 3.0 * pi * 27.0, 1e-10);
   // All directions: 4 pi sr, folded or not (a folded bin stands for phi and -phi).
   EXPECT_NEAR(total(direction_filter({0.0, pi, 18}, {0.0, 2.0 * pi, 36}, false)), 4.0 * pi, 1e-12);
@@ -41,17 +41,17 @@ TEST(Filter, DirectionBinsAreRowMajorInThetaThenPhi) {
 
 // Two by-order tallies, a scalar and an exact value, split by order.
 std::vector<TallyDeclaration> declarations() {
-  return {
-      {"ring", Score::exit_by_radius, {radius_filter({0.0, 2.0, 2})}, "W mfp^-2", "per ring", true},
-      {"total", Score::exit, {}, "W", "all of it", true},
-      {"absorbed", Score::absorbed, {}, "W", "absorbed"},
-      {"specular", Score::exact, {}, "W", "known", false, 0.25}};
+  return {{"ring", Score::exitance, {radius_filter({0.0, 2.0, 2})}, Units{1, -2}, "per ring", true},
+          {"total", Score::exitance, {}, Units{}, "all of it", true},
+          {"absorbed", Score::absorbed, {}, Units{}, "absorbed"},
+          {"specular", Score::exact, {}, Units{}, "known", false, 0.25}};
 }
 
 TEST(TallyBook, LaysOutBlocksThenTheRest) {
   const TallyBook split(declarations(), true);
-  EXPECT_EQ(split.offset(Score::exit_by_radius), 0u);
-  EXPECT_EQ(split.offset(Score::exit), 2u);
+  EXPECT_EQ(split.offset(Score::exitance, {Coordinate::r}), 0u);
+  EXPECT_EQ(split.offset(Score::exitance), 2u);
+  EXPECT_FALSE(split.has(Score::exitance, {Coordinate::r, Coordinate::exit_angle}));
   EXPECT_EQ(split.order_block(0), 3u);
   EXPECT_EQ(split.order_block(1), 6u);
   EXPECT_EQ(split.order_block(7), 9u);  // two or more
@@ -91,10 +91,42 @@ TEST(TallyBook, FinishesEachTallyFromItsDeclaration) {
   EXPECT_EQ(results[9].stderr_of_mean, std::vector<double>{0.0});
 }
 
-TEST(TallyBook, RefusesTwoTalliesOfOneScore) {
+// Each tally is written in the reported length unit, and converted by its own length power: a
+// value per mfp^k is walk_per_unit^k per unit^k.
+TEST(TallyBook, ReportsInTheRunsLengthUnitByEachTallysPower) {
+  const TallyBook book(declarations(), false);
+  const std::vector<double> mean(book.size(), 1.0), error(book.size(), 0.5);
+  const std::vector<TallyResult> mfp = book.finish(mean, error, 1.0);
+  const std::vector<TallyResult> mm = book.finish(mean, error, 1.0, {"mm", 2.0});
+  EXPECT_EQ(mfp[0].units, "W mfp^-2 per W incident");
+  EXPECT_EQ(mm[0].units, "W mm^-2 per W incident");
+  EXPECT_EQ(mm[0].mean[0], mfp[0].mean[0] * 4.0);
+  EXPECT_EQ(mm[0].stderr_of_mean[1], mfp[0].stderr_of_mean[1] * 4.0);
+  EXPECT_EQ(mm[1].units, "W per W incident");
+  EXPECT_EQ(mm[1].mean, mfp[1].mean);
+}
+
+// A fixed path scores one tally; two of one score binned along the same coordinates would be
+// scored twice over. The chain takes any number.
+TEST(TallyBook, RefusesTwoTalliesOfOneFixedPath) {
   std::vector<TallyDeclaration> twice = declarations();
   twice.push_back(twice.front());
   EXPECT_THROW(TallyBook(twice, false), std::invalid_argument);
+  twice.back().name = "ring_r";
+  twice.back().chained = true;
+  twice.back().by_order = false;
+  EXPECT_NO_THROW(TallyBook(twice, false));
+  // Of one score along other coordinates, both have their path.
+  std::vector<TallyDeclaration> two = declarations();
+  two.push_back({"ring_angle",
+                 Score::exitance,
+                 {radius_filter({0.0, 2.0, 2}), exit_angle_filter({0.0, 1.5, 3})},
+                 Units{},
+                 ""});
+  const TallyBook book(two, false);
+  EXPECT_TRUE(book.has(Score::exitance, {Coordinate::r, Coordinate::exit_angle}));
+  EXPECT_NE(book.offset(Score::exitance, {Coordinate::r, Coordinate::exit_angle}),
+            book.offset(Score::exitance, {Coordinate::r}));
 }
 
 }  // namespace

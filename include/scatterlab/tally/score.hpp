@@ -1,53 +1,49 @@
 #pragma once
 // What a tally adds up (OpenMC's scores), and at which event of a photon's walk. Where the
-// event falls is the business of the tally's filters (filter.hpp); each score is scored by
-// Scorer (scorer.hpp) with the filters listed beside it here.
+// event falls is the business of the tally's filters (filter.hpp): a score with its filters is a
+// tally, and the Scorer (scorer.hpp) has a fixed path for each pair a geometry declares by
+// itself, beside the chain that bins any other.
 
 #include <cstddef>
+#include <optional>
+#include <string_view>
 
 namespace scatterlab {
 
 enum class Score : std::size_t {
   // In the volume, at each collision (weight 1 / sigma_t = 1 mfp) or along each flight (its
   // length), whichever estimator the run uses:
-  fluence,            // filters r, z
-  flux,               // r, z, component: omega . e_r and omega . e_z
-  radiance,           // r, z, direction (theta, phi)
-  fluence_spherical,  // rho
-  // Where a photon leaves the medium through its surface, a count:
-  exit,                 // no filter: the total
-  exit_by_radius,       // r
-  exit_radiance,        // r, exit angle theta_o
-  exit_by_polar_angle,  // on a sphere: psi (the angle from the lit pole) and the azimuth
-  exit_by_triangle,     // on a triangle mesh: the triangle it leaves through
-  exit_by_position,     // on a plane: x, y (about the entry point)
-  exit_by_angle,        // exit angle theta_o, wherever on the surface
-  // Where a photon leaves a slab through its far side (transmitted), a count; the side it
-  // entered is the exit scores above:
-  transmitted,                  // no filter: the total
-  transmitted_by_radius,        // r
-  transmitted_by_angle,         // theta_o, from the far side's outward normal
-  transmitted_by_radius_angle,  // r, theta_o
-  // Where a light's photon is reflected off the surface before entering (a sphere light), a
-  // count:
-  reflected_at_entry,
-  // Where a photon's walk ends, a count (or, for the depth, z):
-  absorbed,                  // anywhere
-  absorbed_in_grid,          // inside the (r, z) grid
-  absorbed_outside_grid,     // outside it
-  absorption_depth,          // z at absorption: its mean is the mean absorption depth
-  absorbed_by_layer,         // a slab's layer
-  absorbed_by_depth,         // z
-  absorbed_by_radius_depth,  // r, z
-  escaped,                   // past the escape radius
+  fluence,   // fixed paths: filters (r, z), or rho
+  flux,      // (r, z, component): omega . e_r and omega . e_z
+  radiance,  // (r, z, direction)
+  // A photon leaves the medium through the surface it entered by (reflectance), or any surface of
+  // an object, a count. Fixed paths: no filter (the total), r, (r, theta_o), theta_o, (x, y), a
+  // sphere's surface patch, a mesh's triangle.
+  exitance,
+  // A photon leaves a slab through its far side, a count. Fixed paths: none, r, theta_o,
+  // (r, theta_o).
+  transmittance,
+  // A light's photon is reflected off the surface before it enters, a count.
+  entry_reflectance,
+  // A photon's weight is absorbed, a count. Fixed paths: none, inside or outside the (r, z)
+  // grid, layer, z, (r, z).
+  absorbed,
+  // The same weight times its depth z: its mean over the absorbed power is the mean depth.
+  absorbed_depth,
+  // A photon walks past the escape radius, a count.
+  escaped,
   // Known exactly before any photon runs: no buffer cell and no standard error.
   exact,
   count
 };
 
 constexpr bool is_volume_score(Score s) {
-  return s == Score::fluence || s == Score::flux || s == Score::radiance ||
-         s == Score::fluence_spherical;
+  return s == Score::fluence || s == Score::flux || s == Score::radiance;
 }
+
+// The name a scene gives a score ([[tally]] score = "..."): "fluence", "exitance", ... The
+// scores a scene may declare are those of declared_tally.hpp.
+std::string_view to_string(Score score);
+std::optional<Score> score_named(std::string_view name);
 
 }  // namespace scatterlab

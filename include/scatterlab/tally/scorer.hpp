@@ -142,22 +142,28 @@ class Scorer {
   // The chained tallies (TallyDeclaration::chained), which the walk scores only when a run has
   // them (random_walk.hpp): each adds `weight` at the cell its filters bin the event into, and
   // nothing when one of them puts it outside its axis. An exit is binned at its point on the
-  // surface, with its angle outside; a collision (the fluence's collision estimator: 1 mfp) and
-  // an absorption at their point in the volume. `path`, `order` and `layer` as TallyEvent has
+  // surface, with its angle outside and the direction it left along inside; a collision (the
+  // fluence's collision estimator: 1 mfp) and an absorption at their point in the volume, with
+  // the direction the photon travelled there. `path`, `order` and `layer` as TallyEvent has
   // them.
-  void chained_exit(double* buffer, const SurfaceExit& where, double path, int order,
-                    double weight) const {
-    add_chained(where.transmitted ? transmitted_chains_ : exit_chains_, buffer,
-                {where.x, where.y, 0.0, path, where.cos_outside, order, 0}, weight);
+  void chained_exit(double* buffer, const SurfaceExit& where, const Vec3& direction, double path,
+                    int order, double weight) const {
+    TallyEvent event{where.x, where.y, 0.0, path, where.cos_outside, order, 0};
+    event.u_x = direction.x();
+    event.u_y = direction.y();
+    event.u_z = direction.z();
+    event.cos_polar = where.cos_polar;
+    event.triangle = where.triangle;
+    add_chained(where.transmitted ? transmitted_chains_ : exit_chains_, buffer, event, weight);
   }
-  void chained_collision(double* buffer, const Vec3& position, double path, int order) const {
-    add_chained(collision_chains_, buffer,
-                {position.x(), position.y(), position.z(), path, 1.0, order, 0}, 1.0);
+  void chained_collision(double* buffer, const Vec3& position, const Vec3& direction, double path,
+                         int order) const {
+    add_chained(collision_chains_, buffer, volume_event(position, direction, path, order, 0), 1.0);
   }
-  void chained_absorption(double* buffer, const Vec3& position, double path, int order, int layer,
-                          double weight) const {
-    add_chained(absorption_chains_, buffer,
-                {position.x(), position.y(), position.z(), path, 1.0, order, layer}, weight);
+  void chained_absorption(double* buffer, const Vec3& position, const Vec3& direction, double path,
+                          int order, int layer, double weight) const {
+    add_chained(absorption_chains_, buffer, volume_event(position, direction, path, order, layer),
+                weight);
   }
 
   bool in_grid(const Vec3& p) const {
@@ -223,6 +229,15 @@ class Scorer {
       add(buffer, base + static_cast<std::size_t>(folded), block, 0.5 * v);
       add(buffer, base + static_cast<std::size_t>(phi_bins_ - 1 - folded), block, 0.5 * v);
     }
+  }
+
+  static TallyEvent volume_event(const Vec3& position, const Vec3& direction, double path,
+                                 int order, int layer) {
+    TallyEvent event{position.x(), position.y(), position.z(), path, 1.0, order, layer};
+    event.u_x = direction.x();
+    event.u_y = direction.y();
+    event.u_z = direction.z();
+    return event;
   }
 
   // A chained tally: its offset, and each filter's binning with its stride (row-major).

@@ -8,8 +8,8 @@
 // its order's block too, so that every total carries its own batch variance instead of being a
 // sum of correlated parts. The tallies not split by order follow the blocks.
 
-#include <array>
 #include <cstddef>
+#include <initializer_list>
 #include <vector>
 
 #include "scatterlab/tally/tally_declaration.hpp"
@@ -23,9 +23,13 @@ class TallyBook {
 
   TallyBook(std::vector<TallyDeclaration> declarations, bool split_by_order);
 
-  // Offset of the score's cells in the all-orders block (or after the blocks), or absent.
-  std::size_t offset(Score score) const { return offsets_[static_cast<std::size_t>(score)]; }
-  bool has(Score score) const { return offset(score) != absent; }
+  // Offset of the cells of the tally (not chained) of `score` whose filters bin along
+  // `coordinates`, in order, in the all-orders block (or after the blocks), or absent: the
+  // Scorer's fixed path for that pair looks it up here once.
+  std::size_t offset(Score score, std::initializer_list<Coordinate> coordinates = {}) const;
+  bool has(Score score, std::initializer_list<Coordinate> coordinates = {}) const {
+    return offset(score, coordinates) != absent;
+  }
   // Offset of declaration i's cells; a chained tally's is found only here.
   std::size_t offset_of(std::size_t i) const { return declaration_offsets_[i]; }
   // Whether any tally is chained (TallyDeclaration::chained): the walk then keeps time.
@@ -44,15 +48,16 @@ class TallyBook {
 
   // The finished tallies from the batch mean and standard error of the raw sums per photon:
   // cell i of a tally is raw / (product of its filters' measures) x scale, where scale is the
-  // power each photon carries (1, or the power that entered through a surface). Order: the
-  // by-order tallies block by block (all orders, then _unscattered, _single, _multiple when
-  // split), then the rest, each group in declaration order.
+  // power each photon carries (1, or the power that entered through a surface), in `length`'s
+  // unit (its factor for the tally's units). Order: the by-order tallies block by block (all
+  // orders, then _unscattered, _single, _multiple when split), then the rest, each group in
+  // declaration order.
   std::vector<TallyResult> finish(const std::vector<double>& raw_mean,
-                                  const std::vector<double>& raw_stderr, double scale) const;
+                                  const std::vector<double>& raw_stderr, double scale,
+                                  const ReportedLength& length = {}) const;
 
  private:
   std::vector<TallyDeclaration> declarations_;
-  std::array<std::size_t, static_cast<std::size_t>(Score::count)> offsets_;
   std::vector<std::size_t> declaration_offsets_;
   bool split_by_order_ = false;
   std::size_t block_size_ = 0;

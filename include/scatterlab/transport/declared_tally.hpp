@@ -4,22 +4,30 @@
 // Scorer's chain, tally/scorer.hpp), so any of them works on any score where the pair makes sense:
 //
 //   score          its event                                   filters
-//   exitance       a photon leaves through the lit surface      x, y, r, theta_o, t, order
-//   transmittance  a photon leaves a slab through its far side  x, y, r, theta_o, t, order
-//   fluence        a collision (the collision estimator)        x, y, r, z, rho, t, order
-//   absorbed       a photon's weight is absorbed                x, y, r, z, rho, t, order, layer
+//   exitance       a photon leaves through the lit surface      x, y, r, theta_o, t, order;
+//                  (an object: any of its surface)              phi on a plane; psi, azimuth
+//                                                               on a sphere; triangle on a mesh
+//   transmittance  a photon leaves a slab through its far side  x, y, r, theta_o, phi, t, order
+//   fluence        a collision (the collision estimator)        x, y, r, z, rho, theta, phi, t,
+//                                                               order
+//   absorbed       a photon's weight is absorbed                the fluence's, and layer
 //
 // x and y are the event's position (of an exit point on the surface, about the entry point; the
 // beam arrives in the x-z plane), r the distance from the beam axis, z the depth, rho the
 // distance from the source (the origin: a point source's fluence on shells), all in the scene's
-// length unit; theta_o the exit angle from the outward normal,
-// outside, per steradian; t the time of flight in seconds since the light entered the medium:
-// the path travelled times the group index over c (a slab's layers each at their own index n);
-// order the number of scatterings, the last bin holding its order and more; layer a slab's layer,
-// top down (layer = true: a bin per layer). A tally against t is
-// the response to a unit impulse, per joule incident; one without t is per watt, as the
-// geometry's own tallies are. Its cells are row-major in the order of the table below, whatever
-// the order the file names them in.
+// length unit. theta and phi are the direction of travel, theta from +z over [0, pi] and phi
+// about z from +x over [0, 2 pi] (at an exit through a plane, the direction it leaves along:
+// refraction keeps its azimuth); theta_o the exit angle from the outward normal, outside, over
+// [0, pi/2]. theta and theta_o are per steradian, phi alone per radian, and phi with either of
+// them per steradian of the cell. psi is an exit point's angle from a sphere's lit pole
+// (0, 0, -R), over [0, pi], and azimuth its azimuth about z from +x; triangle a mesh's triangle
+// (triangle = true: a bin per triangle): all per unit area of the surface. t is the time of flight
+// in seconds since the light entered the medium: the path travelled times the group index over c
+// (a slab's layers each at their own index n); order the number of scatterings, the last bin
+// holding its order and more; layer a slab's layer, top down (layer = true: a bin per layer). A
+// tally against t is the response to a unit impulse, per joule incident; one without t is per
+// watt, as the geometry's own tallies are. Its cells are row-major in the order of the filter
+// table (declared_filter_keys), whatever the order the file names them in.
 
 #include <optional>
 #include <span>
@@ -34,8 +42,6 @@
 
 namespace scatterlab {
 
-enum class DeclaredScore { exitance, transmittance, fluence, absorbed };
-
 // One filter of a declared tally, as the file gives it: what it leaves out takes the filter's
 // default (r and t start at 0; theta_o spans [0, pi/2]; order counts from 0), and
 // check_declared_tallies refuses what is missing.
@@ -47,7 +53,7 @@ struct DeclaredFilter {
 
 struct DeclaredTally {
   std::string name;  // letters, digits and _; unique in the file
-  DeclaredScore score = DeclaredScore::exitance;
+  Score score = Score::exitance;        // exitance, transmittance, fluence or absorbed
   std::vector<DeclaredFilter> filters;  // at most one of each coordinate
   // The medium's group index, where the geometry has no index of its own (the infinite
   // medium); elsewhere the index is the geometry's (eta over an outside of index 1, or each
@@ -57,16 +63,22 @@ struct DeclaredTally {
   const DeclaredFilter* filter(Coordinate coordinate) const;
 };
 
-// The filters' keys in filters = {...} ("x", "y", "r", "z", "rho", "theta_o", "t", "order",
-// "layer"), in the order of their cells; and the coordinate of a key, or nullopt.
+// The filters' keys in filters = {...} ("x", "y", "r", ..., "layer"), in the order of their
+// cells; the coordinate of a key, or nullopt; and whether the key is a switch (layer = true,
+// triangle = true: a bin per layer or triangle) rather than a table with bins.
 std::span<const std::string_view> declared_filter_keys();
 std::optional<Coordinate> declared_filter(std::string_view key);
+bool declared_filter_is_switch(std::string_view key);
 
 // What a geometry gives its declared tallies: which events it has, its length unit and how its
 // walk's path becomes seconds.
+// The surface light leaves a geometry through, which the filters of exits need.
+enum class ExitSurface { none, plane, sphere, mesh };
+
 struct DeclaredTallyFrame {
-  std::string_view geometry;         // geometry.type, for refusals
-  bool has_surface = true;           // exitance
+  std::string_view geometry;  // geometry.type, for refusals
+  // None in the infinite medium (no exitance); a plane: the half-space, a slab's two sides.
+  ExitSurface surface = ExitSurface::plane;
   bool transmits = false;            // transmittance (a slab)
   bool has_volume_estimator = true;  // fluence
   bool has_index = true;             // refuses group_index (and needs none)
@@ -79,13 +91,13 @@ struct DeclaredTallyFrame {
   double seconds_per_walk_length = 0.0;
   double index = 1.0;  // the homogeneous medium's index, where it has one
   int layers = 0;      // a slab's, which the layer filter bins by
-  // How the tallies' units name a length: "mfp" in a homogeneous medium (its tallies are
-  // converted to the scene's unit after the run, transport/length_units.hpp), else the unit.
-  std::string walk_length_label = "mfp";
+  double radius = 0.0;  // a sphere's, in the walk's length unit (psi and azimuth measure by it)
+  std::vector<double> triangle_areas;  // a mesh's, in the walk's length unit squared
 };
 
 // The frame of a homogeneous medium (the walk in mfp), of index `index` where the geometry has
-// one (eta, over an outside of index 1), and of a slab in `length_unit`.
+// one (eta, over an outside of index 1; its surface by geometry: "half_space", "sphere" or
+// "mesh"), and of a slab in `length_unit`. A sphere's radius and a mesh's areas are the caller's.
 DeclaredTallyFrame homogeneous_frame(std::string_view geometry, const Medium& medium,
                                      std::optional<double> index);
 DeclaredTallyFrame slab_frame(const std::string& length_unit, int layers);
@@ -107,8 +119,7 @@ std::vector<TallyDeclaration> declare_chained_tallies(const std::vector<Declared
 // the fingerprint it always had.
 std::string fingerprint_text(const std::vector<DeclaredTally>& tallies);
 
-std::string to_string(DeclaredScore score);
-// The score a [[tally]] names, or nullopt.
-std::optional<DeclaredScore> declared_score(std::string_view name);
+// The score a [[tally]] names, or nullopt for a name that is not one of the four above.
+std::optional<Score> declared_score(std::string_view name);
 
 }  // namespace scatterlab

@@ -5,16 +5,16 @@
 // medium.length_unit: "mfp" (the default, sigma_t = 1) or a physical unit ("um", "mm", "cm",
 // "m"). Transport always runs in mean free paths: a length L in the spec's unit is L sigma_t mfp
 // (1 mfp = 1 / sigma_t). So the specs' transport_problem scales their lengths by sigma_t on the
-// way in, and simulate / run_half_space convert each tally on the way out by its length
-// dimension k (the power of "mfp" in its units string): a value q per mfp^k is q sigma_t^-k per
-// unit^k. In "mfp" nothing is scaled, so those runs are bit for bit what they always were.
+// way in, and the engine converts each tally on the way out by its length dimension k (the
+// length power of its Units, tally/units.hpp): a value q per mfp^k is q sigma_t^k per unit^k.
+// In "mfp" nothing is scaled, so those runs are bit for bit what they always were.
 
 #include <string>
 #include <vector>
 
 #include "scatterlab/core/medium.hpp"
 #include "scatterlab/tally/axis.hpp"
-#include "scatterlab/tally/tally_result.hpp"
+#include "scatterlab/tally/units.hpp"
 
 namespace scatterlab {
 
@@ -46,13 +46,10 @@ void check_escape_radius_span(double escape_radius, const Medium& medium);
 // A length axis of the spec in mfp: its ends times `mfp_per_unit`, the same bins.
 UniformAxis length_axis_in_mfp(const UniformAxis& axis, double mfp_per_unit);
 
-// `units` ("W mfp^-2 per W incident", "mfp") with mfp replaced by `length_unit`, and in
-// *factor the number that turns a value in the former into the latter: sigma_t^-k for mfp^k.
-// Units without mfp come back as they are, with *factor = 1.
-std::string units_in_length_unit(const std::string& units, const Medium& medium, double* factor);
-
-// Every tally of a run in mfp, converted to medium.length_unit (values, errors and units).
-// Does nothing when the unit is "mfp".
-void tallies_to_length_unit(std::vector<TallyResult>& tallies, const Medium& medium);
+// The unit a homogeneous medium's tallies are reported in: medium.length_unit, with sigma_t mfp
+// to one of it (TransportProblem::length; TallyBook::finish converts each tally by its units).
+inline ReportedLength reported_length(const Medium& medium) {
+  return {medium.length_unit, mfp_per_length_unit(medium)};
+}
 
 }  // namespace scatterlab

@@ -105,7 +105,9 @@ class RandomWalk {
           if (geometry_.template leaves<chained>(position, direction, layer, flight, random, exit,
                                                  &path)) {
             scorer_.exit(buffer, exit, order, weight);
-            if constexpr (chained) scorer_.chained_exit(buffer, exit, path, order, weight);
+            if constexpr (chained) {
+              scorer_.chained_exit(buffer, exit, direction, path, order, weight);
+            }
             break;
           }
           next = position;
@@ -116,7 +118,8 @@ class RandomWalk {
             if (geometry_.leaves(position, direction, next, flight, random, exit)) {
               scorer_.exit(buffer, exit, order, weight);
               if constexpr (chained) {
-                scorer_.chained_exit(buffer, exit, path + (flight - exit.remaining), order, weight);
+                scorer_.chained_exit(buffer, exit, direction, path + (flight - exit.remaining),
+                                     order, weight);
               }
               break;
             }
@@ -137,7 +140,9 @@ class RandomWalk {
         position = next;
         if constexpr (estimator == Estimator::collision) {
           scorer_.collision(buffer, position, direction, order);
-          if constexpr (chained) scorer_.chained_collision(buffer, position, path, order);
+          if constexpr (chained) {
+            scorer_.chained_collision(buffer, position, direction, path, order);
+          }
         }
         double albedo = albedo_;
         if constexpr (Geometry::layered) albedo = geometry_.albedo(layer);
@@ -148,7 +153,7 @@ class RandomWalk {
           const double deposited = weight * (1.0 - albedo);
           scorer_.absorption(buffer, position, order, layer, deposited);
           if constexpr (chained)
-            scorer_.chained_absorption(buffer, position, path, order, layer, deposited);
+            scorer_.chained_absorption(buffer, position, direction, path, order, layer, deposited);
           weight -= deposited;
           if (weight < roulette_threshold) {
             if (!(weight > 0.0) || u[1] >= roulette_chance) break;
@@ -157,7 +162,7 @@ class RandomWalk {
         } else if (u[1] >= albedo) {
           scorer_.absorption(buffer, position, order, layer);
           if constexpr (chained)
-            scorer_.chained_absorption(buffer, position, path, order, layer, 1.0);
+            scorer_.chained_absorption(buffer, position, direction, path, order, layer, 1.0);
           break;
         }
         if constexpr (Geometry::layered) {

@@ -11,6 +11,7 @@
 
 #include "scatterlab/tally/tally_axes.hpp"
 #include "scatterlab/tally/tally_declaration.hpp"
+#include "scatterlab/tally/units.hpp"
 #include "scatterlab/transport/estimator.hpp"
 #include "scatterlab/transport/run_settings.hpp"
 #include "scatterlab/transport/slab.hpp"
@@ -46,6 +47,9 @@ struct TransportProblem {
   Estimator estimator = Estimator::collision;  // of the volume tallies
   // The power each photon carries, per unit incident power: what entered through the surface.
   double photon_power = 1.0;
+  // The unit the tallies are reported in, and how many of the lengths above make one of it
+  // (length_units.hpp): the spec's, which TallyBook::finish converts to by each tally's units.
+  ReportedLength length;
   RunSettings run;
   // The spec's fields that size the tallies, as a memory error names them (engine.hpp).
   std::string size_fields = "tallies";
