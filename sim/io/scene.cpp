@@ -517,8 +517,9 @@ class SceneReader : public TomlReader {
       if (const toml::table* filters = subtable(*table, "filters", path)) {
         const std::string at_filters = dotted(path, "filters");
         check_table(*filters, at_filters);
-        for (const std::string_view name : declared_filter_keys()) {
-          if (declared_filter_is_switch(name)) {  // no axis: a bin per layer or triangle
+        for (const DeclaredFilterKey& declared : declared_filter_schema()) {
+          const std::string_view name = declared.key;
+          if (declared.axis == FilterAxis::each) {  // no axis: a bin per layer or triangle
             if (boolean(*filters, name, at_filters).value_or(false)) {
               tally.filters.push_back({*declared_filter(name), {}, {}, 0});
             }

@@ -4,10 +4,13 @@
 
 #include <algorithm>
 #include <array>
+#include <deque>
 #include <map>
 #include <string>
 
+#include "scatterlab/core/constants.hpp"
 #include "scatterlab/io/scene.hpp"
+#include "scatterlab/transport/declared_tally.hpp"
 
 namespace scatterlab {
 namespace {
@@ -136,55 +139,6 @@ constexpr std::array kKeys = std::to_array<SceneKey>({
      true},
     {"tally.group_index", "infinite", number, "a refractive index in [0.1, 10]",
      "the medium's group index, for the time of flight (the infinite medium has no index)"},
-    {"tally.filters.x.min", kAll, number, "a finite number",
-     "bins of x (of an exit: on the surface, about the entry point), in the length unit"},
-    {"tally.filters.x.max", kAll, number, "a finite number > min",
-     "bins of x (of an exit: on the surface, about the entry point), in the length unit"},
-    {"tally.filters.x.bins", kAll, integer, "an integer in [1, 100000]", "bins of x"},
-    {"tally.filters.y.min", kAll, number, "a finite number",
-     "bins of y (of an exit: on the surface, about the entry point), in the length unit"},
-    {"tally.filters.y.max", kAll, number, "a finite number > min",
-     "bins of y (of an exit: on the surface, about the entry point), in the length unit"},
-    {"tally.filters.y.bins", kAll, integer, "an integer in [1, 100000]", "bins of y"},
-    {"tally.filters.r.min", kAll, number, "a finite number >= 0 (0 by default)",
-     "bins of the distance from the beam axis, in the length unit"},
-    {"tally.filters.r.max", kAll, number, "a finite number > min",
-     "bins of the distance from the beam axis, in the length unit"},
-    {"tally.filters.r.bins", kAll, integer, "an integer in [1, 100000]",
-     "bins of the distance from the beam axis"},
-    {"tally.filters.z.min", kAll, number, "a finite number", "bins of depth, in the length unit"},
-    {"tally.filters.z.max", kAll, number, "a finite number > min",
-     "bins of depth, in the length unit"},
-    {"tally.filters.z.bins", kAll, integer, "an integer in [1, 100000]", "bins of depth"},
-    {"tally.filters.rho.min", kAll, number, "a finite number >= 0 (0 by default)",
-     "bins of the distance from the source (the origin), in the length unit"},
-    {"tally.filters.rho.max", kAll, number, "a finite number > min",
-     "bins of the distance from the source (the origin), in the length unit"},
-    {"tally.filters.rho.bins", kAll, integer, "an integer in [1, 100000]",
-     "bins of the distance from the source"},
-    {"tally.filters.psi.bins", "sphere", integer, "an integer in [1, 100000]",
-     "bins of an exit point's angle from the lit pole (0, 0, -R), over [0, pi]"},
-    {"tally.filters.azimuth.bins", "sphere", integer, "an integer in [1, 100000]",
-     "bins of an exit point's azimuth about z from +x, over [0, 2 pi]"},
-    {"tally.filters.triangle", "mesh", boolean, "true or false",
-     "a bin per triangle of the mesh, by its area"},
-    {"tally.filters.theta.bins", kAll, integer, "an integer in [1, 100000]",
-     "bins of the direction's polar angle from +z, over [0, pi] (fluence, absorbed)"},
-    {"tally.filters.theta_o.bins", kAll, integer, "an integer in [1, 100000]",
-     "bins of the exit angle from the outward normal, outside, over [0, pi/2]"},
-    {"tally.filters.phi.bins", kAll, integer, "an integer in [1, 100000]",
-     "bins of the direction's azimuth about z from +x, over [0, 2 pi] (in the volume, and at "
-     "exits through a plane)"},
-    {"tally.filters.t.min", kAll, number, "a finite number >= 0 (0 by default)",
-     "bins of the time of flight since the light entered, in seconds"},
-    {"tally.filters.t.max", kAll, number, "a finite number > min",
-     "bins of the time of flight since the light entered, in seconds"},
-    {"tally.filters.t.bins", kAll, integer, "an integer in [1, 100000]",
-     "bins of the time of flight"},
-    {"tally.filters.order.bins", kAll, integer, "an integer in [1, 100000]",
-     "bins of the scattering order 0, 1, ...; the last holds its order and more"},
-    {"tally.filters.layer", "slab", boolean, "true or false", "a bin per layer, top down"},
-
     {"tallies.radiance", "infinite", boolean, "true or false", "L(r, z, theta, phi)"},
     {"tallies.fluence", "infinite half_space", boolean, "true or false", "fluence phi(r, z)"},
     {"tallies.flux", "infinite", boolean, "true or false", "vector irradiance E(r, z)"},
@@ -209,6 +163,58 @@ constexpr std::array kKeys = std::to_array<SceneKey>({
 
     {"output.path", kAll, string, "a non-empty file name", "the HDF5 file the run writes"},
 });
+
+// An angle's range as the key reference writes it.
+std::string range_text(double range) {
+  if (range == 0.5 * pi) return "pi/2";
+  if (range == pi) return "pi";
+  return range == 2.0 * pi ? "2 pi" : fmt::format("{}", range);
+}
+
+// kKeys, with the keys of the declared tallies' filters after tally.group_index, written from
+// the filters' own rows (transport/declared_tally.hpp), which no one copies here.
+const std::vector<SceneKey>& all_keys() {
+  static const struct Table {
+    std::deque<std::string> text;  // the written paths and meanings, which the keys view
+    std::vector<SceneKey> keys;
+
+    std::string_view hold(std::string s) { return text.emplace_back(std::move(s)); }
+    void add_filters() {
+      constexpr std::string_view bins = "an integer in [1, 100000]";
+      for (const DeclaredFilterKey& f : declared_filter_schema()) {
+        const std::string at = fmt::format("tally.filters.{}", f.key);
+        if (f.axis == FilterAxis::each) {
+          keys.push_back({hold(at), f.geometries, boolean, "true or false", f.meaning});
+          continue;
+        }
+        if (f.axis == FilterAxis::angle) {
+          keys.push_back({hold(at + ".bins"), f.geometries, integer, bins,
+                          hold(fmt::format("{}, over [0, {}]", f.meaning, range_text(f.range)))});
+          continue;
+        }
+        if (f.axis == FilterAxis::count) {
+          keys.push_back({hold(at + ".bins"), f.geometries, integer, bins, f.meaning});
+          continue;
+        }
+        const std::string_view meaning = hold(fmt::format(
+            "{}, in {}", f.meaning, f.axis == FilterAxis::seconds ? "seconds" : "the length unit"));
+        keys.push_back({hold(at + ".min"), f.geometries, number,
+                        f.axis == FilterAxis::signed_length ? "a finite number"
+                                                            : "a finite number >= 0 (0 by default)",
+                        meaning});
+        keys.push_back({hold(at + ".max"), f.geometries, number, "a finite number > min", meaning});
+        keys.push_back({hold(at + ".bins"), f.geometries, integer, bins, f.meaning});
+      }
+    }
+    Table() {
+      for (const SceneKey& key : kKeys) {
+        keys.push_back(key);
+        if (key.path == "tally.group_index") add_filters();
+      }
+    }
+  } table;
+  return table.keys;
+}
 
 bool in_list(std::string_view list, std::string_view word) {
   std::size_t at = 0;
@@ -301,7 +307,7 @@ std::string node_schema(const Node& node, bool array_of_tables) {
 
 std::string geometry_schema(std::string_view geometry) {
   Node root;
-  for (const SceneKey& key : kKeys) {
+  for (const SceneKey& key : all_keys()) {
     if (!in_list(key.geometries, geometry)) continue;
     Node* node = &root;
     for (const std::string_view part : split(key.path)) {
@@ -317,7 +323,7 @@ std::string geometry_schema(std::string_view geometry) {
 }  // namespace
 
 std::span<const SceneKey> scene_keys() {
-  return kKeys;
+  return all_keys();
 }
 
 bool scene_key_of(const SceneKey& key, std::string_view geometry) {
@@ -328,7 +334,7 @@ std::vector<std::string_view> scene_table_keys(std::string_view geometry, std::s
   const std::vector<std::string_view> prefix =
       table.empty() ? std::vector<std::string_view>{} : split(table);
   std::vector<std::string_view> names;
-  for (const SceneKey& key : kKeys) {
+  for (const SceneKey& key : all_keys()) {
     if (!in_list(key.geometries, geometry)) continue;
     const std::vector<std::string_view> parts = split(key.path);
     if (parts.size() <= prefix.size() || !std::equal(prefix.begin(), prefix.end(), parts.begin())) {
@@ -387,7 +393,7 @@ std::string scene_key_reference() {
         "\n## geometry.type = \"{}\"\n\n| key | value | accepted | meaning |\n"
         "|---|---|---|---|\n",
         geometry);
-    for (const SceneKey& key : kKeys) {
+    for (const SceneKey& key : all_keys()) {
       if (!in_list(key.geometries, geometry)) continue;
       constexpr std::array<std::string_view, 5> kinds = {"number", "integer", "boolean", "string",
                                                          "[x, y, z]"};

@@ -23,46 +23,122 @@ constexpr int max_bins = 100'000;
 // One tally's cells: past this its buffers (several per thread and batch) outgrow a machine.
 constexpr double max_cells = 1e8;
 
-// The filters, in the order of their cells: space, direction, time, order. Adding one is a row
-// here with its case in declare_chained_tallies, its Coordinate and EventBinning case
-// (tally/filter.hpp) and its factory; the schema (io/scene_schema.cpp) lists its keys.
+constexpr ExitSurface any = ExitSurface::none;
+
+// The filters, in the order of their cells: space, direction, time, order. Each row says all
+// there is to say about a filter: its key, the coordinate it bins (tally/filter.hpp), the events
+// and surfaces it bins, how its axis is given, what its bins divide a tally by (its units; a
+// filter of a pair, phi or azimuth, leaves them to its partner when both are there), the
+// geometries whose scenes take it (the schema's, io/scene_schema.cpp, is written from these
+// rows), its meaning, and how it is made in the walk's units. Adding a filter of a coordinate
+// the events carry is a row here.
 struct FilterRow {
   std::string_view key;
   Coordinate coordinate;
-  bool at_exits, in_volume;  // the events it bins
-  // The surface whose exits it bins (ExitSurface::none: any).
-  ExitSurface exits_through;
-  // Of min and max: "length" is the scene's length unit; "rad" an angle over its whole range
-  // (bins alone); "" a count (order), or a switch (layer, triangle: a bin per one).
-  std::string_view unit;
-  std::string_view per;  // what its bins divide by, for the description
+  bool at_exits, in_volume;   // the events it bins
+  ExitSurface exits_through;  // the surface whose exits it bins (any: every one)
+  FilterAxis axis;
+  double range;  // an angle's: its axis is [0, range]
+  Units units;   // its share of the tally's units
+  int pair;      // 1: theta, theta_o with phi; 2: psi with azimuth; 0: none
+  bool follows;  // of a pair, the one that leaves the units to the other
+  std::string_view geometries;
+  std::string_view meaning;  // of its bins, for the schema
+  std::string_view per;      // what its bins divide by, for the tally's description
+  // The filter, in the walk's units; `paired`: the other filter of its pair is there too.
+  Filter (*make)(const UniformAxis& axis, const DeclaredTally& t, const DeclaredTallyFrame& frame,
+                 bool paired);
 };
-constexpr ExitSurface any = ExitSurface::none;
+
+using L = FilterAxis;
+constexpr std::string_view every = "infinite half_space sphere mesh slab";
+
+UniformAxis in_walk(const UniformAxis& axis, const DeclaredTallyFrame& frame) {
+  return length_axis_in_mfp(axis, frame.walk_per_unit);
+}
+
 constexpr auto filter_rows = std::to_array<FilterRow>({
-    {"x", Coordinate::x, true, true, any, "length", "per unit length in x"},
-    {"y", Coordinate::y, true, true, any, "length", "per unit length in y"},
-    {"r", Coordinate::r, true, true, any, "length",
-     "per unit area at distance r from the beam axis"},
-    {"z", Coordinate::z, false, true, any, "length", "per unit depth z"},
-    {"rho", Coordinate::rho, false, true, any, "length",
-     "per unit volume at distance rho from the source"},
-    {"psi", Coordinate::psi, true, false, ExitSurface::sphere, "rad",
-     "per unit area of the sphere by the angle psi from the lit pole"},
-    {"azimuth", Coordinate::azimuth, true, false, ExitSurface::sphere, "rad",
-     "by the exit point's azimuth about z (alone: per unit area of its lune)"},
-    {"triangle", Coordinate::triangle, true, false, ExitSurface::mesh, "",
-     "per unit area of each triangle"},
-    {"theta", Coordinate::theta, false, true, any, "rad",
-     "per steradian by the direction's polar angle theta from +z"},
-    {"theta_o", Coordinate::exit_angle, true, false, any, "rad",
-     "per steradian at exit angle theta_o from the outward normal, outside"},
-    {"phi", Coordinate::phi, true, true, ExitSurface::plane, "rad",
-     "by the direction's azimuth phi about z (alone: per radian)"},
-    {"t", Coordinate::t, true, true, any, "s",
-     "per second of time of flight t after a unit impulse"},
-    {"order", Coordinate::order, true, true, any, "",
-     "by scattering order (the last bin: and more)"},
-    {"layer", Coordinate::layer, false, true, any, "", "by layer, top down"},
+    {"x", Coordinate::x, true, true, any, L::signed_length, 0.0, Units{0, -1}, 0, false, every,
+     "bins of x (of an exit: on the surface, about the entry point)", "per unit length in x",
+     [](const UniformAxis& a, const DeclaredTally&, const DeclaredTallyFrame& f, bool) {
+       return position_filter(Coordinate::x, in_walk(a, f));
+     }},
+    {"y", Coordinate::y, true, true, any, L::signed_length, 0.0, Units{0, -1}, 0, false, every,
+     "bins of y (of an exit: on the surface, about the entry point)", "per unit length in y",
+     [](const UniformAxis& a, const DeclaredTally&, const DeclaredTallyFrame& f, bool) {
+       return position_filter(Coordinate::y, in_walk(a, f));
+     }},
+    {"r", Coordinate::r, true, true, any, L::length, 0.0, Units{0, -2}, 0, false, every,
+     "bins of the distance from the beam axis", "per unit area at distance r from the beam axis",
+     [](const UniformAxis& a, const DeclaredTally&, const DeclaredTallyFrame& f, bool) {
+       return radius_filter(in_walk(a, f));
+     }},
+    {"z", Coordinate::z, false, true, any, L::signed_length, 0.0, Units{0, -1}, 0, false, every,
+     "bins of depth", "per unit depth z",
+     [](const UniformAxis& a, const DeclaredTally&, const DeclaredTallyFrame& f, bool) {
+       return position_filter(Coordinate::z, in_walk(a, f));
+     }},
+    {"rho", Coordinate::rho, false, true, any, L::length, 0.0, Units{0, -3}, 0, false, every,
+     "bins of the distance from the source (the origin)",
+     "per unit volume at distance rho from the source",
+     [](const UniformAxis& a, const DeclaredTally&, const DeclaredTallyFrame& f, bool) {
+       return shell_filter(in_walk(a, f));
+     }},
+    {"psi", Coordinate::psi, true, false, ExitSurface::sphere, L::angle, pi, Units{0, -2}, 2, false,
+     "sphere", "bins of an exit point's angle from the lit pole (0, 0, -R)",
+     "per unit area of the sphere by the angle psi from the lit pole",
+     [](const UniformAxis& a, const DeclaredTally&, const DeclaredTallyFrame& f, bool paired) {
+       return sphere_polar_filter(a, f.radius, paired);
+     }},
+    {"azimuth", Coordinate::azimuth, true, false, ExitSurface::sphere, L::angle, 2.0 * pi,
+     Units{0, -2}, 2, true, "sphere", "bins of an exit point's azimuth about z from +x",
+     "by the exit point's azimuth about z (alone: per unit area of its lune)",
+     [](const UniformAxis& a, const DeclaredTally&, const DeclaredTallyFrame& f, bool paired) {
+       return sphere_azimuth_filter(a, f.radius, paired);
+     }},
+    {"triangle", Coordinate::triangle, true, false, ExitSurface::mesh, L::each, 0.0, Units{0, -2},
+     0, false, "mesh", "a bin per triangle of the mesh, by its area",
+     "per unit area of each triangle",
+     [](const UniformAxis&, const DeclaredTally&, const DeclaredTallyFrame& f, bool) {
+       return triangle_filter(f.triangle_areas);
+     }},
+    {"theta", Coordinate::theta, false, true, any, L::angle, pi, Units{0, 0, -1}, 1, false, every,
+     "bins of the direction's polar angle from +z (fluence, absorbed)",
+     "per steradian by the direction's polar angle theta from +z",
+     [](const UniformAxis& a, const DeclaredTally&, const DeclaredTallyFrame&, bool paired) {
+       return polar_angle_filter(a, paired);
+     }},
+    {"theta_o", Coordinate::exit_angle, true, false, any, L::angle, 0.5 * pi, Units{0, 0, -1}, 1,
+     false, every, "bins of the exit angle from the outward normal, outside",
+     "per steradian at exit angle theta_o from the outward normal, outside",
+     [](const UniformAxis& a, const DeclaredTally&, const DeclaredTallyFrame&, bool paired) {
+       return exit_solid_angle_filter(a, paired);
+     }},
+    {"phi", Coordinate::phi, true, true, ExitSurface::plane, L::angle, 2.0 * pi,
+     Units{0, 0, 0, 0, -1}, 1, true, every,
+     "bins of the direction's azimuth about z from +x (in the volume, and at exits through a "
+     "plane)",
+     "by the direction's azimuth phi about z (alone: per radian)",
+     [](const UniformAxis& a, const DeclaredTally&, const DeclaredTallyFrame&, bool) {
+       return azimuth_angle_filter(a);
+     }},
+    {"t", Coordinate::t, true, true, any, L::seconds, 0.0, Units{0, 0, 0, -1}, 0, false, every,
+     "bins of the time of flight since the light entered",
+     "per second of time of flight t after a unit impulse",
+     [](const UniformAxis& a, const DeclaredTally& t, const DeclaredTallyFrame& f, bool) {
+       return time_filter(a, f.seconds_per_walk_length * t.group_index.value_or(f.index));
+     }},
+    {"order", Coordinate::order, true, true, any, L::count, 0.0, Units{0}, 0, false, every,
+     "bins of the scattering order 0, 1, ...; the last holds its order and more",
+     "by scattering order (the last bin: and more)",
+     [](const UniformAxis& a, const DeclaredTally&, const DeclaredTallyFrame&, bool) {
+       return order_filter(a.bins);
+     }},
+    {"layer", Coordinate::layer, false, true, any, L::each, 0.0, Units{0}, 0, false, "slab",
+     "a bin per layer, top down", "by layer, top down",
+     [](const UniformAxis&, const DeclaredTally&, const DeclaredTallyFrame& f, bool) {
+       return layer_filter(static_cast<std::size_t>(f.layers));
+     }},
 });
 
 // The names of the surfaces, for refusals.
@@ -79,11 +155,6 @@ std::string_view surface_name(ExitSurface surface) {
   }
   return "none";
 }
-constexpr std::array<std::string_view, filter_rows.size()> filter_keys = [] {
-  std::array<std::string_view, filter_rows.size()> keys{};
-  for (std::size_t i = 0; i < keys.size(); ++i) keys[i] = filter_rows[i].key;
-  return keys;
-}();
 
 const FilterRow& row_of(Coordinate coordinate) {
   for (const FilterRow& row : filter_rows) {
@@ -105,19 +176,24 @@ std::string key(std::size_t i, std::string_view rest) {
   return fmt::format("tally[{}].{}", i + 1, rest);
 }
 
-// A filter's axis with its defaults: r and t from 0; the angles over their whole range
-// (theta_o [0, pi/2], theta and psi [0, pi], phi and azimuth [0, 2 pi]); order from 0 by 1.
+// Whether the other filter of `row`'s pair is in `t` too.
+bool paired(const FilterRow& row, const DeclaredTally& t) {
+  if (row.pair == 0) return false;
+  for (const DeclaredFilter& f : t.filters) {
+    const FilterRow& other = row_of(f.coordinate);
+    if (other.pair == row.pair && other.coordinate != row.coordinate) return true;
+  }
+  return false;
+}
+
+// A filter's axis with its defaults: lengths and t from 0, an angle over its whole range, an
+// order from 0 by 1.
 UniformAxis axis_of(const DeclaredFilter& f) {
-  switch (f.coordinate) {
-    case Coordinate::exit_angle:
-      return {0.0, 0.5 * pi, f.bins};
-    case Coordinate::theta:
-    case Coordinate::psi:
-      return {0.0, pi, f.bins};
-    case Coordinate::phi:
-    case Coordinate::azimuth:
-      return {0.0, 2.0 * pi, f.bins};
-    case Coordinate::order:
+  const FilterRow& row = row_of(f.coordinate);
+  switch (row.axis) {
+    case FilterAxis::angle:
+      return {0.0, row.range, f.bins};
+    case FilterAxis::count:
       return {0.0, static_cast<double>(f.bins), f.bins};
     default:
       return {f.min.value_or(0.0), f.max.value_or(0.0), f.bins};
@@ -127,23 +203,20 @@ UniformAxis axis_of(const DeclaredFilter& f) {
 void check_filter(const DeclaredFilter& f, std::size_t i, const DeclaredTallyFrame& frame) {
   const FilterRow& row = row_of(f.coordinate);
   const std::string at = key(i, fmt::format("filters.{}", row.key));
-  if (f.coordinate == Coordinate::layer) {  // as many bins as the slab has layers
-    if (frame.layers == 0) {
-      throw InputError(at, fmt::format("is asked in a {} scene", frame.geometry),
-                       "layer only in a slab: the other geometries have one medium");
-    }
-    return;
+  if (f.coordinate == Coordinate::layer && frame.layers == 0) {
+    throw InputError(at, fmt::format("is asked in a {} scene", frame.geometry),
+                     "layer only in a slab: the other geometries have one medium");
   }
-  if (f.coordinate == Coordinate::triangle) return;  // a bin per triangle (the surface checked)
+  if (row.axis == FilterAxis::each) return;  // a bin per layer or triangle
   if (f.bins < 1 || f.bins > max_bins) {
     throw InputError(at + ".bins", f.bins == 0 ? "is missing" : fmt::format("is {}", f.bins),
                      "an integer in [1, 100000]");
   }
-  if (row.unit == "rad" || f.coordinate == Coordinate::order) return;  // bins alone
-  const std::string unit = row.unit == "length" ? frame.length_unit : std::string(row.unit);
+  if (row.axis == FilterAxis::angle || row.axis == FilterAxis::count) return;  // bins alone
+  const bool seconds = row.axis == FilterAxis::seconds;
+  const bool signed_axis = row.axis == FilterAxis::signed_length;
+  const std::string unit = seconds ? "s" : frame.length_unit;
   if (!f.max) throw InputError(at + ".max", "is missing", fmt::format("a number, in {}", unit));
-  const bool signed_axis = f.coordinate == Coordinate::x || f.coordinate == Coordinate::y ||
-                           f.coordinate == Coordinate::z;
   if (signed_axis && !f.min) {
     throw InputError(at + ".min", "is missing", fmt::format("a number, in {}", unit));
   }
@@ -155,7 +228,7 @@ void check_filter(const DeclaredFilter& f, std::size_t i, const DeclaredTallyFra
   if (!signed_axis && axis.min < 0.0) {
     throw InputError(at + ".min", fmt::format("is {}", axis.min), "a number >= 0");
   }
-  if (row.unit != "length") return;
+  if (seconds) return;
   // The walk's units: as a grid's axes, finite bins of non-zero width (length_units.hpp).
   if (std::max(std::abs(axis.min), std::abs(axis.max)) * frame.walk_per_unit > max_grid_mfp ||
       axis.width() * frame.walk_per_unit < min_bin_mfp) {
@@ -166,25 +239,19 @@ void check_filter(const DeclaredFilter& f, std::size_t i, const DeclaredTallyFra
   }
 }
 
-// The units of a tally of `score` over its filters: a length power (from the filters' measures
-// and the score's weight), per steradian with theta_o, and per joule with t, per watt without.
+// The units of a tally of `score` over its filters: W per W incident (a collision of the fluence
+// scores 1 mfp), times each filter's share.
 Units units_of(const DeclaredTally& t) {
   Units units;
-  units.length = t.score == Score::fluence ? 1 : 0;  // a collision scores 1 mfp
-  if (t.filter(Coordinate::r)) units.length -= 2;
-  if (t.filter(Coordinate::rho)) units.length -= 3;
-  for (const Coordinate c : {Coordinate::x, Coordinate::y, Coordinate::z})
-    units.length -= t.filter(c) != nullptr;
-  for (const Coordinate c : {Coordinate::psi, Coordinate::azimuth, Coordinate::triangle}) {
-    if (t.filter(c)) {
-      units.length -= 2;  // per unit area of the surface
-      break;
-    }
+  units.length = t.score == Score::fluence ? 1 : 0;
+  for (const DeclaredFilter& f : t.filters) {
+    const FilterRow& row = row_of(f.coordinate);
+    if (row.follows && paired(row, t)) continue;
+    units.length += row.units.length;
+    units.steradians += row.units.steradians;
+    units.seconds += row.units.seconds;
+    units.radians += row.units.radians;
   }
-  const bool polar = t.filter(Coordinate::exit_angle) || t.filter(Coordinate::theta);
-  if (polar) units.steradians = -1;
-  if (t.filter(Coordinate::phi) && !polar) units.radians = -1;
-  if (t.filter(Coordinate::t)) units.seconds = -1;
   return units;
 }
 
@@ -354,56 +421,15 @@ std::vector<TallyDeclaration> declare_chained_tallies(const std::vector<Declared
       const DeclaredFilter* f = t.filter(row.coordinate);
       if (f == nullptr) continue;
       const UniformAxis axis = axis_of(*f);
-      const std::string unit = row.unit == "length" ? frame.length_unit : std::string(row.unit);
-      switch (row.coordinate) {
-        case Coordinate::r:
-          d.filters.push_back(radius_filter(length_axis_in_mfp(axis, frame.walk_per_unit)));
-          break;
-        case Coordinate::rho:
-          d.filters.push_back(shell_filter(length_axis_in_mfp(axis, frame.walk_per_unit)));
-          break;
-        case Coordinate::x:
-        case Coordinate::y:
-        case Coordinate::z:
-          d.filters.push_back(
-              position_filter(row.coordinate, length_axis_in_mfp(axis, frame.walk_per_unit)));
-          break;
-        case Coordinate::exit_angle:
-          d.filters.push_back(exit_solid_angle_filter(axis, t.filter(Coordinate::phi) != nullptr));
-          break;
-        case Coordinate::theta:
-          d.filters.push_back(polar_angle_filter(axis, t.filter(Coordinate::phi) != nullptr));
-          break;
-        case Coordinate::phi:
-          d.filters.push_back(azimuth_angle_filter(axis));
-          break;
-        case Coordinate::psi:
-          d.filters.push_back(
-              sphere_polar_filter(axis, frame.radius, t.filter(Coordinate::azimuth) != nullptr));
-          break;
-        case Coordinate::azimuth:
-          d.filters.push_back(
-              sphere_azimuth_filter(axis, frame.radius, t.filter(Coordinate::psi) != nullptr));
-          break;
-        case Coordinate::triangle:
-          d.filters.push_back(triangle_filter(frame.triangle_areas));
-          break;
-        case Coordinate::t:
-          d.filters.push_back(time_filter(
-              axis, frame.seconds_per_walk_length * t.group_index.value_or(frame.index)));
-          break;
-        case Coordinate::order:
-          d.filters.push_back(order_filter(f->bins));
-          break;
-        case Coordinate::layer:
-          d.filters.push_back(layer_filter(static_cast<std::size_t>(frame.layers)));
-          break;
-        default:
-          break;
-      }
+      d.filters.push_back(row.make(axis, t, frame, paired(row, t)));
       // The file's own axes: edges in the scene's units (orders, layers and triangles are
       // numbered).
-      if (!row.unit.empty()) d.axes.push_back({std::string(row.key), axis.edges(), unit});
+      if (row.axis != FilterAxis::count && row.axis != FilterAxis::each) {
+        const std::string unit = row.axis == FilterAxis::seconds ? "s"
+                                 : row.axis == FilterAxis::angle ? "rad"
+                                                                 : frame.length_unit;
+        d.axes.push_back({std::string(row.key), axis.edges(), unit});
+      }
     }
     declarations.push_back(std::move(d));
   }
@@ -431,10 +457,6 @@ const DeclaredFilter* DeclaredTally::filter(Coordinate coordinate) const {
   return nullptr;
 }
 
-std::span<const std::string_view> declared_filter_keys() {
-  return filter_keys;
-}
-
 std::optional<Coordinate> declared_filter(std::string_view name) {
   for (const FilterRow& row : filter_rows) {
     if (row.key == name) return row.coordinate;
@@ -442,8 +464,12 @@ std::optional<Coordinate> declared_filter(std::string_view name) {
   return std::nullopt;
 }
 
-bool declared_filter_is_switch(std::string_view name) {
-  return name == "layer" || name == "triangle";
+std::vector<DeclaredFilterKey> declared_filter_schema() {
+  std::vector<DeclaredFilterKey> keys;
+  for (const FilterRow& row : filter_rows) {
+    keys.push_back({row.key, row.axis, row.range, row.geometries, row.meaning});
+  }
+  return keys;
 }
 
 }  // namespace scatterlab

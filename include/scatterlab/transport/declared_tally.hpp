@@ -27,10 +27,9 @@
 // holding its order and more; layer a slab's layer, top down (layer = true: a bin per layer). A
 // tally against t is the response to a unit impulse, per joule incident; one without t is per
 // watt, as the geometry's own tallies are. Its cells are row-major in the order of the filter
-// table (declared_filter_keys), whatever the order the file names them in.
+// table (declared_filter_schema), whatever the order the file names them in.
 
 #include <optional>
-#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -63,12 +62,25 @@ struct DeclaredTally {
   const DeclaredFilter* filter(Coordinate coordinate) const;
 };
 
-// The filters' keys in filters = {...} ("x", "y", "r", ..., "layer"), in the order of their
-// cells; the coordinate of a key, or nullopt; and whether the key is a switch (layer = true,
-// triangle = true: a bin per layer or triangle) rather than a table with bins.
-std::span<const std::string_view> declared_filter_keys();
+// How a filter's axis is given: a length (max and bins, min 0 by default), a signed length (min
+// too), a time in seconds (as a length), an angle over its whole range or a count (bins alone),
+// or a bin for each layer or triangle (a switch: layer = true).
+enum class FilterAxis { length, signed_length, seconds, angle, count, each };
+
+// A filter as a scene writes it, for the reader and the schema (io/scene_schema.cpp writes its
+// keys from these: min, max and bins of a length or a time, bins of an angle or a count, a
+// boolean for each).
+struct DeclaredFilterKey {
+  std::string_view key;  // in filters = {...}: "x", "r", ..., "layer"
+  FilterAxis axis;
+  double range;                 // an angle's: [0, range]
+  std::string_view geometries;  // the geometry.type values that take it, space-separated
+  std::string_view meaning;     // of its bins
+};
+
+// Every filter, in the order of their cells; and the coordinate of a key, or nullopt.
+std::vector<DeclaredFilterKey> declared_filter_schema();
 std::optional<Coordinate> declared_filter(std::string_view key);
-bool declared_filter_is_switch(std::string_view key);
 
 // What a geometry gives its declared tallies: which events it has, its length unit and how its
 // walk's path becomes seconds.
