@@ -505,7 +505,8 @@ class SceneReader : public TomlReader {
         require("name", names);
       }
       const std::string_view scores =
-          "\"exitance\", \"transmittance\", \"fluence\" or \"absorbed\"";
+          "\"exitance\", \"transmittance\", \"fluence\", \"absorbed\", \"collisions\" or "
+          "\"path_length\"";
       if (const auto score = string(*table, "score", path, scores)) {
         const std::optional<Score> known = declared_score(*score);
         if (!known) wrong_type(*table->get("score"), dotted(path, "score"), scores);

@@ -133,9 +133,11 @@ constexpr std::array kKeys = std::to_array<SceneKey>({
 
     {"tally.name", kAll, string, "1 to 64 letters, digits and _",
      "a declared tally's name (transport/declared_tally.hpp), unique in the file"},
-    {"tally.score", kAll, string, "\"exitance\" \"transmittance\" \"fluence\" \"absorbed\"",
+    {"tally.score", kAll, string,
+     "\"exitance\" \"transmittance\" \"fluence\" \"absorbed\" \"collisions\" \"path_length\"",
      "what it adds up: light leaving through the lit surface, through a slab's far side, the "
-     "fluence rate at collisions, or the power absorbed",
+     "fluence rate at collisions, the power absorbed, the collisions, or the path of the light "
+     "leaving through the lit surface times its power",
      true},
     {"tally.group_index", "infinite", number, "a refractive index in [0.1, 10]",
      "the medium's group index, for the time of flight (the infinite medium has no index)"},

@@ -6,8 +6,8 @@ namespace scatterlab {
 namespace {
 
 constexpr std::array<std::string_view, static_cast<std::size_t>(Score::count)> names = {
-    "fluence",           "flux",     "radiance",       "exitance", "transmittance",
-    "entry_reflectance", "absorbed", "absorbed_depth", "escaped",  "exact"};
+    "fluence",  "flux",           "radiance", "exitance",   "transmittance", "entry_reflectance",
+    "absorbed", "absorbed_depth", "escaped",  "collisions", "path_length",   "exact"};
 
 }  // namespace
 

@@ -293,7 +293,12 @@ void Scorer::add_chain(const TallyDeclaration& d, std::size_t offset) {
       transmitted_chains_.push_back(std::move(chain));
       break;
     case Score::fluence:
+    case Score::collisions:
       collision_chains_.push_back(std::move(chain));
+      break;
+    case Score::path_length:
+      chain.by_path = true;
+      exit_chains_.push_back(std::move(chain));
       break;
     case Score::absorbed:
       absorption_chains_.push_back(std::move(chain));

@@ -17,8 +17,9 @@ namespace scatterlab {
 namespace {
 
 // The scores a scene may declare, each at its event.
-constexpr std::array<Score, 4> declarable = {Score::exitance, Score::transmittance, Score::fluence,
-                                             Score::absorbed};
+constexpr std::array<Score, 6> declarable = {Score::exitance,   Score::transmittance,
+                                             Score::fluence,    Score::absorbed,
+                                             Score::collisions, Score::path_length};
 constexpr int max_bins = 100'000;
 // One tally's cells: past this its buffers (several per thread and batch) outgrow a machine.
 constexpr double max_cells = 1e8;
@@ -243,7 +244,8 @@ void check_filter(const DeclaredFilter& f, std::size_t i, const DeclaredTallyFra
 // scores 1 mfp), times each filter's share.
 Units units_of(const DeclaredTally& t) {
   Units units;
-  units.length = t.score == Score::fluence ? 1 : 0;
+  // A collision of the fluence scores 1 mfp; a path, its length.
+  units.length = t.score == Score::fluence || t.score == Score::path_length ? 1 : 0;
   for (const DeclaredFilter& f : t.filters) {
     const FilterRow& row = row_of(f.coordinate);
     if (row.follows && paired(row, t)) continue;
@@ -256,9 +258,14 @@ Units units_of(const DeclaredTally& t) {
 }
 
 std::string description_of(const DeclaredTally& t) {
-  constexpr std::array<std::string_view, 4> what = {
-      "power leaving through the lit surface", "power leaving through the far side",
-      "fluence rate (collision estimator)", "power absorbed"};
+  constexpr std::array<std::string_view, declarable.size()> what = {
+      "power leaving through the lit surface",
+      "power leaving through the far side",
+      "fluence rate (collision estimator)",
+      "power absorbed",
+      "collisions",
+      "path travelled by the light leaving through the lit surface, times its power (over the "
+      "exitance: the mean path)"};
   const auto at = std::find(declarable.begin(), declarable.end(), t.score);
   std::string text(what.at(static_cast<std::size_t>(at - declarable.begin())));
   for (const FilterRow& row : filter_rows) {
@@ -331,19 +338,27 @@ void check_declared_tallies(const std::vector<DeclaredTally>& tallies,
     const auto refuse_score = [&](std::string_view why) {
       throw InputError(key(i, "score"),
                        fmt::format("\"{}\" in a {} scene: {}", score, frame.geometry, why),
-                       "\"exitance\" (a geometry with a surface), \"transmittance\" (a slab), "
-                       "\"fluence\" (not a slab) or \"absorbed\"");
+                       "\"exitance\" and \"path_length\" (a geometry with a surface, not a "
+                       "slab's path), \"transmittance\" (a slab), \"fluence\" and "
+                       "\"collisions\" (not a slab) or \"absorbed\"");
     };
-    if (t.score == Score::exitance && frame.surface == ExitSurface::none) {
+    const bool leaves = t.score == Score::exitance || t.score == Score::path_length;
+    if (leaves && frame.surface == ExitSurface::none) {
       refuse_score("it has no surface to leave through");
+    }
+    // A slab's walk keeps each photon's optical path, n l layer by layer (for its time), not
+    // its length.
+    if (t.score == Score::path_length && frame.transmits) {
+      refuse_score("its walk keeps the optical path n l, not the path's length");
     }
     if (t.score == Score::transmittance && !frame.transmits) {
       refuse_score("only a slab has a far side");
     }
-    if (t.score == Score::fluence && !frame.has_volume_estimator) {
+    if ((t.score == Score::fluence || t.score == Score::collisions) &&
+        !frame.has_volume_estimator) {
       refuse_score("its walk scores no collisions in the volume");
     }
-    const bool exits = t.score == Score::exitance || t.score == Score::transmittance;
+    const bool exits = leaves || t.score == Score::transmittance;
     for (std::size_t j = 0; j < t.filters.size(); ++j) {
       const DeclaredFilter& f = t.filters[j];
       const FilterRow& row = row_of(f.coordinate);

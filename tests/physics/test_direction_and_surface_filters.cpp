@@ -170,6 +170,14 @@ TEST(SurfaceFilters, UnscatteredLightLeavesTheSphereAtTheAntipodeOnTime) {
                             {bins(Coordinate::psi, 4),
                              axis(Coordinate::t, arrival * (1.0 - 1e-9), arrival * (1.0 + 1e-9), 1),
                              bins(Coordinate::order, 2)},
+                            std::nullopt},
+                           {"exits",
+                            Score::exitance,
+                            {bins(Coordinate::psi, 4), bins(Coordinate::order, 2)},
+                            std::nullopt},
+                           {"paths",
+                            Score::path_length,
+                            {bins(Coordinate::psi, 4), bins(Coordinate::order, 2)},
                             std::nullopt}};
   const TransportOutput out = run_lit_sphere(spec);
   const TallyResult& t = find_tally(out, "on_time");
@@ -189,6 +197,34 @@ TEST(SurfaceFilters, UnscatteredLightLeavesTheSphereAtTheAntipodeOnTime) {
   const double exact = (1.0 - f) * (1.0 - f) * std::exp(-2.0 * 2.0 * spec.radius);
   EXPECT_NEAR(t.mean[antipode] * band * width, exact,
               4.0 * t.stderr_of_mean[antipode] * band * width);
+  // The path of each unscattered photon leaving there is the diameter, 2R: the path-weighted
+  // exitance is 2R times the exitance, to round-off.
+  const TallyResult& paths = find_tally(out, "paths");
+  const TallyResult& exits = find_tally(out, "exits");
+  EXPECT_EQ(paths.units, "W mm^-1 per W incident");
+  EXPECT_NEAR(paths.mean[antipode], 2.0 * spec.radius * exits.mean[antipode],
+              1e-9 * paths.mean[antipode]);
+  EXPECT_GT(exits.mean[antipode], 0.0);
+}
+
+// In an infinite medium every photon collides a geometric number of times, mean 1 / (1 -
+// albedo), whatever g; the fluence's collision estimator scores each 1 mfp, 1 / sigma_t in mm.
+TEST(Scores, CollisionsCountWhatTheFluenceWeighsByAMeanFreePath) {
+  InfiniteMediumSpec spec;
+  spec.medium = Medium::from_albedo(0.9, 2.0, 0.6, "mm");
+  spec.tallies.radiance = spec.tallies.fluence = spec.tallies.flux = false;
+  spec.run.photons = 50'000;
+  spec.run.batches = 10;
+  spec.run.seed = 6;
+  spec.declared_tallies = {{"collisions", Score::collisions, {}, std::nullopt},
+                           {"fluence_in_all", Score::fluence, {}, std::nullopt}};
+  const TransportOutput out = run_infinite_medium(spec);
+  const TallyResult& n = find_tally(out, "collisions");
+  const TallyResult& phi = find_tally(out, "fluence_in_all");
+  EXPECT_EQ(n.units, "W per W incident");
+  EXPECT_EQ(phi.units, "W mm per W incident");
+  EXPECT_NEAR(n.mean[0], 1.0 / (1.0 - 0.9), 4.0 * n.stderr_of_mean[0]);
+  EXPECT_NEAR(phi.mean[0], n.mean[0] / 2.0, 1e-12 * phi.mean[0]);
 }
 
 LitObjectSpec lit_box(TriangleMesh mesh) {

@@ -257,6 +257,15 @@ TEST(DeclaredTally, RefusesWhatItsGeometryCannotScoreNamingTheField) {
                                   "score = \"absorbed\"\nfilters = { theta = { bins = 2 }, "
                                   "phi = { bins = 3 } }\n",
                               "sphere.toml"));
+  // A slab's walk keeps the optical path, not the path's length; the infinite medium has no
+  // surface to leave through.
+  const std::string slab =
+      "[geometry]\ntype = \"slab\"\n[[layers]]\nmu_a = 1\nmu_s = 10\ng = 0\nn = 1.4\n"
+      "thickness = 0.1\n";
+  EXPECT_EQ(refused(slab + tally + "score = \"path_length\"\n"), "tally[1].score");
+  EXPECT_EQ(refused(slab + tally + "score = \"collisions\"\n"), "tally[1].score");
+  EXPECT_EQ(refused(infinite + tally + "score = \"path_length\"\n"), "tally[1].score");
+  EXPECT_NO_THROW(parse_scene(half + tally + "score = \"path_length\"\n", "half.toml"));
   // A slab has no volume estimator.
   EXPECT_EQ(refused("[geometry]\ntype = \"slab\"\n[[layers]]\nmu_a = 1\nmu_s = 10\ng = 0\nn = 1.4\n"
                     "thickness = 0.1\n" +

@@ -32,6 +32,12 @@ enum class Score : std::size_t {
   absorbed_depth,
   // A photon walks past the escape radius, a count.
   escaped,
+  // A collision, a count (the fluence's collisions without their 1 mfp): declared tallies only.
+  collisions,
+  // A photon leaves through the surface it entered by: its weight times the path it travelled
+  // since it entered (over the exitance, the mean path of the light leaving: declared tallies
+  // only).
+  path_length,
   // Known exactly before any photon runs: no buffer cell and no standard error.
   exact,
   count

@@ -248,6 +248,7 @@ class Scorer {
   struct Chain {
     std::size_t offset;
     std::vector<ChainLink> links;
+    bool by_path = false;  // adds the weight times the event's path (Score::path_length)
   };
   static void add_chained(const std::vector<Chain>& chains, double* buffer, const TallyEvent& event,
                           double weight) {
@@ -262,7 +263,7 @@ class Scorer {
         }
         cell += static_cast<std::size_t>(bin) * link.stride;
       }
-      if (inside) buffer[cell] += weight;
+      if (inside) buffer[cell] += chain.by_path ? weight * event.path : weight;
     }
   }
 

@@ -11,6 +11,9 @@
 //   fluence        a collision (the collision estimator)        x, y, r, z, rho, theta, phi, t,
 //                                                               order
 //   absorbed       a photon's weight is absorbed                the fluence's, and layer
+//   collisions     a collision, counted (not 1 mfp)             the fluence's
+//   path_length    as exitance, its weight times the path       the exitance's (not a slab,
+//                  travelled since it entered                   whose walk keeps n l)
 //
 // x and y are the event's position (of an exit point on the surface, about the entry point; the
 // beam arrives in the x-z plane), r the distance from the beam axis, z the depth, rho the
@@ -52,7 +55,7 @@ struct DeclaredFilter {
 
 struct DeclaredTally {
   std::string name;  // letters, digits and _; unique in the file
-  Score score = Score::exitance;        // exitance, transmittance, fluence or absorbed
+  Score score = Score::exitance;        // one of the six scores above
   std::vector<DeclaredFilter> filters;  // at most one of each coordinate
   // The medium's group index, where the geometry has no index of its own (the infinite
   // medium); elsewhere the index is the geometry's (eta over an outside of index 1, or each
@@ -131,7 +134,7 @@ std::vector<TallyDeclaration> declare_chained_tallies(const std::vector<Declared
 // the fingerprint it always had.
 std::string fingerprint_text(const std::vector<DeclaredTally>& tallies);
 
-// The score a [[tally]] names, or nullopt for a name that is not one of the four above.
+// The score a [[tally]] names, or nullopt for a name that is not one of the six above.
 std::optional<Score> declared_score(std::string_view name);
 
 }  // namespace scatterlab
