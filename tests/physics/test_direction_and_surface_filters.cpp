@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <memory>
 
 #include "scatterlab/core/constants.hpp"
@@ -30,6 +31,17 @@ DeclaredFilter axis(Coordinate coordinate, double min, double max, int count) {
   return {coordinate, min, max, count};
 }
 
+// An infinite medium's beam with none of its own volume tallies, for declared ones: 20 batches.
+InfiniteMediumSpec declared_only(const Medium& medium, std::uint64_t photons, std::uint64_t seed) {
+  InfiniteMediumSpec spec;
+  spec.medium = medium;
+  spec.tallies.radiance = spec.tallies.fluence = spec.tallies.flux = false;
+  spec.run.photons = photons;
+  spec.run.batches = 20;
+  spec.run.seed = seed;
+  return spec;
+}
+
 // P(cos theta <= x) of the Henyey-Greenstein phase function with mean cosine g.
 double henyey_greenstein_cdf(double x, double g) {
   return (1.0 - g * g) / (2.0 * g) * (1.0 / std::sqrt(1.0 + g * g - 2.0 * g * x) - 1.0 / (1.0 + g));
@@ -41,12 +53,7 @@ double henyey_greenstein_cdf(double x, double g) {
 // fluence binned by (theta, phi) are exactly albedo P_HG(band) / phi bins per photon, and each
 // cell, per steradian, that over its solid angle (cos theta0 - cos theta1) (phi1 - phi0).
 TEST(DirectionFilters, OnceScatteredCollisionsFollowThePhaseFunction) {
-  InfiniteMediumSpec spec;
-  spec.medium = Medium::from_albedo(0.9, 1.0, 0.7, "mfp");
-  spec.tallies.radiance = spec.tallies.fluence = spec.tallies.flux = false;
-  spec.run.photons = 200'000;
-  spec.run.batches = 20;
-  spec.run.seed = 5;
+  InfiniteMediumSpec spec = declared_only(Medium::from_albedo(0.9, 1.0, 0.7, "mfp"), 200'000, 5);
   const int theta_bins = 12, phi_bins = 4;
   spec.declared_tallies = {{"by_direction",
                             Score::fluence,
@@ -210,12 +217,7 @@ TEST(SurfaceFilters, UnscatteredLightLeavesTheSphereAtTheAntipodeOnTime) {
 // In an infinite medium every photon collides a geometric number of times, mean 1 / (1 -
 // albedo), whatever g; the fluence's collision estimator scores each 1 mfp, 1 / sigma_t in mm.
 TEST(Scores, CollisionsCountWhatTheFluenceWeighsByAMeanFreePath) {
-  InfiniteMediumSpec spec;
-  spec.medium = Medium::from_albedo(0.9, 2.0, 0.6, "mm");
-  spec.tallies.radiance = spec.tallies.fluence = spec.tallies.flux = false;
-  spec.run.photons = 50'000;
-  spec.run.batches = 10;
-  spec.run.seed = 6;
+  InfiniteMediumSpec spec = declared_only(Medium::from_albedo(0.9, 2.0, 0.6, "mm"), 50'000, 6);
   spec.declared_tallies = {{"collisions", Score::collisions, {}, std::nullopt},
                            {"fluence_in_all", Score::fluence, {}, std::nullopt}};
   const TransportOutput out = run_infinite_medium(spec);
