@@ -199,8 +199,7 @@ class Scorer {
         return;
       }
     }
-    double angle = std::atan2(y, x);
-    if (angle < 0.0) angle += 2.0 * std::numbers::pi;
+    const double angle = azimuth_of(x, y);
     const int bin = std::clamp(static_cast<int>(angle * axes_.azimuth.inverse_width()), 0,
                                axes_.azimuth.bins - 1);
     add(buffer, zone + static_cast<std::size_t>(bin), block, weight);
