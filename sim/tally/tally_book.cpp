@@ -1,6 +1,7 @@
 #include "scatterlab/tally/tally_book.hpp"
 
 #include <algorithm>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -14,8 +15,10 @@ std::size_t cells_of(const TallyDeclaration& d) {
   return cells;
 }
 
-bool bins_along(const TallyDeclaration& d, std::initializer_list<Coordinate> coordinates) {
-  return std::equal(d.filters.begin(), d.filters.end(), coordinates.begin(), coordinates.end(),
+// Whether `d` is scored by the fixed path of `score` along `coordinates`.
+bool on_path(const TallyDeclaration& d, Score score, std::span<const Coordinate> coordinates) {
+  return !d.chained && d.score == score && score != Score::exact &&
+         std::equal(d.filters.begin(), d.filters.end(), coordinates.begin(), coordinates.end(),
                     [](const Filter& f, Coordinate c) { return f.coordinate() == c; });
 }
 
@@ -57,21 +60,22 @@ TallyBook::TallyBook(std::vector<TallyDeclaration> declarations, bool split_by_o
       if (d.by_order != by_order || d.score == Score::exact) continue;
       if (d.chained && d.by_order)
         throw std::invalid_argument("TallyBook: a chained tally is not split by order: " + d.name);
-      for (std::size_t j = 0; j < i && !d.chained; ++j) {
-        const TallyDeclaration& e = declarations_[j];
-        if (!e.chained && e.score == d.score &&
-            std::equal(d.filters.begin(), d.filters.end(), e.filters.begin(), e.filters.end(),
-                       [](const Filter& a, const Filter& b) {
-                         return a.coordinate() == b.coordinate();
-                       })) {
-          throw std::invalid_argument("TallyBook: two tallies of one fixed path: " + e.name +
-                                      " and " + d.name);
-        }
-      }
       declaration_offsets_[i] = next;
       next += cells_of(d);
     }
   };
+  // A fixed path scores one tally.
+  for (std::size_t i = 0; i < declarations_.size(); ++i) {
+    const TallyDeclaration& d = declarations_[i];
+    std::vector<Coordinate> coordinates;
+    for (const Filter& f : d.filters) coordinates.push_back(f.coordinate());
+    for (std::size_t j = 0; j < i && !d.chained; ++j) {
+      if (on_path(declarations_[j], d.score, coordinates)) {
+        throw std::invalid_argument("TallyBook: two tallies of one fixed path: " +
+                                    declarations_[j].name + " and " + d.name);
+      }
+    }
+  }
   place(true);
   block_size_ = next;
   next = block_size_ * (split_by_order_ ? 4 : 1);
@@ -81,8 +85,7 @@ TallyBook::TallyBook(std::vector<TallyDeclaration> declarations, bool split_by_o
 
 std::size_t TallyBook::offset(Score score, std::initializer_list<Coordinate> coordinates) const {
   for (std::size_t i = 0; i < declarations_.size(); ++i) {
-    const TallyDeclaration& d = declarations_[i];
-    if (!d.chained && d.score == score && d.score != Score::exact && bins_along(d, coordinates)) {
+    if (on_path(declarations_[i], score, {coordinates.begin(), coordinates.size()})) {
       return declaration_offsets_[i];
     }
   }

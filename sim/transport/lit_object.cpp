@@ -67,14 +67,16 @@ DeclaredTallyFrame object_frame(const LitObjectSpec& spec) {
   return frame;
 }
 
-// The sphere's tallies, each declared once; all but the light reflected at entry by order.
-std::vector<TallyDeclaration> declare_tallies(const LitObjectSpec& spec, double radius_mfp,
+// The object's tallies, each declared once, all but the light reflected at entry by order (its
+// surface's in `frame`, walk units); then the scene's own.
+std::vector<TallyDeclaration> declare_tallies(const LitObjectSpec& spec,
+                                              const DeclaredTallyFrame& frame,
                                               double beam_reflectance) {
   std::vector<TallyDeclaration> tallies;
   if (spec.mesh) {
     tallies.push_back({"exitance",
                        Score::exitance,
-                       {triangle_filter(triangle_areas_mfp(spec))},
+                       {triangle_filter(frame.triangle_areas)},
                        Units{1, -2},
                        "radiant exitance M on the mesh: power leaving the object for good "
                        "through each triangle per unit of its area",
@@ -82,7 +84,7 @@ std::vector<TallyDeclaration> declare_tallies(const LitObjectSpec& spec, double 
   } else {
     tallies.push_back({"exitance",
                        Score::exitance,
-                       {sphere_patch_filter(spec.psi, spec.azimuth, radius_mfp)},
+                       {sphere_patch_filter(spec.psi, spec.azimuth, frame.radius)},
                        Units{1, -2},
                        "radiant exitance M(psi, azimuth) on the sphere: power leaving per unit "
                        "area of the patch at angle psi from the lit pole (0, 0, -R) and azimuth "
@@ -123,6 +125,9 @@ std::vector<TallyDeclaration> declare_tallies(const LitObjectSpec& spec, double 
                        "standard error)",
                        false,
                        beam_reflectance});
+  }
+  for (TallyDeclaration& d : declare_chained_tallies(spec.declared_tallies, frame, tallies)) {
+    tallies.push_back(std::move(d));
   }
   return tallies;
 }
@@ -309,11 +314,7 @@ TransportProblem transport_problem(const LitObjectSpec& spec) {
     // unnoticed, it ends far away (uncounted, so that the energy balance shows it) rather than
     // wander for ever.
     problem.run.escape_radius = 1e3 * (1.0 + bounding_radius_mfp(spec));
-    problem.tallies = declare_tallies(spec, radius, 0.0);
-    for (TallyDeclaration& d :
-         declare_chained_tallies(spec.declared_tallies, object_frame(spec), problem.tallies)) {
-      problem.tallies.push_back(std::move(d));
-    }
+    problem.tallies = declare_tallies(spec, object_frame(spec), 0.0);
     problem.size_fields = "the mesh's triangles, run.threads";
     return problem;
   }
@@ -341,11 +342,7 @@ TransportProblem transport_problem(const LitObjectSpec& spec) {
   }
   problem.axes.psi = spec.psi;
   problem.axes.azimuth = spec.azimuth;
-  problem.tallies = declare_tallies(spec, radius, beam_reflectance);
-  for (TallyDeclaration& d :
-       declare_chained_tallies(spec.declared_tallies, object_frame(spec), problem.tallies)) {
-    problem.tallies.push_back(std::move(d));
-  }
+  problem.tallies = declare_tallies(spec, object_frame(spec), beam_reflectance);
   problem.size_fields = "grid.psi.bins x grid.azimuth.bins, run.threads";
   return problem;
 }

@@ -148,21 +148,19 @@ class Scorer {
   // them.
   void chained_exit(double* buffer, const SurfaceExit& where, const Vec3& direction, double path,
                     int order, double weight) const {
-    TallyEvent event{where.x, where.y, 0.0, path, where.cos_outside, order, 0};
-    event.u_x = direction.x();
-    event.u_y = direction.y();
-    event.u_z = direction.z();
+    TallyEvent event = event_at(Vec3(where.x, where.y, 0.0), direction, path, order, 0);
+    event.cos_outside = where.cos_outside;
     event.cos_polar = where.cos_polar;
     event.triangle = where.triangle;
     add_chained(where.transmitted ? transmitted_chains_ : exit_chains_, buffer, event, weight);
   }
   void chained_collision(double* buffer, const Vec3& position, const Vec3& direction, double path,
                          int order) const {
-    add_chained(collision_chains_, buffer, volume_event(position, direction, path, order, 0), 1.0);
+    add_chained(collision_chains_, buffer, event_at(position, direction, path, order, 0), 1.0);
   }
   void chained_absorption(double* buffer, const Vec3& position, const Vec3& direction, double path,
                           int order, int layer, double weight) const {
-    add_chained(absorption_chains_, buffer, volume_event(position, direction, path, order, layer),
+    add_chained(absorption_chains_, buffer, event_at(position, direction, path, order, layer),
                 weight);
   }
 
@@ -230,8 +228,9 @@ class Scorer {
     }
   }
 
-  static TallyEvent volume_event(const Vec3& position, const Vec3& direction, double path,
-                                 int order, int layer) {
+  // An event at `position` along `direction` (an exit's other fields are chained_exit's).
+  static TallyEvent event_at(const Vec3& position, const Vec3& direction, double path, int order,
+                             int layer) {
     TallyEvent event{position.x(), position.y(), position.z(), path, 1.0, order, layer};
     event.u_x = direction.x();
     event.u_y = direction.y();
